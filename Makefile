@@ -1,0 +1,48 @@
+# Talus top-level commands. `make test` is what CI runs (.ci/run).
+#
+#   make test      install deps, build, run every test (plain + ASan/UBSan)
+#   make build     configure and build the release tree in build/
+#   make format    reformat the sources with clang-format
+#
+# JOBS sets build and test parallelism (default: all cores).
+
+JOBS ?= $(shell nproc)
+BUILD_DIR ?= build
+ASAN_DIR ?= build-asan
+CMAKE ?= cmake
+GENERATOR ?= Ninja
+CTEST_FLAGS ?= --output-on-failure --no-tests=error -j $(JOBS)
+SOURCES = $(shell git ls-files '*.cpp' '*.h' 2>/dev/null)
+
+.PHONY: deps configure build test test-release test-asan format format-check clean
+
+deps:
+	@scripts/install-deps.sh
+
+configure: deps
+	@$(CMAKE) -S . -B $(BUILD_DIR) -G $(GENERATOR) -DCMAKE_BUILD_TYPE=Release >/dev/null
+
+build: configure
+	@$(CMAKE) --build $(BUILD_DIR) -j $(JOBS)
+
+test-release: build
+	cd $(BUILD_DIR) && ctest $(CTEST_FLAGS)
+
+# The sanitizer tree is a debug-assert build (-O1, asserts on), so programmer
+# errors trip assertions as well as ASan/UBSan. Benchmarks are left out.
+test-asan: deps
+	@$(CMAKE) -S . -B $(ASAN_DIR) -G $(GENERATOR) -DCMAKE_BUILD_TYPE=Debug \
+	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DTALUS_SANITIZE=ON -DTALUS_BUILD_BENCH=OFF >/dev/null
+	@$(CMAKE) --build $(ASAN_DIR) -j $(JOBS)
+	cd $(ASAN_DIR) && ctest $(CTEST_FLAGS) -LE slow
+
+test: format-check test-release test-asan
+
+format:
+	clang-format -i $(SOURCES)
+
+format-check: deps
+	@clang-format --dry-run --Werror $(SOURCES)
+
+clean:
+	rm -rf $(BUILD_DIR) $(ASAN_DIR)

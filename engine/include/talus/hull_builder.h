@@ -1,0 +1,40 @@
+// Building a Hull from a point cloud with Quickhull (section 1 of the
+// original write-up).
+#pragma once
+
+#include <span>
+
+#include "talus/hull.h"
+#include "talus/math.h"
+#include "talus/result.h"
+
+namespace talus {
+
+/// Settings for BuildHull.
+struct HullBuildSettings {
+  /// Largest number of hull vertices to keep, for game use: Quickhull stops
+  /// adding points once the hull has this many, so the result is the hull of
+  /// the `maxVertices` most significant extreme points (a subset of the
+  /// input). 0 means no cap; otherwise at least 4.
+  int maxVertices = 0;
+
+  /// Distance tolerance in metres below which a point counts as on a plane;
+  /// 0 (default) derives it from the input's extent with
+  /// Hull::DefaultTolerance, which is what nearly every caller wants.
+  double tolerance = 0.0;
+};
+
+/// The convex hull of `points` by Quickhull: start from a tetrahedron of
+/// extreme points, repeatedly add the farthest outside point of a face,
+/// find the horizon through the half-edge structure, replace the visible
+/// faces by a cone to the new point, and drop points now inside. Coplanar
+/// triangles are merged into polygonal faces.
+///
+/// Every hull vertex is one of the input points, unchanged. Fails (never
+/// crashes, never returns an invalid hull) when the points span no volume
+/// (fewer than 4 distinct points, all collinear or coplanar within the
+/// tolerance) or when a coordinate is NaN or infinite; the message names the
+/// problem and, for bad values, the point index.
+Result<Hull> BuildHull(std::span<const Vec3> points, const HullBuildSettings& settings = {});
+
+}  // namespace talus

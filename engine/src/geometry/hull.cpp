@@ -1,0 +1,292 @@
+// Baking and validating the flat half-edge Hull.
+//
+// FromPolygons is the single door through which every Hull comes into
+// being, Quickhull's output included, so the invariants documented in
+// talus/hull.h are checked in one place. All checks are O(E) apart from a
+// per-face planarity pass, so validating even a million-vertex hull is cheap
+// next to building it.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <unordered_map>
+
+#include "talus/hull.h"
+
+namespace talus {
+namespace {
+
+// A directed edge (from, to) packed into one key for the twin lookup.
+std::uint64_t DirectedKey(int from, int to) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) |
+         static_cast<std::uint32_t>(to);
+}
+
+std::string FaceName(std::size_t face) { return "face " + std::to_string(face); }
+
+// Newell's method: the area-weighted normal of a polygon, robust for
+// slightly non-planar loops. Its length is twice the polygon's area.
+Vec3 NewellNormal(const std::vector<Vec3>& vertices, const std::vector<int>& loop) {
+  Vec3 normal = Vec3::Zero();
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Vec3& a = vertices[static_cast<std::size_t>(loop[i])];
+    const Vec3& b = vertices[static_cast<std::size_t>(loop[(i + 1) % loop.size()])];
+    normal += a.cross(b);
+  }
+  return normal;
+}
+
+std::optional<Error> CheckFaceLoops(const std::vector<Vec3>& vertices,
+                                    const std::vector<std::vector<int>>& faces) {
+  const int vertexCount = static_cast<int>(vertices.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const auto& loop = faces[f];
+    if (loop.size() < 3) {
+      return Error{FaceName(f) + " has " + std::to_string(loop.size()) + " vertices (needs at least 3)"};
+    }
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      if (loop[i] < 0 || loop[i] >= vertexCount) {
+        return Error{FaceName(f) + " refers to vertex " + std::to_string(loop[i]) + ", but there are only " +
+                     std::to_string(vertexCount)};
+      }
+      for (std::size_t j = 0; j < i; ++j) {
+        if (loop[j] == loop[i]) {
+          return Error{FaceName(f) + " visits vertex " + std::to_string(loop[i]) + " twice"};
+        }
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+double Hull::DefaultTolerance(std::span<const Vec3> points) {
+  // The classic Quickhull choice: a few ulps of the summed largest
+  // magnitudes per axis. Far from the origin the representable spacing grows,
+  // and so must the tolerance.
+  Vec3 maxAbs = Vec3::Zero();
+  for (const Vec3& p : points) maxAbs = maxAbs.cwiseMax(p.cwiseAbs());
+  constexpr double kUlps = 3.0;
+  return kUlps * std::numeric_limits<double>::epsilon() * maxAbs.sum();
+}
+
+Result<Hull> Hull::FromPolygons(std::vector<Vec3> vertices, const std::vector<std::vector<int>>& faces,
+                                double tolerance) {
+  for (std::size_t v = 0; v < vertices.size(); ++v) {
+    if (!vertices[v].allFinite()) return Error{"vertex " + std::to_string(v) + " is not finite"};
+  }
+  if (!std::isfinite(tolerance) || tolerance < 0.0) {
+    return Error{"tolerance must be finite and >= 0, got " + std::to_string(tolerance)};
+  }
+  if (vertices.size() < 4 || faces.size() < 4) {
+    return Error{"a closed polyhedron needs at least 4 vertices and 4 faces, got " +
+                 std::to_string(vertices.size()) + " and " + std::to_string(faces.size())};
+  }
+  if (auto error = CheckFaceLoops(vertices, faces)) return *error;
+  if (tolerance == 0.0) tolerance = DefaultTolerance(vertices);
+
+  Hull hull;
+  hull.m_tolerance = tolerance;
+
+  // Directed edges in face order; twins found through a hash of (from, to).
+  std::vector<HullHalfEdge> loose;
+  std::unordered_map<std::uint64_t, int> byKey;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const auto& loop = faces[f];
+    const int first = static_cast<int>(loose.size());
+    const int count = static_cast<int>(loop.size());
+    for (int i = 0; i < count; ++i) {
+      const int from = loop[static_cast<std::size_t>(i)];
+      const int to = loop[static_cast<std::size_t>((i + 1) % count)];
+      if (!byKey.emplace(DirectedKey(from, to), first + i).second) {
+        return Error{"edge " + std::to_string(from) + "->" + std::to_string(to) +
+                     " is used twice in the same direction (" + FaceName(f) +
+                     "): faces are not consistently oriented, or the surface is not a 2-manifold"};
+      }
+      loose.push_back({.origin = from,
+                       .twin = -1,
+                       .next = first + (i + 1) % count,
+                       .prev = first + (i + count - 1) % count,
+                       .face = static_cast<int>(f)});
+    }
+  }
+  for (auto& h : loose) {
+    const int to = loose[static_cast<std::size_t>(h.next)].origin;
+    auto it = byKey.find(DirectedKey(to, h.origin));
+    if (it == byKey.end()) {
+      return Error{"edge " + std::to_string(h.origin) + "->" + std::to_string(to) + " of " +
+                   FaceName(static_cast<std::size_t>(h.face)) + " has no twin: the surface is not closed"};
+    }
+    h.twin = it->second;
+  }
+
+  // Renumber so that twins are (2e, 2e + 1): edge e is then one index.
+  std::vector<int> newIndex(loose.size(), -1);
+  int nextIndex = 0;
+  for (std::size_t i = 0; i < loose.size(); ++i) {
+    if (newIndex[i] >= 0) continue;
+    newIndex[i] = nextIndex++;
+    newIndex[static_cast<std::size_t>(loose[i].twin)] = nextIndex++;
+  }
+  hull.m_halfEdges.resize(loose.size());
+  for (std::size_t i = 0; i < loose.size(); ++i) {
+    const HullHalfEdge& h = loose[i];
+    hull.m_halfEdges[static_cast<std::size_t>(newIndex[i])] = {
+        .origin = h.origin,
+        .twin = newIndex[static_cast<std::size_t>(h.twin)],
+        .next = newIndex[static_cast<std::size_t>(h.next)],
+        .prev = newIndex[static_cast<std::size_t>(h.prev)],
+        .face = h.face};
+  }
+
+  // Every vertex must be used, and its outgoing half-edges must form a
+  // single fan (a manifold vertex, not two cones touching at a point).
+  const std::size_t vertexCount = vertices.size();
+  std::vector<int> outDegree(vertexCount, 0);
+  hull.m_vertexEdges.assign(vertexCount, -1);
+  for (std::size_t i = 0; i < hull.m_halfEdges.size(); ++i) {
+    const auto origin = static_cast<std::size_t>(hull.m_halfEdges[i].origin);
+    ++outDegree[origin];
+    if (hull.m_vertexEdges[origin] < 0) hull.m_vertexEdges[origin] = static_cast<int>(i);
+  }
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    if (outDegree[v] == 0) return Error{"vertex " + std::to_string(v) + " is not used by any face"};
+    int fan = 0;
+    int h = hull.m_vertexEdges[v];
+    do {
+      h = hull.m_halfEdges[static_cast<std::size_t>(hull.m_halfEdges[static_cast<std::size_t>(h)].twin)].next;
+      ++fan;
+    } while (h != hull.m_vertexEdges[v] && fan <= outDegree[v]);
+    if (fan != outDegree[v]) {
+      return Error{"vertex " + std::to_string(v) +
+                   " is not a manifold vertex (its faces form more than one fan)"};
+    }
+  }
+
+  const long euler = static_cast<long>(vertexCount) - static_cast<long>(hull.m_halfEdges.size() / 2) +
+                     static_cast<long>(faces.size());
+  if (euler != 2) {
+    return Error{"V - E + F = " + std::to_string(euler) + ", not 2: the surface is not a sphere"};
+  }
+
+  // Face planes (Newell), planarity and convexity of each polygon.
+  hull.m_faces.resize(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const auto& loop = faces[f];
+    const Vec3 newell = NewellNormal(vertices, loop);
+    const double twiceArea = newell.norm();
+    if (!(twiceArea > 0.0)) return Error{FaceName(f) + " has zero area"};
+    const Vec3 normal = newell / twiceArea;
+    double offset = 0.0;
+    for (int v : loop) offset += normal.dot(vertices[static_cast<std::size_t>(v)]);
+    offset /= static_cast<double>(loop.size());
+    double turning = 0.0;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Vec3& a = vertices[static_cast<std::size_t>(loop[i])];
+      const Vec3& b = vertices[static_cast<std::size_t>(loop[(i + 1) % loop.size()])];
+      const Vec3& c = vertices[static_cast<std::size_t>(loop[(i + 2) % loop.size()])];
+      if (std::abs(normal.dot(a) - offset) > tolerance) {
+        return Error{FaceName(f) + " is not planar: vertex " + std::to_string(loop[i]) + " is " +
+                     std::to_string(std::abs(normal.dot(a) - offset)) + " m off its plane"};
+      }
+      // c must not lie right of the directed line a -> b (seen from outside).
+      const Vec3 ab = b - a;
+      const Vec3 inward = normal.cross(ab).normalized();
+      if (inward.dot(c - a) < -tolerance) {
+        return Error{FaceName(f) + " is not convex at vertex " + std::to_string(loop[(i + 1) % loop.size()])};
+      }
+      const Vec3 bc = c - b;
+      turning += std::atan2(normal.dot(ab.cross(bc)), ab.dot(bc));
+    }
+    // Local left turns everywhere still allow a loop that winds twice.
+    if (std::abs(turning - 2.0 * std::numbers::pi) > 1e-6) {
+      return Error{FaceName(f) + " winds " + std::to_string(turning / (2.0 * std::numbers::pi)) +
+                   " times around its normal (must be once, counter-clockwise from outside)"};
+    }
+    hull.m_faces[f].plane = {.normal = normal, .offset = offset};
+  }
+  for (std::size_t h = 0; h < hull.m_halfEdges.size(); ++h) {
+    hull.m_faces[static_cast<std::size_t>(hull.m_halfEdges[h].face)].edge = static_cast<int>(h);
+  }
+
+  // Dihedral angles: across every edge, the neighbour face's vertices next
+  // to the edge must lie behind this face's plane (convex), and the two
+  // faces must not be the same plane (those should have been one polygon).
+  for (std::size_t h = 0; h < hull.m_halfEdges.size(); ++h) {
+    const HullHalfEdge& edge = hull.m_halfEdges[h];
+    const HullHalfEdge& twin = hull.m_halfEdges[static_cast<std::size_t>(edge.twin)];
+    const Plane& plane = hull.m_faces[static_cast<std::size_t>(edge.face)].plane;
+    const int after = hull.m_halfEdges[static_cast<std::size_t>(twin.next)].next;
+    const int before = twin.prev;
+    double highest = -std::numeric_limits<double>::infinity();
+    for (int probe : {after, before}) {
+      const int v = hull.m_halfEdges[static_cast<std::size_t>(probe)].origin;
+      highest = std::max(highest, plane.SignedDistance(vertices[static_cast<std::size_t>(v)]));
+    }
+    if (highest > tolerance) {
+      return Error{"faces " + std::to_string(edge.face) + " and " + std::to_string(twin.face) +
+                   " meet at a concave edge"};
+    }
+    if (highest >= -tolerance) {
+      // Both probes are on the plane: check the whole neighbour face.
+      double lowest = 0.0;
+      int h2 = twin.next;
+      do {
+        const int v = hull.m_halfEdges[static_cast<std::size_t>(h2)].origin;
+        lowest = std::min(lowest, plane.SignedDistance(vertices[static_cast<std::size_t>(v)]));
+        h2 = hull.m_halfEdges[static_cast<std::size_t>(h2)].next;
+      } while (h2 != twin.next);
+      if (lowest >= -tolerance) {
+        return Error{"faces " + std::to_string(edge.face) + " and " + std::to_string(twin.face) +
+                     " are coplanar (they should be one face)"};
+      }
+    }
+  }
+
+  hull.m_vertices = std::move(vertices);
+  return hull;
+}
+
+Result<Hull> Hull::Box(const Vec3& halfExtents) {
+  if (!halfExtents.allFinite() || (halfExtents.array() <= 0.0).any()) {
+    return Error{"box half extents must be finite and > 0"};
+  }
+  const Vec3& e = halfExtents;
+  std::vector<Vec3> corners;
+  for (int i = 0; i < 8; ++i) {
+    corners.emplace_back((i & 1) ? e.x() : -e.x(), (i & 2) ? e.y() : -e.y(), (i & 4) ? e.z() : -e.z());
+  }
+  // Counter-clockwise from outside; corner bit 0 = +x, bit 1 = +y, bit 2 = +z.
+  const std::vector<std::vector<int>> faces = {
+      {1, 3, 7, 5}, {0, 4, 6, 2},  // +x, -x
+      {2, 6, 7, 3}, {0, 1, 5, 4},  // +y, -y
+      {4, 5, 7, 6}, {0, 2, 3, 1},  // +z, -z
+  };
+  return FromPolygons(std::move(corners), faces);
+}
+
+std::vector<int> Hull::FaceVertices(int face) const {
+  std::vector<int> loop;
+  const int start = m_faces[static_cast<std::size_t>(face)].edge;
+  int h = start;
+  do {
+    loop.push_back(m_halfEdges[static_cast<std::size_t>(h)].origin);
+    h = m_halfEdges[static_cast<std::size_t>(h)].next;
+  } while (h != start);
+  return loop;
+}
+
+std::vector<std::array<int, 3>> Hull::Triangulate() const {
+  std::vector<std::array<int, 3>> triangles;
+  triangles.reserve(m_halfEdges.size() - 2 * m_faces.size());
+  for (int f = 0; f < FaceCount(); ++f) {
+    const std::vector<int> loop = FaceVertices(f);
+    for (std::size_t i = 1; i + 1 < loop.size(); ++i) triangles.push_back({loop[0], loop[i], loop[i + 1]});
+  }
+  return triangles;
+}
+
+}  // namespace talus
