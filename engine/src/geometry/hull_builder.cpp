@@ -134,7 +134,7 @@ class Builder {
 
  private:
   void BuildTetrahedron(const std::array<int, 4>& simplex);
-  void AssignToBestFace(std::span<const int> candidates, std::span<const int> faces, int skip);
+  void AssignToBestFace(std::span<const QhConflict> candidates, std::span<const int> faces, int skip);
   void ComputeHorizon(int face, int eye);
   void AddPoint(int face, int eye);
   void Enqueue(int face);
@@ -150,7 +150,7 @@ class Builder {
   std::vector<int> m_horizon;
   std::vector<std::array<int, 3>> m_stack;  // (face, stop edge, current edge)
   std::vector<int> m_newFaces;
-  std::vector<int> m_orphans;
+  std::vector<QhConflict> m_orphans;
   std::vector<int> m_stamp;  // per point, for counting removed vertices
   int m_stampValue = 0;
 };
@@ -184,14 +184,14 @@ void Builder::BuildTetrahedron(const std::array<int, 4>& s) {
 
 // Gives each candidate point to the face it is farthest in front of, or
 // drops it when it is within the tolerance of (or behind) all of them.
-void Builder::AssignToBestFace(std::span<const int> candidates, std::span<const int> faces, int skip) {
-  for (int p : candidates) {
-    if (p == skip) continue;
+void Builder::AssignToBestFace(std::span<const QhConflict> candidates, std::span<const int> faces, int skip) {
+  for (const QhConflict& p : candidates) {
+    if (p.index == skip) continue;
     int bestFace = -1;
     double bestDistance = m_tolerance;
     for (int f : faces) {
       if (m_mesh.Face(f).state != QhFaceState::kAlive) continue;
-      const double d = m_mesh.Distance(f, p);
+      const double d = m_mesh.Distance(f, p.point);
       if (d > bestDistance) {
         bestDistance = d;
         bestFace = f;
@@ -203,7 +203,7 @@ void Builder::AssignToBestFace(std::span<const int> candidates, std::span<const 
 
 void Builder::Enqueue(int face) {
   QhFace& f = m_mesh.Face(face);
-  if (f.queued || f.conflictHead < 0) return;
+  if (f.queued || f.conflicts.empty()) return;
   f.queued = true;
   m_queue.push_back(face);
 }
@@ -211,10 +211,10 @@ void Builder::Enqueue(int face) {
 void Builder::Run(const std::array<int, 4>& simplex) {
   BuildTetrahedron(simplex);
   const auto pointCount = static_cast<int>(m_mesh.Points().size());
-  std::vector<int> all(static_cast<std::size_t>(pointCount));
-  for (int i = 0; i < pointCount; ++i) all[static_cast<std::size_t>(i)] = i;
-  for (int corner : simplex) all[static_cast<std::size_t>(corner)] = -1;
-  std::erase(all, -1);
+  std::vector<QhConflict> all(static_cast<std::size_t>(pointCount));
+  for (int i = 0; i < pointCount; ++i) all[static_cast<std::size_t>(i)] = {m_mesh.Point(i), i};
+  for (int corner : simplex) all[static_cast<std::size_t>(corner)].index = -1;
+  std::erase_if(all, [](const QhConflict& c) { return c.index < 0; });
   AssignToBestFace(all, m_newFaces, -1);
   for (int f : m_newFaces) Enqueue(f);
   if (m_maxVertices > 0) m_stamp.assign(static_cast<std::size_t>(pointCount), 0);
@@ -228,7 +228,7 @@ void Builder::Run(const std::array<int, 4>& simplex) {
     }
     QhFace& f = m_mesh.Face(face);
     f.queued = false;
-    if (f.state != QhFaceState::kAlive || f.conflictHead < 0) continue;
+    if (f.state != QhFaceState::kAlive || f.conflicts.empty()) continue;
     if (m_maxVertices > 0 && m_vertexCount >= m_maxVertices) break;
     AddPoint(face, f.farthestPoint);
   }

@@ -6,9 +6,22 @@
 #include <cassert>
 
 namespace talus {
+namespace {
+
+// Largest conflict list capacity (entries) a freed face slot keeps for its
+// next tenant: small lists are the common case and reusing them avoids
+// allocation, while the few huge lists of the first faces would otherwise
+// pin memory for the whole build.
+constexpr std::size_t kKeptConflictCapacity = 256;
+
+void ReleaseLargeList(QhFace& face) {
+  if (face.conflicts.capacity() > kKeptConflictCapacity) std::vector<QhConflict>().swap(face.conflicts);
+}
+
+}  // namespace
 
 QuickhullMesh::QuickhullMesh(std::span<const Vec3> points, double tolerance)
-    : m_points(points), m_tolerance(tolerance), m_nextConflict(points.size(), -1) {
+    : m_points(points), m_tolerance(tolerance) {
   // A hull of n vertices has at most 2n - 4 triangles and 6n - 12 half-edges;
   // reserving for a modest hull avoids regrowth in the common case.
   const std::size_t guess = std::min<std::size_t>(points.size(), 4096);
@@ -41,8 +54,9 @@ void QuickhullMesh::FreeEdge(int e) {
   m_freeEdges.push_back(e);
 }
 
-void QuickhullMesh::FreeFace(int f, std::vector<int>& orphans) {
+void QuickhullMesh::FreeFace(int f, std::vector<QhConflict>& orphans) {
   TakeConflicts(f, orphans);
+  ReleaseLargeList(Face(f));
   // `queued` is left as it is on purpose: a queue entry may still name this
   // slot, and a face that later reuses the slot is then already queued.
   Face(f).state = QhFaceState::kDeleted;
@@ -61,10 +75,9 @@ int QuickhullMesh::AddTriangle(int a, int b, int c) {
   QhFace& face = Face(f);
   face.edge = e0;
   face.state = QhFaceState::kAlive;
-  face.conflictHead = -1;
+  face.conflicts.clear();
   face.farthestPoint = -1;
   face.farthestDistance = 0.0;
-  face.conflictCount = 0;
   UpdatePlane(f);
   return f;
 }
@@ -108,30 +121,28 @@ void QuickhullMesh::DeleteFaceAndEdges(int f) {
     FreeEdge(e);
     e = next;
   } while (e != start);
-  assert(Face(f).conflictHead < 0);
+  assert(Face(f).conflicts.empty());
+  ReleaseLargeList(Face(f));
   Face(f).state = QhFaceState::kDeleted;
   Face(f).edge = -1;
   m_freeFaces.push_back(f);
 }
 
-void QuickhullMesh::AddConflict(int f, int p, double distance) {
+void QuickhullMesh::AddConflict(int f, const QhConflict& conflict, double distance) {
   QhFace& face = Face(f);
-  m_nextConflict[static_cast<std::size_t>(p)] = face.conflictHead;
-  face.conflictHead = p;
-  ++face.conflictCount;
+  face.conflicts.push_back(conflict);
   if (face.farthestPoint < 0 || distance > face.farthestDistance) {
-    face.farthestPoint = p;
+    face.farthestPoint = conflict.index;
     face.farthestDistance = distance;
   }
 }
 
-void QuickhullMesh::TakeConflicts(int f, std::vector<int>& out) {
+void QuickhullMesh::TakeConflicts(int f, std::vector<QhConflict>& out) {
   QhFace& face = Face(f);
-  for (int p = face.conflictHead; p >= 0; p = m_nextConflict[static_cast<std::size_t>(p)]) out.push_back(p);
-  face.conflictHead = -1;
+  out.insert(out.end(), face.conflicts.begin(), face.conflicts.end());
+  face.conflicts.clear();
   face.farthestPoint = -1;
   face.farthestDistance = 0.0;
-  face.conflictCount = 0;
 }
 
 bool QuickhullMesh::ShouldMerge(int f, int e) const {
@@ -145,7 +156,7 @@ bool QuickhullMesh::ShouldMerge(int f, int e) const {
   return bAboveA > -m_tolerance || aAboveB > -m_tolerance;
 }
 
-int QuickhullMesh::MergeAcross(int f, int e, std::vector<int>& orphans) {
+int QuickhullMesh::MergeAcross(int f, int e, std::vector<QhConflict>& orphans) {
   const int g = Edge(Edge(e).twin).face;
   assert(g != f && Face(g).state == QhFaceState::kAlive);
   // The shared boundary may be a run of several edges: find its ends.
@@ -203,7 +214,7 @@ int QuickhullMesh::MergeAcross(int f, int e, std::vector<int>& orphans) {
   return removed;
 }
 
-int QuickhullMesh::RepairJunction(int f, int in, std::vector<int>& orphans) {
+int QuickhullMesh::RepairJunction(int f, int in, std::vector<QhConflict>& orphans) {
   // f runs u -in-> v -out-> w; the neighbour h runs w -tout-> v -tin-> u.
   const int out = Edge(in).next;
   const int tin = Edge(in).twin;

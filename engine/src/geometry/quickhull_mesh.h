@@ -1,8 +1,13 @@
 // QuickhullMesh: the mutable half-edge mesh Quickhull grows, and nothing else.
 //
-// It owns three index pools (half-edges, faces, and per-point conflict links)
-// with free lists, so a build of a million points allocates a few large
-// arrays and never one object per point or per face. Vertices are not stored:
+// It owns two index pools (half-edges and faces) with free lists, so a build
+// of a million points allocates a few large arrays and never one object per
+// point. Each face keeps its conflict list as a vector of (point, index)
+// entries: the coordinates travel with the index, so handing orphans from
+// deleted faces to new ones streams through memory instead of chasing a
+// linked list across the input (this was the hottest loop in profiles). A
+// freed face slot keeps a small list's capacity for reuse and releases a
+// large one. Vertices are not stored:
 // a half-edge's `origin` is the index of an input point, so every hull vertex
 // is an input point, bit for bit.
 //
@@ -46,6 +51,13 @@ enum class QhFaceState : unsigned char {
   kDeleted,  ///< on the free list
 };
 
+/// One outside point on a face's conflict list: a copy of its coordinates
+/// and its input index.
+struct QhConflict {
+  Vec3 point;
+  int index = -1;
+};
+
 /// A working face: its border, plane, and conflict list (outside points).
 struct QhFace {
   int edge = -1;        ///< some half-edge on the border
@@ -53,10 +65,9 @@ struct QhFace {
   Vec3 normal = Vec3::Zero();
   double offset = 0.0;  ///< plane: normal . x = offset
   Vec3 centroid = Vec3::Zero();
-  int conflictHead = -1;   ///< first point on the conflict list, -1 if empty
-  int farthestPoint = -1;  ///< the conflict point farthest in front, -1 if none
+  std::vector<QhConflict> conflicts;  ///< outside points given to this face
+  int farthestPoint = -1;             ///< input index of the farthest conflict, -1 if none
   double farthestDistance = 0.0;
-  int conflictCount = 0;
   QhFaceState state = QhFaceState::kDeleted;
   bool queued = false;  ///< already waiting in the builder's face queue
 };
@@ -79,9 +90,10 @@ class QuickhullMesh {
   [[nodiscard]] int FacePoolSize() const { return static_cast<int>(m_faces.size()); }
 
   /// Signed distance of point `p` from face `f`'s plane, positive in front.
-  [[nodiscard]] double Distance(int f, int p) const {
+  [[nodiscard]] double Distance(int f, int p) const { return Distance(f, Point(p)); }
+  [[nodiscard]] double Distance(int f, const Vec3& point) const {
     const QhFace& face = Face(f);
-    return face.normal.dot(Point(p)) - face.offset;
+    return face.normal.dot(point) - face.offset;
   }
 
   /// A new live triangle (a, b, c), counter-clockwise from outside; its
@@ -100,13 +112,13 @@ class QuickhullMesh {
   /// Frees face `f` and its half-edges (their twins are not touched).
   void DeleteFaceAndEdges(int f);
 
-  /// Pushes point `p` on face `f`'s conflict list; `distance` is its height
-  /// above the plane (must be > tolerance).
-  void AddConflict(int f, int p, double distance);
+  /// Appends `conflict` to face `f`'s conflict list; `distance` is its
+  /// height above the plane (must be > tolerance).
+  void AddConflict(int f, const QhConflict& conflict, double distance);
 
   /// Moves all of `f`'s conflict points to the end of `out` and empties the
   /// list.
-  void TakeConflicts(int f, std::vector<int>& out);
+  void TakeConflicts(int f, std::vector<QhConflict>& out);
 
   /// True when face `f` and the face across half-edge `e` (on f) should be
   /// one face: either centroid is not clearly behind the other's plane.
@@ -116,7 +128,7 @@ class QuickhullMesh {
   /// into `f`, repairs the junction vertices, and recomputes the planes of
   /// every face it changed. Conflict points of deleted faces are appended
   /// to `orphans`. Returns the number of hull vertices removed.
-  int MergeAcross(int f, int e, std::vector<int>& orphans);
+  int MergeAcross(int f, int e, std::vector<QhConflict>& orphans);
 
   /// The border of face `f` as input point indices, counter-clockwise.
   void FaceLoop(int f, std::vector<int>& loop) const;
@@ -125,10 +137,10 @@ class QuickhullMesh {
   int AllocateEdge();
   int AllocateFace();
   void FreeEdge(int e);
-  void FreeFace(int f, std::vector<int>& orphans);
+  void FreeFace(int f, std::vector<QhConflict>& orphans);
   // Repairs the vertex where half-edge `in` (ending there) meets `out`
   // (leaving it), both on face `f`. Returns the number of vertices removed.
-  int RepairJunction(int f, int in, std::vector<int>& orphans);
+  int RepairJunction(int f, int in, std::vector<QhConflict>& orphans);
 
   std::span<const Vec3> m_points;
   double m_tolerance;
@@ -136,7 +148,6 @@ class QuickhullMesh {
   std::vector<QhFace> m_faces;
   std::vector<int> m_freeEdges;
   std::vector<int> m_freeFaces;
-  std::vector<int> m_nextConflict;  ///< per input point: next on its face's list
 };
 
 }  // namespace talus
