@@ -11,28 +11,27 @@
 #include <numbers>
 #include <optional>
 #include <string>
-#include <unordered_map>
 
 #include "talus/hull.h"
 
 namespace talus {
 namespace {
 
-// A directed edge (from, to) packed into one key for the twin lookup.
-std::uint64_t DirectedKey(int from, int to) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) |
-         static_cast<std::uint32_t>(to);
-}
-
 std::string FaceName(std::size_t face) { return "face " + std::to_string(face); }
 
 // Newell's method: the area-weighted normal of a polygon, robust for
-// slightly non-planar loops. Its length is twice the polygon's area.
+// slightly non-planar loops. Its length is twice the polygon's area. Taken
+// about the loop's centroid: cross products of raw coordinates lose the
+// normal's direction to cancellation when the face is small next to its
+// distance from the origin (a 0.1 m face at 1e4 m would be off by 1e-6 rad).
 Vec3 NewellNormal(const std::vector<Vec3>& vertices, const std::vector<int>& loop) {
+  Vec3 centroid = Vec3::Zero();
+  for (int v : loop) centroid += vertices[static_cast<std::size_t>(v)];
+  centroid /= static_cast<double>(loop.size());
   Vec3 normal = Vec3::Zero();
   for (std::size_t i = 0; i < loop.size(); ++i) {
-    const Vec3& a = vertices[static_cast<std::size_t>(loop[i])];
-    const Vec3& b = vertices[static_cast<std::size_t>(loop[(i + 1) % loop.size()])];
+    const Vec3 a = vertices[static_cast<std::size_t>(loop[i])] - centroid;
+    const Vec3 b = vertices[static_cast<std::size_t>(loop[(i + 1) % loop.size()])] - centroid;
     normal += a.cross(b);
   }
   return normal;
@@ -91,36 +90,57 @@ Result<Hull> Hull::FromPolygons(std::vector<Vec3> vertices, const std::vector<st
   Hull hull;
   hull.m_tolerance = tolerance;
 
-  // Directed edges in face order; twins found through a hash of (from, to).
+  // Directed edges in face order.
   std::vector<HullHalfEdge> loose;
-  std::unordered_map<std::uint64_t, int> byKey;
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const auto& loop = faces[f];
     const int first = static_cast<int>(loose.size());
     const int count = static_cast<int>(loop.size());
     for (int i = 0; i < count; ++i) {
-      const int from = loop[static_cast<std::size_t>(i)];
-      const int to = loop[static_cast<std::size_t>((i + 1) % count)];
-      if (!byKey.emplace(DirectedKey(from, to), first + i).second) {
-        return Error{"edge " + std::to_string(from) + "->" + std::to_string(to) +
-                     " is used twice in the same direction (" + FaceName(f) +
-                     "): faces are not consistently oriented, or the surface is not a 2-manifold"};
-      }
-      loose.push_back({.origin = from,
+      loose.push_back({.origin = loop[static_cast<std::size_t>(i)],
                        .twin = -1,
                        .next = first + (i + 1) % count,
                        .prev = first + (i + count - 1) % count,
                        .face = static_cast<int>(f)});
     }
   }
+  // Twins through the half-edges bucketed by origin (a counting sort, so no
+  // hashing and no per-edge allocation): the twin of from->to is the edge
+  // among `to`'s few outgoing ones that leads back to `from`.
+  std::vector<int> bucketStart(vertices.size() + 1, 0);
+  for (const auto& h : loose) ++bucketStart[static_cast<std::size_t>(h.origin) + 1];
+  for (std::size_t v = 0; v < vertices.size(); ++v) bucketStart[v + 1] += bucketStart[v];
+  std::vector<int> byOrigin(loose.size());
+  {
+    std::vector<int> fill(bucketStart.begin(), bucketStart.end() - 1);
+    for (std::size_t i = 0; i < loose.size(); ++i) {
+      byOrigin[static_cast<std::size_t>(fill[static_cast<std::size_t>(loose[i].origin)]++)] =
+          static_cast<int>(i);
+    }
+  }
+  auto destination = [&](const HullHalfEdge& h) { return loose[static_cast<std::size_t>(h.next)].origin; };
   for (auto& h : loose) {
-    const int to = loose[static_cast<std::size_t>(h.next)].origin;
-    auto it = byKey.find(DirectedKey(to, h.origin));
-    if (it == byKey.end()) {
+    const int to = destination(h);
+    int sameDirection = 0;
+    for (int k = bucketStart[static_cast<std::size_t>(h.origin)];
+         k < bucketStart[static_cast<std::size_t>(h.origin) + 1]; ++k) {
+      if (destination(loose[static_cast<std::size_t>(byOrigin[static_cast<std::size_t>(k)])]) == to)
+        ++sameDirection;
+    }
+    if (sameDirection > 1) {
+      return Error{"edge " + std::to_string(h.origin) + "->" + std::to_string(to) +
+                   " is used twice in the same direction (" + FaceName(static_cast<std::size_t>(h.face)) +
+                   "): faces are not consistently oriented, or the surface is not a 2-manifold"};
+    }
+    for (int k = bucketStart[static_cast<std::size_t>(to)]; k < bucketStart[static_cast<std::size_t>(to) + 1];
+         ++k) {
+      const int candidate = byOrigin[static_cast<std::size_t>(k)];
+      if (destination(loose[static_cast<std::size_t>(candidate)]) == h.origin) h.twin = candidate;
+    }
+    if (h.twin < 0) {
       return Error{"edge " + std::to_string(h.origin) + "->" + std::to_string(to) + " of " +
                    FaceName(static_cast<std::size_t>(h.face)) + " has no twin: the surface is not closed"};
     }
-    h.twin = it->second;
   }
 
   // Renumber so that twins are (2e, 2e + 1): edge e is then one index.
