@@ -277,12 +277,18 @@ Result<std::vector<Run>> ParseScenarioText(std::string_view text, std::string_vi
   try {
     doc = json::parse(text);
   } catch (const json::parse_error& error) {
-    // nlohmann's byte is one past the offending character.
+    // nlohmann's byte is one past the last character of the offending token.
     const size_t offset = error.byte > 0 ? error.byte - 1 : 0;
     std::string what = error.what();
     const size_t colon = what.find(": ");
     if (colon != std::string::npos) what = what.substr(colon + 2);
     return Error{std::string(fileName) + ": " + LineAndColumn(text, offset) + ": " + what};
+  } catch (const json::exception& error) {
+    // A number too large for a double (e.g. 1e999) has no position.
+    std::string what = error.what();
+    const size_t bracket = what.find("] ");
+    if (bracket != std::string::npos) what = what.substr(bracket + 2);
+    return Error{std::string(fileName) + ": " + what};
   }
   if (auto violation = ValidateAgainstSchema(ScenarioSchema(), doc)) {
     return FieldError(fileName, violation->pointer, violation->problem);
