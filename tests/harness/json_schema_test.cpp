@@ -38,7 +38,8 @@ TEST(JsonSchema, ObjectsReportMissingAndUnknownFieldsWithPointers) {
   EXPECT_EQ(Check(schema, json::parse(R"({"a": ["x", "q"]})")), "/a/1: must be one of [\"x\",\"y\"]");
   EXPECT_EQ(Check(schema, json::parse(R"({"a": []})")), "/a: needs at least 1 items");
   EXPECT_EQ(Check(schema, json::parse(R"({"a": ["x", "x", "y"]})")), "/a: allows at most 2 items");
-  EXPECT_EQ(Check(schema, json::parse(R"({"a": ["x"], "b/c": "s"})")), "/b~1c: must be of type number, not string");
+  EXPECT_EQ(Check(schema, json::parse(R"({"a": ["x"], "b/c": "s"})")),
+            "/b~1c: must be of type number, not string");
 }
 
 TEST(JsonSchema, OneOfNeedsExactlyOneMatchAndFollowsTheDiscriminator) {
@@ -51,7 +52,8 @@ TEST(JsonSchema, OneOfNeedsExactlyOneMatchAndFollowsTheDiscriminator) {
   EXPECT_EQ(Check(schema, json::parse(R"({"kind": "s", "r": 0})")), "/r: must be > 0");
   EXPECT_EQ(Check(schema, json::parse(R"({"kind": "q"})")),
             ": matches none of the allowed forms (see scenarios/schema.json)");
-  EXPECT_EQ(Check({{"oneOf", {json::object(), json::object()}}}, 1), ": matches more than one of the allowed forms");
+  EXPECT_EQ(Check({{"oneOf", {json::object(), json::object()}}}, 1),
+            ": matches more than one of the allowed forms");
 }
 
 TEST(JsonSchema, ScenarioSchemaIsAnObjectSchemaClosedToUnknownFields) {

@@ -19,8 +19,8 @@ std::string LoadError(const std::string& name) {
 }
 
 TEST(ScenarioLoader, EveryShippedScenarioLoads) {
-  for (const char* file : {"/stacking/box_rest.json", "/sliding/box_slide.json", "/bouncing/sphere_bounce.json",
-                           "/tumbling/box_free_fall.json"}) {
+  for (const char* file : {"/stacking/box_rest.json", "/sliding/box_slide.json",
+                           "/bouncing/sphere_bounce.json", "/tumbling/box_free_fall.json"}) {
     auto runs = LoadScenarioFile(kScenarioDir + file);
     ASSERT_TRUE(runs) << runs.GetError().message;
     EXPECT_FALSE(runs.Value().empty());
@@ -40,7 +40,7 @@ TEST(ScenarioLoader, BoxRestMapsEveryField) {
   EXPECT_EQ(s.bodies[0].motion, Motion::Static);
   EXPECT_EQ(std::get<BoxShape>(s.bodies[0].shape).halfExtents, Vec3(10, 0.5, 10));
   EXPECT_EQ(s.bodies[1].mass, 1.0);
-  EXPECT_EQ(s.bodies[1].friction, 0.5);  // default
+  EXPECT_EQ(s.bodies[1].friction, 0.5);           // default
   EXPECT_EQ(s.world.gravity, Vec3(0, -9.81, 0));  // default
   EXPECT_EQ(s.world.frictionCombine, CombineRule::Sqrt);
   EXPECT_EQ(s.world.restitutionCombine, CombineRule::Max);
@@ -61,8 +61,8 @@ TEST(ScenarioLoader, AxisAngleOrientationBecomesTheSameQuaternion) {
 TEST(ScenarioLoader, SweepExpandsToTheGridWithValuesWrittenIntoEveryTarget) {
   auto runs = LoadScenarioFile(kScenarioDir + "/sliding/box_slide.json");
   ASSERT_TRUE(runs) << runs.GetError().message;
-  ASSERT_EQ(runs.Value().size(), 6u);  // 3 mu x 2 v0
-  const harness::Run& run = runs.Value()[3];    // mu outermost: mu = 0.5, v0 = 3
+  ASSERT_EQ(runs.Value().size(), 6u);         // 3 mu x 2 v0
+  const harness::Run& run = runs.Value()[3];  // mu outermost: mu = 0.5, v0 = 3
   EXPECT_EQ(run.id, "box_slide[mu=0.5,v0=3]");
   ASSERT_EQ(run.sweepValues.size(), 2u);
   EXPECT_EQ(run.sweepValues[0].value, "0.5");
@@ -88,12 +88,14 @@ TEST(ScenarioLoader, UnknownFieldIsRefusedWithItsPointer) {
 
 TEST(ScenarioLoader, WrongTypeNamesFieldAndTypes) {
   const std::string message = LoadError("wrong_type.json");
-  EXPECT_NE(message.find("/world/timeStep: must be of type number, not string"), std::string::npos) << message;
+  EXPECT_NE(message.find("/world/timeStep: must be of type number, not string"), std::string::npos)
+      << message;
 }
 
 TEST(ScenarioLoader, OutOfRangeNamesFieldAndBound) {
   const std::string message = LoadError("out_of_range.json");
-  EXPECT_NE(message.find("out_of_range.json: /bodies/1/friction: must be >= 0"), std::string::npos) << message;
+  EXPECT_NE(message.find("out_of_range.json: /bodies/1/friction: must be >= 0"), std::string::npos)
+      << message;
 }
 
 TEST(ScenarioLoader, MissingRequiredFieldIsNamed) {
@@ -103,12 +105,14 @@ TEST(ScenarioLoader, MissingRequiredFieldIsNamed) {
 
 TEST(ScenarioLoader, BothMassAndDensityAreRefused) {
   const std::string message = LoadError("mass_and_density.json");
-  EXPECT_NE(message.find("/bodies/0: give either \"mass\" or \"density\", not both"), std::string::npos) << message;
+  EXPECT_NE(message.find("/bodies/0: give either \"mass\" or \"density\", not both"), std::string::npos)
+      << message;
 }
 
 TEST(ScenarioLoader, NonUnitQuaternionIsRefused) {
   const std::string message = LoadError("non_unit_quaternion.json");
-  EXPECT_NE(message.find("/bodies/0/orientation/quaternion: quaternion is not unit length"), std::string::npos)
+  EXPECT_NE(message.find("/bodies/0/orientation/quaternion: quaternion is not unit length"),
+            std::string::npos)
       << message;
 }
 
@@ -134,7 +138,8 @@ TEST(ScenarioLoader, TruthNamingAMissingBodyIsRefused) {
 
 TEST(ScenarioLoader, SweepTargetThatIsNotAFieldIsRefused) {
   const std::string message = LoadError("sweep_missing_target.json");
-  EXPECT_NE(message.find("/sweeps/0/targets/0: \"/bodies/0/friction\" does not name a field"), std::string::npos)
+  EXPECT_NE(message.find("/sweeps/0/targets/0: \"/bodies/0/friction\" does not name a field"),
+            std::string::npos)
       << message;
 }
 
@@ -150,7 +155,8 @@ TEST(ScenarioLoader, DurationInBothFormsIsRefused) {
 
 TEST(ScenarioLoader, InfiniteNumberIsRefused) {
   const std::string message = LoadError("infinite_number.json");
-  EXPECT_NE(message.find("infinite_number.json: number overflow parsing '1e999'"), std::string::npos) << message;
+  EXPECT_NE(message.find("infinite_number.json: number overflow parsing '1e999'"), std::string::npos)
+      << message;
 }
 
 TEST(ScenarioLoader, MissingFileIsAnErrorNotACrash) {

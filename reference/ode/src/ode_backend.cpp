@@ -188,7 +188,7 @@ Result<std::unique_ptr<harness::Backend>> OdeBackend::Create(const Run& run, Ste
   dWorldSetGravity(backend->m_world, g.x(), g.y(), g.z());
   dWorldSetERP(backend->m_world, kOdeErp);
   dWorldSetCFM(backend->m_world, kOdeCfm);
-  dWorldSetContactSurfaceLayer(backend->m_world, 0.0);
+  dWorldSetContactSurfaceLayer(backend->m_world, kOdeContactSurfaceLayer);
   dWorldSetQuickStepNumIterations(backend->m_world,
                                   run.iterations > 0 ? run.iterations : kOdeDefaultQuickStepIterations);
   for (size_t i = 0; i < run.scenario.bodies.size(); ++i) {
