@@ -1,0 +1,152 @@
+// The scenario model: what a scenario file (scenarios/<family>/<name>.json,
+// format in docs/scenarios.md) means once parsed, validated and expanded.
+//
+// Every value here has passed the schema and the semantic checks of
+// scenario_loader.cpp: numbers are finite, quaternions unit length, dynamic
+// bodies have a positive mass or density, names are unique and every truth
+// names an existing body. Conventions: SI units, +y is up when gravity is the
+// default, quaternions are (w, x, y, z) in the file and Eigen's Quaterniond
+// here.
+#pragma once
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "talus/math.h"
+
+namespace talus::harness {
+
+/// How two bodies' coefficients combine into the pair's value.
+enum class CombineRule {
+  Sqrt,      ///< sqrt(a * b): the project's friction rule
+  Min,       ///< min(a, b)
+  Max,       ///< max(a, b): the project's restitution rule
+  Multiply,  ///< a * b: Bullet's built-in rule for both
+  Average,   ///< (a + b) / 2
+};
+
+/// The combined coefficient of a pair under `rule`.
+double Combine(CombineRule rule, double a, double b);
+
+/// The rule's name as written in scenario files ("sqrt", "min", ...).
+const char* CombineRuleName(CombineRule rule);
+
+/// World settings shared by every body.
+struct WorldSettings {
+  Vec3 gravity = Vec3(0.0, -9.81, 0.0);  ///< m/s^2
+  double timeStep = 1.0 / 60.0;          ///< seconds, in (0, 1]
+  int iterations = 0;                    ///< solver iterations; 0 = the engine's own default
+  int steps = 1;                         ///< number of steps to run (file: seconds or steps), >= 1
+  CombineRule frictionCombine = CombineRule::Sqrt;
+  CombineRule restitutionCombine = CombineRule::Max;
+};
+
+/// A box centred on the body origin.
+struct BoxShape {
+  Vec3 halfExtents = Vec3::Ones();  ///< metres, each > 0
+};
+/// A sphere centred on the body origin.
+struct SphereShape {
+  double radius = 1.0;  ///< metres, > 0
+};
+/// The convex hull of points given in the body frame. The body origin is
+/// the frame the points are written in, not necessarily the centre of mass.
+struct HullShape {
+  std::vector<Vec3> points;  ///< metres, at least 4, spanning a volume
+};
+using Shape = std::variant<BoxShape, SphereShape, HullShape>;
+
+enum class Motion { Static, Dynamic };
+
+/// One body of a scenario.
+struct BodySpec {
+  std::string name;  ///< unique within the scenario
+  Shape shape;
+  Motion motion = Motion::Dynamic;
+  Vec3 position = Vec3::Zero();         ///< metres, of the body origin
+  Quat orientation = Quat::Identity();  ///< unit
+  Vec3 linearVelocity = Vec3::Zero();   ///< m/s, of the centre of mass
+  Vec3 angularVelocity = Vec3::Zero();  ///< rad/s, world frame
+  double density = 0.0;                 ///< kg/m^3; > 0 when mass is 0 (dynamic bodies)
+  double mass = 0.0;                    ///< kg; > 0 when density is 0 (dynamic bodies)
+  double friction = 0.5;                ///< Coulomb coefficient, >= 0
+  double restitution = 0.0;             ///< in [0, 1]
+};
+
+/// Quantities a run records (the file's "measure" list).
+enum class Quantity { Position, Orientation, Velocity, Energy, Momentum, Contacts, Penetration };
+
+/// How close a measurement must be to its truth: it passes when
+/// |measured - truth| <= absolute + relative * |truth|.
+struct Tolerance {
+  double absolute = 0.0;  ///< in the truth's unit
+  double relative = 0.0;  ///< fraction
+};
+
+/// Free fall of `body`'s centre of mass along -gravity from height y0
+/// (metres, along the up axis) with vertical speed v0 (m/s) and g (m/s^2).
+struct FreeFallTruth {
+  double y0 = 0.0, v0 = 0.0, g = 9.81;
+};
+/// A body launched at v0 (m/s) on a floor with friction mu stops after
+/// v0^2 / (2 mu g) metres.
+struct SlidingStopTruth {
+  double v0 = 1.0, mu = 0.5, g = 9.81;
+};
+/// The centre of mass comes to rest at `height` (metres along the up axis);
+/// over the second half of the run its peak-to-peak motion stays below
+/// maxJitter (metres).
+struct RestHeightTruth {
+  double height = 0.0;
+  double maxJitter = 1e-3;
+};
+/// A body dropped with its lowest point h metres above the floor, with
+/// restitution e, reaches e^(2k) h at its k-th apex (k = 1..count).
+struct BounceHeightsTruth {
+  double h = 1.0, e = 0.5;
+  int count = 1;
+};
+/// No closed form: the truth is the same engine at timeStep / divisor.
+struct ConvergedReferenceTruth {
+  int timeStepDivisor = 16;
+};
+using TruthKind = std::variant<FreeFallTruth, SlidingStopTruth, RestHeightTruth, BounceHeightsTruth,
+                               ConvergedReferenceTruth>;
+
+struct Truth {
+  TruthKind kind;
+  int body = -1;  ///< index into Scenario::bodies, -1 when the truth is about the whole world
+  Tolerance tolerance;
+};
+
+/// One scenario, fully resolved (sweeps already applied).
+struct Scenario {
+  std::string name;
+  std::string description;
+  std::string file;  ///< where it was read from ("" when parsed from text)
+  WorldSettings world;
+  std::vector<BodySpec> bodies;  ///< at least one
+  std::vector<Quantity> measure;
+  std::vector<Truth> truths;
+};
+
+/// One resolved value of a sweep parameter.
+struct SweepValue {
+  std::string name;   ///< the sweep's name, e.g. "mu"
+  std::string value;  ///< the value as compact JSON, e.g. "0.3" or "[1,0,0]"
+};
+
+/// One run: a scenario with its sweep values applied, plus the stepping the
+/// backend must use (which a runner may change, e.g. for a converged
+/// reference at a smaller time step).
+struct Run {
+  std::string id;  ///< scenario name plus sweep values, e.g. "box_slide[mu=0.3,v0=2]"
+  Scenario scenario;
+  std::vector<SweepValue> sweepValues;
+  double timeStep = 1.0 / 60.0;  ///< seconds
+  int iterations = 0;            ///< 0 = the engine's own default
+  int steps = 1;
+};
+
+}  // namespace talus::harness

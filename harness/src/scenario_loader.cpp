@@ -1,0 +1,345 @@
+// Scenario files to runs: syntax, schema, sweep expansion, semantic checks.
+//
+// The order matters for the messages: a syntax error is reported with line
+// and column before anything else; the schema then guarantees every field
+// has the right type and range, so the mapping below may read fields without
+// re-checking types and only adds what a schema cannot say (unit
+// quaternions, unique names, exactly one of mass and density, truths naming
+// existing bodies). Each sweep combination is re-validated after its values
+// are written in, so a sweep cannot smuggle in a value the schema forbids.
+#include "talus/harness/scenario_loader.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "scenario_schema_text.h"
+#include "talus/harness/json_schema.h"
+
+namespace talus::harness {
+namespace {
+
+using nlohmann::json;
+
+// How far a quaternion's norm may be from 1 and still count as unit: values
+// written with ~7 significant digits (e.g. 0.7071068) must pass.
+constexpr double kUnitQuaternionTolerance = 1e-6;
+
+// Line and column (both from 1) of byte `offset` in `text`.
+std::string LineAndColumn(std::string_view text, size_t offset) {
+  size_t line = 1;
+  size_t column = 1;
+  for (size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+Error FieldError(std::string_view file, const std::string& pointer, const std::string& problem) {
+  return Error{std::string(file) + ": " + (pointer.empty() ? std::string("(root)") : pointer) + ": " +
+               problem};
+}
+
+Vec3 ReadVec3(const json& value) {
+  return Vec3(value[0].get<double>(), value[1].get<double>(), value[2].get<double>());
+}
+
+CombineRule ReadCombineRule(const json& value) {
+  const std::string name = value.get<std::string>();
+  if (name == "min") return CombineRule::Min;
+  if (name == "max") return CombineRule::Max;
+  if (name == "multiply") return CombineRule::Multiply;
+  if (name == "average") return CombineRule::Average;
+  return CombineRule::Sqrt;
+}
+
+// Every number in the document must be finite (JSON text such as 1e999
+// parses to infinity); the first offending pointer is named.
+std::optional<std::string> FindNonFinite(const json& value, const std::string& pointer) {
+  if (value.is_number_float() && !std::isfinite(value.get<double>())) return pointer;
+  if (value.is_array()) {
+    for (size_t i = 0; i < value.size(); ++i) {
+      if (auto found = FindNonFinite(value[i], pointer + "/" + std::to_string(i))) return found;
+    }
+  } else if (value.is_object()) {
+    for (const auto& [key, child] : value.items()) {
+      if (auto found = FindNonFinite(child, pointer + "/" + key)) return found;
+    }
+  }
+  return std::nullopt;
+}
+
+Result<WorldSettings> MapWorld(const json& world, std::string_view file) {
+  WorldSettings settings;
+  if (world.contains("gravity")) settings.gravity = ReadVec3(world["gravity"]);
+  settings.timeStep = world["timeStep"].get<double>();
+  if (world.contains("iterations") && world["iterations"].is_number()) {
+    settings.iterations = world["iterations"].get<int>();
+  }
+  const json& duration = world["duration"];
+  if (duration.contains("steps")) {
+    settings.steps = duration["steps"].get<int>();
+  } else {
+    const double steps = std::round(duration["seconds"].get<double>() / settings.timeStep);
+    if (steps < 1.0 || steps > 1e9) {
+      return FieldError(file, "/world/duration/seconds",
+                        "gives " + std::to_string(steps) + " steps; need 1 to 1e9");
+    }
+    settings.steps = static_cast<int>(steps);
+  }
+  if (world.contains("frictionCombine")) settings.frictionCombine = ReadCombineRule(world["frictionCombine"]);
+  if (world.contains("restitutionCombine"))
+    settings.restitutionCombine = ReadCombineRule(world["restitutionCombine"]);
+  return settings;
+}
+
+Result<Quat> MapOrientation(const json& orientation, std::string_view file, const std::string& pointer) {
+  if (orientation.contains("quaternion")) {
+    const json& q = orientation["quaternion"];
+    const Quat quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
+    const double norm = quat.norm();
+    if (std::abs(norm - 1.0) > kUnitQuaternionTolerance) {
+      std::ostringstream problem;
+      problem << "quaternion is not unit length (norm " << norm << ")";
+      return FieldError(file, pointer + "/quaternion", problem.str());
+    }
+    return quat.normalized();
+  }
+  const Vec3 axis = ReadVec3(orientation["axis"]);
+  if (axis.norm() < 1e-12) return FieldError(file, pointer + "/axis", "axis has zero length");
+  return Quat(Eigen::AngleAxisd(orientation["angle"].get<double>(), axis.normalized()));
+}
+
+Result<Shape> MapShape(const json& shape) {
+  const std::string kind = shape["kind"].get<std::string>();
+  if (kind == "box") return Shape(BoxShape{ReadVec3(shape["halfExtents"])});
+  if (kind == "sphere") return Shape(SphereShape{shape["radius"].get<double>()});
+  HullShape hull;
+  for (const json& point : shape["points"]) hull.points.push_back(ReadVec3(point));
+  return Shape(std::move(hull));
+}
+
+Result<BodySpec> MapBody(const json& body, std::string_view file, const std::string& pointer) {
+  BodySpec spec;
+  spec.name = body["name"].get<std::string>();
+  spec.shape = MapShape(body["shape"]).Value();
+  spec.motion = body["motion"] == "static" ? Motion::Static : Motion::Dynamic;
+  spec.position = ReadVec3(body["position"]);
+  if (body.contains("orientation")) {
+    auto orientation = MapOrientation(body["orientation"], file, pointer + "/orientation");
+    if (!orientation) return orientation.GetError();
+    spec.orientation = orientation.Value();
+  }
+  if (body.contains("linearVelocity")) spec.linearVelocity = ReadVec3(body["linearVelocity"]);
+  if (body.contains("angularVelocity")) spec.angularVelocity = ReadVec3(body["angularVelocity"]);
+  const bool hasMass = body.contains("mass");
+  const bool hasDensity = body.contains("density");
+  if (spec.motion == Motion::Dynamic) {
+    if (hasMass && hasDensity)
+      return FieldError(file, pointer, "give either \"mass\" or \"density\", not both");
+    if (!hasMass && !hasDensity)
+      return FieldError(file, pointer, "a dynamic body needs \"mass\" or \"density\"");
+    if (hasMass) spec.mass = body["mass"].get<double>();
+    if (hasDensity) spec.density = body["density"].get<double>();
+  } else if (hasMass || hasDensity) {
+    return FieldError(file, pointer + (hasMass ? "/mass" : "/density"),
+                      "a static body takes no mass or density");
+  } else if (body.contains("linearVelocity") || body.contains("angularVelocity")) {
+    return FieldError(file, pointer, "a static body cannot move (no velocities)");
+  }
+  if (body.contains("friction")) spec.friction = body["friction"].get<double>();
+  if (body.contains("restitution")) spec.restitution = body["restitution"].get<double>();
+  return spec;
+}
+
+Quantity MapQuantity(const std::string& name) {
+  if (name == "orientation") return Quantity::Orientation;
+  if (name == "velocity") return Quantity::Velocity;
+  if (name == "energy") return Quantity::Energy;
+  if (name == "momentum") return Quantity::Momentum;
+  if (name == "contacts") return Quantity::Contacts;
+  if (name == "penetration") return Quantity::Penetration;
+  return Quantity::Position;
+}
+
+TruthKind MapTruthKind(const json& truth) {
+  const std::string kind = truth["kind"].get<std::string>();
+  if (kind == "free_fall") {
+    return FreeFallTruth{truth["y0"].get<double>(), truth["v0"].get<double>(), truth["g"].get<double>()};
+  }
+  if (kind == "sliding_stop") {
+    return SlidingStopTruth{truth["v0"].get<double>(), truth["mu"].get<double>(), truth["g"].get<double>()};
+  }
+  if (kind == "rest_height") {
+    return RestHeightTruth{truth["height"].get<double>(),
+                           truth.value("maxJitter", RestHeightTruth{}.maxJitter)};
+  }
+  if (kind == "bounce_heights") {
+    return BounceHeightsTruth{truth["h"].get<double>(), truth["e"].get<double>(), truth["count"].get<int>()};
+  }
+  return ConvergedReferenceTruth{truth["timeStepDivisor"].get<int>()};
+}
+
+// Maps a schema-valid document to a Scenario, adding the semantic checks.
+Result<Scenario> MapScenario(const json& doc, std::string_view file) {
+  if (auto pointer = FindNonFinite(doc, "")) return FieldError(file, *pointer, "must be a finite number");
+  Scenario scenario;
+  scenario.name = doc["name"].get<std::string>();
+  scenario.description = doc.value("description", "");
+  scenario.file = std::string(file);
+  auto world = MapWorld(doc["world"], file);
+  if (!world) return world.GetError();
+  scenario.world = world.Value();
+  for (size_t i = 0; i < doc["bodies"].size(); ++i) {
+    const std::string pointer = "/bodies/" + std::to_string(i);
+    auto body = MapBody(doc["bodies"][i], file, pointer);
+    if (!body) return body.GetError();
+    for (const BodySpec& other : scenario.bodies) {
+      if (other.name == body.Value().name) {
+        return FieldError(file, pointer + "/name", "duplicate body name \"" + other.name + "\"");
+      }
+    }
+    scenario.bodies.push_back(std::move(body).Value());
+  }
+  if (doc.contains("measure")) {
+    for (const json& name : doc["measure"]) scenario.measure.push_back(MapQuantity(name.get<std::string>()));
+  }
+  if (doc.contains("truths")) {
+    for (size_t i = 0; i < doc["truths"].size(); ++i) {
+      const json& entry = doc["truths"][i];
+      Truth truth;
+      truth.kind = MapTruthKind(entry);
+      if (entry.contains("body")) {
+        const std::string name = entry["body"].get<std::string>();
+        for (size_t b = 0; b < scenario.bodies.size(); ++b) {
+          if (scenario.bodies[b].name == name) truth.body = static_cast<int>(b);
+        }
+        if (truth.body < 0) {
+          return FieldError(file, "/truths/" + std::to_string(i) + "/body", "no body named \"" + name + "\"");
+        }
+      }
+      if (entry.contains("tolerance")) {
+        truth.tolerance.absolute = entry["tolerance"].value("absolute", 0.0);
+        truth.tolerance.relative = entry["tolerance"].value("relative", 0.0);
+      }
+      scenario.truths.push_back(truth);
+    }
+  }
+  return scenario;
+}
+
+struct Sweep {
+  std::string name;
+  std::vector<json::json_pointer> targets;
+  std::vector<json> values;
+};
+
+// Reads the sweeps and checks that every target names an existing field
+// outside the sweeps themselves.
+Result<std::vector<Sweep>> ReadSweeps(const json& doc, std::string_view file) {
+  std::vector<Sweep> sweeps;
+  if (!doc.contains("sweeps")) return sweeps;
+  for (size_t i = 0; i < doc["sweeps"].size(); ++i) {
+    const json& entry = doc["sweeps"][i];
+    Sweep sweep{entry["name"].get<std::string>(), {}, entry["values"].get<std::vector<json>>()};
+    for (size_t t = 0; t < entry["targets"].size(); ++t) {
+      const std::string where = "/sweeps/" + std::to_string(i) + "/targets/" + std::to_string(t);
+      const std::string text = entry["targets"][t].get<std::string>();
+      try {
+        json::json_pointer target(text);
+        if (text.rfind("/sweeps", 0) == 0 || !doc.contains(target)) {
+          return FieldError(file, where, "\"" + text + "\" does not name a field of the scenario");
+        }
+        sweep.targets.push_back(target);
+      } catch (const json::exception&) {
+        return FieldError(file, where, "\"" + text + "\" is not a JSON pointer");
+      }
+    }
+    sweeps.push_back(std::move(sweep));
+  }
+  return sweeps;
+}
+
+}  // namespace
+
+const nlohmann::json& ScenarioSchema() {
+  static const nlohmann::json schema = nlohmann::json::parse(ScenarioSchemaText());
+  return schema;
+}
+
+Result<std::vector<Run>> ParseScenarioText(std::string_view text, std::string_view fileName) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& error) {
+    // nlohmann's byte is one past the last character of the offending token.
+    const size_t offset = error.byte > 0 ? error.byte - 1 : 0;
+    std::string what = error.what();
+    const size_t colon = what.find(": ");
+    if (colon != std::string::npos) what = what.substr(colon + 2);
+    return Error{std::string(fileName) + ": " + LineAndColumn(text, offset) + ": " + what};
+  } catch (const json::exception& error) {
+    // A number too large for a double (e.g. 1e999) has no position.
+    std::string what = error.what();
+    const size_t bracket = what.find("] ");
+    if (bracket != std::string::npos) what = what.substr(bracket + 2);
+    return Error{std::string(fileName) + ": " + what};
+  }
+  if (auto violation = ValidateAgainstSchema(ScenarioSchema(), doc)) {
+    return FieldError(fileName, violation->pointer, violation->problem);
+  }
+  auto sweeps = ReadSweeps(doc, fileName);
+  if (!sweeps) return sweeps.GetError();
+
+  // Odometer over the sweep grid, the last sweep fastest.
+  std::vector<size_t> index(sweeps.Value().size(), 0);
+  std::vector<Run> runs;
+  while (true) {
+    json instance = doc;
+    instance.erase("sweeps");
+    Run run;
+    run.id = doc["name"].get<std::string>();
+    std::string label;
+    for (size_t s = 0; s < index.size(); ++s) {
+      const Sweep& sweep = sweeps.Value()[s];
+      const json& value = sweep.values[index[s]];
+      for (const json::json_pointer& target : sweep.targets) instance[target] = value;
+      run.sweepValues.push_back({sweep.name, value.dump()});
+      label += (label.empty() ? "" : ",") + sweep.name + "=" + value.dump();
+    }
+    if (!label.empty()) run.id += "[" + label + "]";
+    const std::string where =
+        label.empty() ? std::string(fileName) : std::string(fileName) + " (" + label + ")";
+    if (auto violation = ValidateAgainstSchema(ScenarioSchema(), instance)) {
+      return FieldError(where, violation->pointer, violation->problem);
+    }
+    auto scenario = MapScenario(instance, where);
+    if (!scenario) return scenario.GetError();
+    run.scenario = std::move(scenario).Value();
+    run.scenario.file = std::string(fileName);
+    run.timeStep = run.scenario.world.timeStep;
+    run.iterations = run.scenario.world.iterations;
+    run.steps = run.scenario.world.steps;
+    runs.push_back(std::move(run));
+
+    size_t s = index.size();
+    while (s > 0 && ++index[s - 1] == sweeps.Value()[s - 1].values.size()) index[--s] = 0;
+    if (s == 0) break;
+  }
+  return runs;
+}
+
+Result<std::vector<Run>> LoadScenarioFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{path.string() + ": cannot open the file"};
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseScenarioText(text.str(), path.string());
+}
+
+}  // namespace talus::harness

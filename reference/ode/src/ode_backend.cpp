@@ -1,0 +1,314 @@
+// ODE behind the Backend interface (see talus/reference/ode_backend.h).
+//
+// Frames: an ODE body's frame must be its centre of mass, so, as in the
+// Bullet backend, bodies sit at X_com = p + R c with rotation R P (c the
+// centroid, P the principal rotation from ComputeBodyMass), hull points are
+// stored as P^T (x - c), and the scenario frame is recovered on read-back.
+// Static bodies are geoms without a body, placed the same way.
+//
+// One step: collide every pair in a simple space (fixed geom order, so
+// contacts come out in the same order every run), turn each contact into a
+// dContact joint with the scenario's combined friction and restitution,
+// step, and empty the contact group.
+#include "talus/reference/ode_backend.h"
+
+#include <ode/ode.h>
+
+#include <cstring>
+#include <sstream>
+
+#include "talus/reference/body_mass.h"
+
+namespace talus::reference {
+namespace {
+
+using harness::BodySpec;
+using harness::Run;
+
+std::string Format(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+
+// ODE's library-wide state: initialised on first use, closed at exit.
+class OdeLibrary {
+ public:
+  static const OdeLibrary& Get() {
+    static const OdeLibrary library;
+    return library;
+  }
+  [[nodiscard]] bool DoublePrecision() const { return m_double; }
+  [[nodiscard]] const std::string& Configuration() const { return m_configuration; }
+
+ private:
+  OdeLibrary() {
+    dInitODE2(0);
+    dAllocateODEDataForThread(dAllocateMaskAll);
+    m_configuration = dGetConfiguration();
+    m_double = dCheckConfiguration("ODE_double_precision") != 0;
+  }
+  ~OdeLibrary() { dCloseODE(); }
+  std::string m_configuration;
+  bool m_double = false;
+};
+
+enum class Stepper { Step, QuickStep };
+
+class OdeBackend final : public harness::Backend {
+ public:
+  static Result<std::unique_ptr<harness::Backend>> Create(const Run& run, Stepper stepper);
+  ~OdeBackend() override;
+
+  [[nodiscard]] std::string Name() const override {
+    return m_stepper == Stepper::Step ? "ode-step" : "ode-quickstep";
+  }
+  void Step() override;
+  [[nodiscard]] int BodyCount() const override { return static_cast<int>(m_bodies.size()); }
+  [[nodiscard]] harness::BodyState GetBodyState(int index) const override;
+  [[nodiscard]] std::vector<harness::ContactPoint> GetContacts() const override { return m_contacts; }
+  [[nodiscard]] std::vector<harness::Setting> Settings() const override { return m_settings; }
+
+ private:
+  struct Body {
+    int index = -1;
+    double friction = 0.0;
+    double restitution = 0.0;
+    BodyMass mass;
+    dBodyID body = nullptr;  // null for static bodies
+    dGeomID geom = nullptr;
+    // dConvex keeps pointers into these.
+    std::vector<dReal> planes;
+    std::vector<dReal> points;
+    std::vector<unsigned> polygons;
+  };
+
+  OdeBackend() = default;
+  static void NearCallback(void* data, dGeomID geom1, dGeomID geom2);
+  void Collide(dGeomID geom1, dGeomID geom2);
+  Result<bool> AddBody(const BodySpec& spec, const BodyMass& mass, int index);
+  void AddSettings(const Run& run);
+
+  Stepper m_stepper = Stepper::Step;
+  double m_timeStep = 0.0;
+  harness::WorldSettings m_worldSettings;
+  dWorldID m_world = nullptr;
+  dSpaceID m_space = nullptr;
+  dJointGroupID m_contactGroup = nullptr;
+  std::vector<std::unique_ptr<Body>> m_bodies;
+  std::vector<harness::ContactPoint> m_contacts;
+  std::vector<harness::Setting> m_settings;
+};
+
+Result<bool> OdeBackend::AddBody(const BodySpec& spec, const BodyMass& mass, int index) {
+  auto body = std::make_unique<Body>();
+  body->index = index;
+  body->friction = spec.friction;
+  body->restitution = spec.restitution;
+  body->mass = mass;
+  if (const auto* box = std::get_if<harness::BoxShape>(&spec.shape)) {
+    const Vec3 size = 2.0 * box->halfExtents;
+    body->geom = dCreateBox(m_space, size.x(), size.y(), size.z());
+  } else if (const auto* sphere = std::get_if<harness::SphereShape>(&spec.shape)) {
+    body->geom = dCreateSphere(m_space, sphere->radius);
+  } else {
+    const Mat3 toPrincipal = mass.principalRotation.toRotationMatrix().transpose();
+    std::vector<Vec3> local;
+    for (const Vec3& point : std::get<harness::HullShape>(spec.shape).points) {
+      local.push_back(toPrincipal * (point - mass.centroid));
+    }
+    auto hull = ComputePointHull(local);
+    if (!hull) return Error{"ode: body \"" + spec.name + "\": " + hull.GetError().message};
+    for (const Vec3& v : hull.Value().vertices)
+      body->points.insert(body->points.end(), {v.x(), v.y(), v.z()});
+    for (const auto& triangle : hull.Value().triangles) {
+      const Vec3& a = hull.Value().vertices[triangle[0]];
+      const Vec3 normal =
+          (hull.Value().vertices[triangle[1]] - a).cross(hull.Value().vertices[triangle[2]] - a).normalized();
+      body->planes.insert(body->planes.end(), {normal.x(), normal.y(), normal.z(), normal.dot(a)});
+      body->polygons.insert(body->polygons.end(),
+                            {3u, static_cast<unsigned>(triangle[0]), static_cast<unsigned>(triangle[1]),
+                             static_cast<unsigned>(triangle[2])});
+    }
+    body->geom = dCreateConvex(m_space, body->planes.data(), static_cast<unsigned>(body->planes.size() / 4),
+                               body->points.data(), static_cast<unsigned>(body->points.size() / 3),
+                               body->polygons.data());
+  }
+  dGeomSetData(body->geom, body.get());
+
+  const Vec3 com = spec.position + spec.orientation.toRotationMatrix() * mass.centroid;
+  const Quat comOrientation = (spec.orientation * mass.principalRotation).normalized();
+  const dQuaternion q = {comOrientation.w(), comOrientation.x(), comOrientation.y(), comOrientation.z()};
+  if (spec.motion == harness::Motion::Dynamic) {
+    body->body = dBodyCreate(m_world);
+    dMass odeMass;
+    dMassSetZero(&odeMass);
+    const Vec3& inertia = mass.principalInertia;
+    dMassSetParameters(&odeMass, mass.mass, 0, 0, 0, inertia.x(), inertia.y(), inertia.z(), 0, 0, 0);
+    dBodySetMass(body->body, &odeMass);
+    dBodySetPosition(body->body, com.x(), com.y(), com.z());
+    dBodySetQuaternion(body->body, q);
+    dBodySetLinearVel(body->body, spec.linearVelocity.x(), spec.linearVelocity.y(), spec.linearVelocity.z());
+    dBodySetAngularVel(body->body, spec.angularVelocity.x(), spec.angularVelocity.y(),
+                       spec.angularVelocity.z());
+    // No gyroscopic term, no damping, never disabled: the write-up's integrator.
+    dBodySetGyroscopicMode(body->body, 0);
+    dBodySetAutoDisableFlag(body->body, 0);
+    dBodySetDamping(body->body, 0, 0);
+    dGeomSetBody(body->geom, body->body);
+  } else {
+    dGeomSetPosition(body->geom, com.x(), com.y(), com.z());
+    dGeomSetQuaternion(body->geom, q);
+  }
+  m_bodies.push_back(std::move(body));
+  return true;
+}
+
+Result<std::unique_ptr<harness::Backend>> OdeBackend::Create(const Run& run, Stepper stepper) {
+  const OdeLibrary& library = OdeLibrary::Get();
+  if (!library.DoublePrecision()) {
+    return Error{"ode: the installed ODE is not the double-precision build (" + library.Configuration() +
+                 ")"};
+  }
+  std::vector<BodyMass> masses;
+  for (const BodySpec& spec : run.scenario.bodies) {
+    auto mass = ComputeBodyMass(spec);
+    if (!mass) return Error{"ode: " + mass.GetError().message};
+    masses.push_back(mass.Value());
+  }
+  std::unique_ptr<OdeBackend> backend(new OdeBackend());
+  backend->m_stepper = stepper;
+  backend->m_timeStep = run.timeStep;
+  backend->m_worldSettings = run.scenario.world;
+  backend->m_world = dWorldCreate();
+  backend->m_space = dSimpleSpaceCreate(nullptr);
+  backend->m_contactGroup = dJointGroupCreate(0);
+  const Vec3& g = run.scenario.world.gravity;
+  dWorldSetGravity(backend->m_world, g.x(), g.y(), g.z());
+  dWorldSetERP(backend->m_world, kOdeErp);
+  dWorldSetCFM(backend->m_world, kOdeCfm);
+  dWorldSetContactSurfaceLayer(backend->m_world, kOdeContactSurfaceLayer);
+  dWorldSetQuickStepNumIterations(backend->m_world,
+                                  run.iterations > 0 ? run.iterations : kOdeDefaultQuickStepIterations);
+  for (size_t i = 0; i < run.scenario.bodies.size(); ++i) {
+    // The destructor frees a partly built world, so a failure leaks nothing.
+    auto added = backend->AddBody(run.scenario.bodies[i], masses[i], static_cast<int>(i));
+    if (!added) return added.GetError();
+  }
+  backend->AddSettings(run);
+  return std::unique_ptr<harness::Backend>(std::move(backend));
+}
+
+OdeBackend::~OdeBackend() {
+  if (m_contactGroup != nullptr) dJointGroupDestroy(m_contactGroup);
+  if (m_space != nullptr) dSpaceDestroy(m_space);  // destroys its geoms
+  if (m_world != nullptr) dWorldDestroy(m_world);  // destroys its bodies
+}
+
+void OdeBackend::NearCallback(void* data, dGeomID geom1, dGeomID geom2) {
+  static_cast<OdeBackend*>(data)->Collide(geom1, geom2);
+}
+
+void OdeBackend::Collide(dGeomID geom1, dGeomID geom2) {
+  const auto* a = static_cast<const Body*>(dGeomGetData(geom1));
+  const auto* b = static_cast<const Body*>(dGeomGetData(geom2));
+  if (a->body == nullptr && b->body == nullptr) return;
+  dContact contacts[kOdeMaxContactsPerPair];
+  std::memset(contacts, 0, sizeof(contacts));
+  const int count = dCollide(geom1, geom2, kOdeMaxContactsPerPair, &contacts[0].geom, sizeof(dContact));
+  const double friction = harness::Combine(m_worldSettings.frictionCombine, a->friction, b->friction);
+  const double restitution =
+      harness::Combine(m_worldSettings.restitutionCombine, a->restitution, b->restitution);
+  for (int i = 0; i < count; ++i) {
+    dContact& contact = contacts[i];
+    contact.surface.mode = dContactApprox1;
+    contact.surface.mu = friction;
+    if (restitution > 0.0) {
+      contact.surface.mode |= dContactBounce;
+      contact.surface.bounce = restitution;
+      contact.surface.bounce_vel = kOdeBounceVelocity;
+    }
+    const dJointID joint = dJointCreateContact(m_world, m_contactGroup, &contact);
+    dJointAttach(joint, a->body, b->body);
+    // ODE's normal points into geom1, i.e. from B = geom2 towards A = geom1.
+    const dContactGeom& g = contact.geom;
+    m_contacts.push_back({a->index, b->index, Vec3(g.pos[0], g.pos[1], g.pos[2]),
+                          Vec3(g.normal[0], g.normal[1], g.normal[2]), g.depth});
+  }
+}
+
+void OdeBackend::Step() {
+  m_contacts.clear();
+  dSpaceCollide(m_space, this, &OdeBackend::NearCallback);
+  if (m_stepper == Stepper::Step) {
+    dWorldStep(m_world, m_timeStep);
+  } else {
+    dWorldQuickStep(m_world, m_timeStep);
+  }
+  dJointGroupEmpty(m_contactGroup);
+}
+
+harness::BodyState OdeBackend::GetBodyState(int index) const {
+  const Body& body = *m_bodies.at(static_cast<size_t>(index));
+  harness::BodyState state;
+  const dReal* position = dGeomGetPosition(body.geom);
+  dQuaternion q;
+  dGeomGetQuaternion(body.geom, q);
+  state.centerOfMass = Vec3(position[0], position[1], position[2]);
+  state.orientation = (Quat(q[0], q[1], q[2], q[3]) * body.mass.principalRotation.conjugate()).normalized();
+  const Mat3 rotation = state.orientation.toRotationMatrix();
+  state.origin = state.centerOfMass - rotation * body.mass.centroid;
+  if (body.body != nullptr) {
+    const dReal* v = dBodyGetLinearVel(body.body);
+    const dReal* w = dBodyGetAngularVel(body.body);
+    state.linearVelocity = Vec3(v[0], v[1], v[2]);
+    state.angularVelocity = Vec3(w[0], w[1], w[2]);
+    state.mass = body.mass.mass;
+    state.worldInertia = rotation * body.mass.inertia * rotation.transpose();
+  }
+  return state;
+}
+
+void OdeBackend::AddSettings(const Run& run) {
+  const bool quick = m_stepper == Stepper::QuickStep;
+  m_settings = {
+      {"engine", "ODE " + std::string(OdeLibrary::Get().Configuration())},
+      {"precision", "double (dDOUBLE, checked with dCheckConfiguration)"},
+      {"stepper",
+       quick ? "dWorldQuickStep (iterative SOR / projected Gauss-Seidel)" : "dWorldStep (Dantzig LCP)"},
+      {"time step (s)", Format(run.timeStep)},
+      {"integrator", "semi-implicit (symplectic) Euler: v += h a, then x += h v"},
+      {"solver iterations", quick ? std::to_string(dWorldGetQuickStepNumIterations(m_world)) +
+                                        (run.iterations > 0 ? "" : " (engine default)")
+                                  : std::string("n/a (direct LCP solve)")},
+      {"quickstep SOR w", Format(dWorldGetQuickStepW(m_world))},
+      {"erp", Format(dWorldGetERP(m_world))},
+      {"cfm", Format(dWorldGetCFM(m_world))},
+      {"contact surface layer (m)", Format(dWorldGetContactSurfaceLayer(m_world))},
+      {"contact max correcting velocity (m/s)", Format(dWorldGetContactMaxCorrectingVel(m_world))},
+      {"max contacts per pair", std::to_string(kOdeMaxContactsPerPair)},
+      {"friction model",
+       "dContactApprox1: mu scales the normal force; pyramid cone (two tangent directions)"},
+      {"friction combine", harness::CombineRuleName(run.scenario.world.frictionCombine)},
+      {"restitution combine", harness::CombineRuleName(run.scenario.world.restitutionCombine)},
+      {"bounce velocity threshold (m/s)", Format(kOdeBounceVelocity)},
+      {"space", "dSimpleSpace (fixed pair order)"},
+      {"gyroscopic term", "off (dBodySetGyroscopicMode 0)"},
+      {"damping", "linear 0, angular 0"},
+      {"auto disable", "off"},
+      {"hull shapes", "dConvex from the qhull triangulation, centred on the centroid"},
+      {"mass properties", "from talus::reference::ComputeBodyMass (exact), principal axes"},
+  };
+}
+
+}  // namespace
+
+void RegisterOdeBackends(harness::BackendRegistry& registry) {
+  registry.Register("ode-step", "ODE (double): dWorldStep, global LCP by Dantzig",
+                    [](const Run& run) { return OdeBackend::Create(run, Stepper::Step); });
+  registry.Register("ode-quickstep", "ODE (double): dWorldQuickStep, iterative SOR",
+                    [](const Run& run) { return OdeBackend::Create(run, Stepper::QuickStep); });
+}
+
+}  // namespace talus::reference
