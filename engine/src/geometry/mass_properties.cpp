@@ -91,9 +91,16 @@ Result<MassProperties> ComputeMassProperties(const Hull& hull, double density) {
   const Vec3 localCenter = integrals.firstMoment / integrals.volume;
   const Mat3 centralMoment =
       integrals.secondMoment - integrals.volume * (localCenter * localCenter.transpose());
-  // Every term above is a sum of outer products x x^T, which are exactly
-  // symmetric in floating point, so the tensor is bit-symmetric as well.
-  const Mat3 inertia = density * (centralMoment.trace() * Mat3::Identity() - centralMoment);
+  Mat3 inertia = density * (centralMoment.trace() * Mat3::Identity() - centralMoment);
+  // Symmetric in exact arithmetic; Eigen's vectorised sums may round the
+  // two triangles differently, so mirror the average to make it exact.
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i + 1; j < 3; ++j) {
+      const double average = 0.5 * (inertia(i, j) + inertia(j, i));
+      inertia(i, j) = average;
+      inertia(j, i) = average;
+    }
+  }
 
   MassProperties props;
   props.volume = integrals.volume;
