@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geometry/polyhedra.h"
+#include "talus/hull_builder.h"
 #include "talus/hull_queries.h"
 #include "talus/mass_properties.h"
 
@@ -300,6 +301,35 @@ TEST(ComputeAabb, MatchesBoxAndBruteForceOnRandomHulls) {
                 hull.Vertices()[static_cast<std::size_t>(SupportVertexBruteForce(hull, d))](axis));
       EXPECT_EQ(aabb.min(axis),
                 hull.Vertices()[static_cast<std::size_t>(SupportVertexBruteForce(hull, -d))](axis));
+    }
+  }
+}
+
+// Quickhull of random clouds gives hulls with many vertices and
+// irregular, mostly triangular faces: a harder walk for hill climbing and
+// more candidates for Welzl's loops than the closed-form shapes above.
+TEST(HullQueries, SupportAndSpheresHoldOnQuickhullsOfRandomClouds) {
+  std::mt19937_64 rng(9);
+  std::normal_distribution<double> gauss;
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<Vec3> points;
+    for (int i = 0; i < 300; ++i) points.emplace_back(gauss(rng), 2.0 * gauss(rng), 0.5 * gauss(rng));
+    auto built = BuildHull(points);
+    ASSERT_TRUE(built) << built.GetError().message;
+    const Hull& hull = built.Value();
+    for (int k = 0; k < 50; ++k) {
+      const Vec3 d = test::RandomDirection(rng);
+      const int start = static_cast<int>(rng() % static_cast<std::uint64_t>(hull.VertexCount()));
+      const Vec3& found = hull.Vertices()[static_cast<std::size_t>(SupportVertex(hull, d, start))];
+      const Vec3& best = hull.Vertices()[static_cast<std::size_t>(SupportVertexBruteForce(hull, d))];
+      EXPECT_NEAR(d.dot(found), d.dot(best), 1e-12 * Extent(hull)) << "trial " << trial;
+    }
+    const Sphere tight = TightBoundingSphere(hull);
+    EXPECT_LE(tight.radius, CentroidBoundingSphere(hull).radius);
+    for (const Vec3& p : points) {
+      EXPECT_LE((p - tight.center).norm(), tight.radius * (1.0 + 1e-12))
+          << "every input point, not only vertices";
+      EXPECT_TRUE(ContainsPoint(hull, p, 1e-9)) << "trial " << trial;
     }
   }
 }
