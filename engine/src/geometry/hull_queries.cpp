@@ -87,7 +87,6 @@ bool ContainsPoint(const Hull& hull, const Vec3& point, double tolerance) {
 std::optional<RayHit> RayCast(const Hull& hull, const Vec3& origin, const Vec3& direction,
                               double maxDistance) {
   const double length = direction.norm();
-  assert(length > 0.0);
   if (!(length > 0.0) || !std::isfinite(length) || !origin.allFinite()) return std::nullopt;
   const Vec3 unit = direction / length;
   double enter = -std::numeric_limits<double>::infinity();
