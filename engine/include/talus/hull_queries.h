@@ -11,8 +11,9 @@ namespace talus {
 
 /// The vertex farthest along `direction` (need not be unit length), found by
 /// hill climbing over the half-edge graph from `startVertex` (a good guess,
-/// e.g. last step's answer, makes it O(1) in practice). Ties may return any
-/// of the tied vertices.
+/// e.g. last step's answer, makes it O(1) in practice; valid range
+/// [0, VertexCount()), default 0). Ties may return any of the tied
+/// vertices; a zero direction returns `startVertex`.
 int SupportVertex(const Hull& hull, const Vec3& direction, int startVertex = 0);
 
 /// The same by checking every vertex; the oracle for SupportVertex.
@@ -30,8 +31,10 @@ struct RayHit {
 };
 
 /// First hit of the ray origin + t * direction, 0 <= t <= maxDistance,
-/// `direction` non-zero (normalised inside). A ray starting inside the hull
-/// reports no hit (it never enters).
+/// `direction` non-zero (normalised inside; a zero or non-finite direction
+/// or origin reports no hit). `maxDistance` in metres along the unit
+/// direction. A ray starting inside the hull reports no hit (it never
+/// enters); one starting on the surface and pointing inwards hits at 0.
 std::optional<RayHit> RayCast(const Hull& hull, const Vec3& origin, const Vec3& direction,
                               double maxDistance);
 
