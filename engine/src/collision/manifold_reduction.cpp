@@ -4,35 +4,39 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <cmath>
 #include <cstddef>
 
 namespace talus {
 namespace {
 
-using Vec2 = Eigen::Vector2d;
+// A point in the contact plane (plain, so sorting stays simple).
+struct Vec2 {
+  double x;
+  double y;
+};
 
 double Cross2(const Vec2& o, const Vec2& a, const Vec2& b) {
-  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
 }
 
 // Area of the convex hull of a few 2D points (Andrew's monotone chain).
-double HullArea(std::array<Vec2, kMaxManifoldPoints + 1> points, int count) {
+double HullArea(std::array<Vec2, kMaxManifoldPoints + 1> points, std::size_t count) {
   if (count < 3) return 0.0;
-  std::sort(points.begin(), points.begin() + count,
-            [](const Vec2& l, const Vec2& r) { return l.x() < r.x() || (l.x() == r.x() && l.y() < r.y()); });
+  std::sort(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(count),
+            [](const Vec2& l, const Vec2& r) { return l.x < r.x || (l.x == r.x && l.y < r.y); });
   std::array<Vec2, 2 * (kMaxManifoldPoints + 1)> chain;
-  int k = 0;
-  for (int i = 0; i < count; ++i) {
-    while (k >= 2 && Cross2(chain[k - 2], chain[k - 1], points[i]) <= 0.0) --k;
-    chain[k++] = points[i];
-  }
-  for (int i = count - 2, lower = k + 1; i >= 0; --i) {
-    while (k >= lower && Cross2(chain[k - 2], chain[k - 1], points[i]) <= 0.0) --k;
-    chain[k++] = points[i];
-  }
+  std::size_t k = 0;
+  const auto push = [&](const Vec2& p, std::size_t floor) {
+    while (k >= floor + 2 && Cross2(chain[k - 2], chain[k - 1], p) <= 0.0) --k;
+    if (k < chain.size()) chain[k++] = p;
+  };
+  for (std::size_t i = 0; i < count; ++i) push(points[i], 0);
+  const std::size_t lower = k - 1;
+  for (std::size_t i = count - 1; i-- > 0;) push(points[i], lower);
   double twiceArea = 0.0;
-  for (int i = 0; i + 1 < k; ++i)
-    twiceArea += chain[i].x() * chain[i + 1].y() - chain[i + 1].x() * chain[i].y();
+  for (std::size_t i = 0; i + 1 < k; ++i)
+    twiceArea += chain[i].x * chain[i + 1].y - chain[i + 1].x * chain[i].y;
   return 0.5 * std::abs(twiceArea);
 }
 
@@ -51,7 +55,7 @@ int ReduceContactPoints(std::span<const ContactPoint> candidates, const Vec3& no
   const Vec3 v = normal.cross(u);
   const auto planar = [&](int i) {
     const Vec3& p = candidates[static_cast<std::size_t>(i)].position;
-    return Vec2(u.dot(p), v.dot(p));
+    return Vec2{u.dot(p), v.dot(p)};
   };
 
   std::array<int, kMaxManifoldPoints> chosen{};
@@ -75,7 +79,8 @@ int ReduceContactPoints(std::span<const ContactPoint> candidates, const Vec3& no
   double farthest = -1.0;
   for (int i = 0; i < count; ++i) {
     if (i == first) continue;
-    const double d = (planar(i) - kept[0]).squaredNorm();
+    const Vec2 q = planar(i);
+    const double d = (q.x - kept[0].x) * (q.x - kept[0].x) + (q.y - kept[0].y) * (q.y - kept[0].y);
     if (d > farthest) {
       farthest = d;
       second = i;
@@ -91,7 +96,7 @@ int ReduceContactPoints(std::span<const ContactPoint> candidates, const Vec3& no
     for (int i = 0; i < count; ++i) {
       if (isChosen(i, n)) continue;
       kept[static_cast<std::size_t>(n)] = planar(i);
-      const double area = HullArea(kept, n + 1);
+      const double area = HullArea(kept, static_cast<std::size_t>(n) + 1);
       if (area > bestArea) {
         bestArea = area;
         best = i;

@@ -50,8 +50,8 @@ bool Contains(const PosedHull& hull, const Vec3& p, double tolerance) {
 void BuildEdgeContact(const PosedHull& a, const PosedHull& b, const SatResult& sat, ContactManifold* out) {
   const int ea = sat.axis.indexA;
   const int eb = sat.axis.indexB;
-  Vec3 onA;
-  Vec3 onB;
+  Vec3 onA = Vec3::Zero();
+  Vec3 onB = Vec3::Zero();
   ClosestPointsOfSegments(a.Vertex(a.EdgeStart(ea)), a.Vertex(a.EdgeEnd(ea)), b.Vertex(b.EdgeStart(eb)),
                           b.Vertex(b.EdgeEnd(eb)), &onA, &onB);
   out->pointCount = 1;
@@ -70,6 +70,7 @@ struct ClipVertex {
   std::uint32_t incidentFeature;
   std::uint32_t segmentIncident;    // incident feature of the segment to the next vertex
   bool segmentOnReference = false;  // the segment lies on a reference side plane
+  int segmentReferenceEdge = -1;    // the reference half-edge of that side plane
 };
 
 int IncidentFace(const PosedHull& incident, const Vec3& referenceNormal) {
@@ -87,8 +88,20 @@ int IncidentFace(const PosedHull& incident, const Vec3& referenceNormal) {
 
 // Sutherland-Hodgman against one side plane (keeps side <= 0). A vertex
 // exactly on the plane is kept and makes no crossing, so no duplicates.
-void ClipAgainst(const std::vector<ClipVertex>& in, const Vec3& sideNormal, double sideOffset,
-                 std::uint32_t sideFeature, int incidentFace, std::vector<ClipVertex>* out) {
+// The reference feature where the side planes of reference half-edges
+// `before` and `after` meet: their shared vertex when adjacent.
+std::uint32_t ReferenceCorner(const PosedHull& ref, int before, int after) {
+  const auto edges = ref.hull->HalfEdges();
+  if (edges[static_cast<std::size_t>(before)].next == after)
+    return PackFeature(FeatureType::Vertex, ref.Origin(after));
+  if (edges[static_cast<std::size_t>(after)].next == before)
+    return PackFeature(FeatureType::Vertex, ref.Origin(before));
+  return PackFeature(FeatureType::Edge, after >> 1);
+}
+
+void ClipAgainst(const PosedHull& ref, const std::vector<ClipVertex>& in, const Vec3& sideNormal,
+                 double sideOffset, int sideHalfEdge, int incidentFace, std::vector<ClipVertex>* out) {
+  const std::uint32_t sideFeature = PackFeature(FeatureType::Edge, sideHalfEdge >> 1);
   out->clear();
   const std::size_t count = in.size();
   for (std::size_t i = 0; i < count; ++i) {
@@ -101,16 +114,21 @@ void ClipAgainst(const std::vector<ClipVertex>& in, const Vec3& sideNormal, doub
       const double t = dc / (dc - dn);
       ClipVertex cut;
       cut.position = cur.position + t * (next.position - cur.position);
-      cut.referenceFeature = sideFeature;
+      // On an incident edge: (incident edge, side edge); on an earlier side
+      // plane: the reference corner where the two side planes meet.
+      cut.referenceFeature =
+          cur.segmentOnReference ? ReferenceCorner(ref, cur.segmentReferenceEdge, sideHalfEdge) : sideFeature;
       cut.incidentFeature =
           cur.segmentOnReference ? PackFeature(FeatureType::Face, incidentFace) : cur.segmentIncident;
       if (dc < 0.0) {
         // Leaving: the polygon now runs along this side plane.
         cut.segmentOnReference = true;
+        cut.segmentReferenceEdge = sideHalfEdge;
         cut.segmentIncident = PackFeature(FeatureType::Face, incidentFace);
       } else {
         // Entering: the polygon continues along cur's segment.
         cut.segmentOnReference = cur.segmentOnReference;
+        cut.segmentReferenceEdge = cur.segmentReferenceEdge;
         cut.segmentIncident = cur.segmentIncident;
       }
       out->push_back(cut);
@@ -136,7 +154,8 @@ int BuildClippedPoints(const FaceContact& contact, double depth, double margin, 
                        .referenceFeature = PackFeature(FeatureType::Face, contact.referenceFace),
                        .incidentFeature = PackFeature(FeatureType::Vertex, v),
                        .segmentIncident = PackFeature(FeatureType::Edge, h >> 1),
-                       .segmentOnReference = false});
+                       .segmentOnReference = false,
+                       .segmentReferenceEdge = -1});
     h = halfEdges[static_cast<std::size_t>(h)].next;
   } while (h != firstInc);
 
@@ -149,7 +168,7 @@ int BuildClippedPoints(const FaceContact& contact, double depth, double margin, 
     const Vec3 v1 = ref.Vertex(ref.Origin(next));
     // Outward side normal: edge direction x face normal (faces are CCW).
     const Vec3 side = (v1 - v0).cross(n);
-    ClipAgainst(polygon, side, side.dot(v0), PackFeature(FeatureType::Edge, h >> 1), incidentFace, &clipped);
+    ClipAgainst(ref, polygon, side, side.dot(v0), h, incidentFace, &clipped);
     std::swap(polygon, clipped);
     h = next;
   } while (h != firstRef && !polygon.empty());

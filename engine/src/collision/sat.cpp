@@ -140,7 +140,7 @@ EdgeQuery QueryEdges(const PosedHull& a, const PosedHull& b, SatMode mode, doubl
         continue;
       }
       ++tested;
-      Vec3 axis;
+      Vec3 axis = Vec3::Zero();
       const double separation = EdgeSeparation(a, ea, frameA.direction[i], b, eb, frameB.direction[j], &axis);
       if (separation > best.separation) {
         best = {.edgeA = ea, .edgeB = eb, .separation = separation};
@@ -155,6 +155,30 @@ EdgeQuery QueryEdges(const PosedHull& a, const PosedHull& b, SatMode mode, doubl
     stats->edgeAxesTested += tested;
     stats->edgePairsPruned += prunedCount;
   }
+  return best;
+}
+
+// Parallel edges give the same axis and the same projections, so the edge
+// pair the search met first need not be the pair that touches. This returns
+// the edge of `p` parallel to `edge` (or closest to it) through p's support
+// vertex along `direction`: the edge that actually supports the axis.
+int SupportingEdge(const PosedHull& p, const Vec3& direction, int edge) {
+  const Vec3 along = p.EdgeDirection(edge).normalized();
+  const int v = p.Support(direction, p.EdgeStart(edge));
+  const auto halfEdges = p.hull->HalfEdges();
+  const int first = p.hull->VertexEdges()[static_cast<std::size_t>(v)];
+  int best = edge;
+  double bestCosine = -1.0;
+  int h = first;
+  do {
+    const int twin = halfEdges[static_cast<std::size_t>(h)].twin;
+    const double cosine = std::abs((p.Vertex(p.Origin(twin)) - p.Vertex(v)).normalized().dot(along));
+    if (cosine > bestCosine) {
+      bestCosine = cosine;
+      best = h >> 1;
+    }
+    h = halfEdges[static_cast<std::size_t>(twin)].next;
+  } while (h != first);
   return best;
 }
 
@@ -185,7 +209,7 @@ double EvaluateSatAxis(const PosedHull& a, const PosedHull& b, const SatAxis& ax
       return FaceSeparation(b, axis.indexB, a, &start);
     }
     case SatAxisType::EdgePair: {
-      Vec3 fromAToB;
+      Vec3 fromAToB = Vec3::Zero();
       const double separation = EdgeSeparation(a, axis.indexA, a.EdgeDirection(axis.indexA), b, axis.indexB,
                                                b.EdgeDirection(axis.indexB), &fromAToB);
       *normal = -fromAToB;
@@ -205,7 +229,7 @@ SatResult RunSat(const PosedHull& a, const PosedHull& b, SatMode mode, double ma
 
   // Temporal coherence: last step's axis very likely still separates.
   if (cacheValid && cache->axis.type != SatAxisType::None) {
-    Vec3 normal;
+    Vec3 normal = Vec3::Zero();
     const double separation = EvaluateSatAxis(a, b, cache->axis, &normal);
     if (separation > margin) {
       if (stats) ++stats->satCacheHits;
@@ -242,7 +266,10 @@ SatResult RunSat(const PosedHull& a, const PosedHull& b, SatMode mode, double ma
     separation = faceB.separation;
   }
   if (edge.edgeA >= 0 && edge.separation > separation + kAxisPreferenceTolerance) {
-    axis = {SatAxisType::EdgePair, edge.edgeA, edge.edgeB};
+    Vec3 normal = Vec3::Zero();
+    EvaluateSatAxis(a, b, {SatAxisType::EdgePair, edge.edgeA, edge.edgeB}, &normal);
+    axis = {SatAxisType::EdgePair, SupportingEdge(a, -normal, edge.edgeA),
+            SupportingEdge(b, normal, edge.edgeB)};
   }
   return finish(axis, false);
 }
