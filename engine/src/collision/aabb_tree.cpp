@@ -33,9 +33,7 @@ void AabbTree::FindPairs(std::span<const BroadPhaseProxy> proxies, std::vector<B
   stats.treeReinsertions = Sync(proxies);
   stats.treeHeight = Height();
   std::int64_t candidates = 0;
-  for (std::size_t d = 0; d < proxies.size(); ++d) {
-    if (proxies[d].active && !proxies[d].isStatic) QueryProxy(static_cast<int>(d), proxies, out, candidates);
-  }
+  SelfPairs(proxies, out, candidates);
   std::sort(out.begin(), out.end());
   stats.candidatePairs = candidates;
   stats.spherePairs = static_cast<std::int64_t>(out.size());
@@ -85,6 +83,7 @@ int AabbTree::Sync(std::span<const BroadPhaseProxy> proxies) {
       m_nodes[static_cast<std::size_t>(leaf)].proxy = static_cast<int>(s);
     }
     m_nodes[static_cast<std::size_t>(leaf)].box = Enlarge(exact, p.sphere.radius);
+    m_nodes[static_cast<std::size_t>(leaf)].hasDynamic = !p.isStatic;
     InsertLeaf(leaf);
     ++changes;
   }
@@ -149,6 +148,8 @@ void AabbTree::InsertLeaf(int leaf) {
   np.parent = oldParent;
   np.box = Union(leafBox, m_nodes[static_cast<std::size_t>(sibling)].box);
   np.height = m_nodes[static_cast<std::size_t>(sibling)].height + 1;
+  np.hasDynamic = m_nodes[static_cast<std::size_t>(sibling)].hasDynamic ||
+                  m_nodes[static_cast<std::size_t>(leaf)].hasDynamic;
   np.child1 = sibling;
   np.child2 = leaf;
   if (oldParent != kNull) {
@@ -192,6 +193,7 @@ void AabbTree::RefitUpwards(int node) {
     const Node& c2 = m_nodes[static_cast<std::size_t>(n.child2)];
     n.height = 1 + std::max(c1.height, c2.height);
     n.box = Union(c1.box, c2.box);
+    n.hasDynamic = c1.hasDynamic || c2.hasDynamic;
     node = n.parent;
   }
 }
@@ -240,33 +242,52 @@ int AabbTree::Balance(int a) {
   na.height = 1 + std::max(no.height, nm.height);
   nc.box = Union(na.box, nk.box);
   nc.height = 1 + std::max(na.height, nk.height);
+  na.hasDynamic = no.hasDynamic || nm.hasDynamic;
+  nc.hasDynamic = na.hasDynamic || nk.hasDynamic;
   return c;
 }
 
-void AabbTree::QueryProxy(int d, std::span<const BroadPhaseProxy> proxies, std::vector<BroadPhasePair>& out,
-                          std::int64_t& candidates) {
+// Simultaneous descent of the tree against itself: a node paired with
+// itself yields its children's self pairs and their cross pair; two distinct
+// nodes whose boxes overlap are split on the taller side until both are
+// leaves. Every unordered pair of overlapping leaves is met exactly once.
+void AabbTree::SelfPairs(std::span<const BroadPhaseProxy> proxies, std::vector<BroadPhasePair>& out,
+                         std::int64_t& candidates) {
   if (m_root == kNull) return;
-  const Aabb& box = m_exactBox[static_cast<std::size_t>(d)];
-  const BroadPhaseProxy& pd = proxies[static_cast<std::size_t>(d)];
   m_stack.clear();
-  m_stack.push_back(m_root);
+  m_stack.push_back({m_root, m_root});
   while (!m_stack.empty()) {
-    const int index = m_stack.back();
+    const auto [x, y] = m_stack.back();
     m_stack.pop_back();
-    const Node& n = m_nodes[static_cast<std::size_t>(index)];
-    if (!BoxesOverlap(n.box, box)) continue;
-    if (!n.IsLeaf()) {
-      m_stack.push_back(n.child2);
-      m_stack.push_back(n.child1);
+    const Node& nx = m_nodes[static_cast<std::size_t>(x)];
+    const Node& ny = m_nodes[static_cast<std::size_t>(y)];
+    if (!nx.hasDynamic && !ny.hasDynamic) continue;
+    if (x == y) {
+      if (nx.IsLeaf()) continue;
+      m_stack.push_back({nx.child1, nx.child2});
+      m_stack.push_back({nx.child2, nx.child2});
+      m_stack.push_back({nx.child1, nx.child1});
       continue;
     }
-    const int o = n.proxy;
-    const BroadPhaseProxy& po = proxies[static_cast<std::size_t>(o)];
-    // A dynamic-dynamic pair is found by both; keep it from the lower slot.
-    if (o == d || (!po.isStatic && o < d)) continue;
-    if (!BoxesOverlap(m_exactBox[static_cast<std::size_t>(o)], box)) continue;
-    ++candidates;
-    if (SpheresTouch(pd.sphere, po.sphere)) out.push_back({std::min(d, o), std::max(d, o)});
+    if (!BoxesOverlap(nx.box, ny.box)) continue;
+    if (nx.IsLeaf() && ny.IsLeaf()) {
+      const int a = std::min(nx.proxy, ny.proxy);
+      const int b = std::max(nx.proxy, ny.proxy);
+      if (!BoxesOverlap(m_exactBox[static_cast<std::size_t>(a)], m_exactBox[static_cast<std::size_t>(b)]))
+        continue;
+      ++candidates;
+      if (SpheresTouch(proxies[static_cast<std::size_t>(a)].sphere,
+                       proxies[static_cast<std::size_t>(b)].sphere))
+        out.push_back({a, b});
+      continue;
+    }
+    if (ny.IsLeaf() || (!nx.IsLeaf() && nx.height >= ny.height)) {
+      m_stack.push_back({nx.child2, y});
+      m_stack.push_back({nx.child1, y});
+    } else {
+      m_stack.push_back({x, ny.child2});
+      m_stack.push_back({x, ny.child1});
+    }
   }
 }
 
@@ -278,6 +299,7 @@ bool AabbTree::IsValid() const {
     ++leaves;
     const Node& n = m_nodes[static_cast<std::size_t>(leaf)];
     if (!n.IsLeaf() || n.proxy != static_cast<int>(s) || !Contains(n.box, m_exactBox[s])) return false;
+    if (n.hasDynamic != (m_slotStatic[s] == 0)) return false;
   }
   if (leaves != m_leafCount) return false;
   if (m_root == kNull) return leaves == 0;
@@ -292,6 +314,7 @@ bool AabbTree::IsValidSubtree(int node, int parent) const {
   const Node& c2 = m_nodes[static_cast<std::size_t>(n.child2)];
   if (n.proxy != kNull || n.height != 1 + std::max(c1.height, c2.height)) return false;
   if (!Contains(n.box, c1.box) || !Contains(n.box, c2.box)) return false;
+  if (n.hasDynamic != (c1.hasDynamic || c2.hasDynamic)) return false;
   return IsValidSubtree(n.child1, node) && IsValidSubtree(n.child2, node);
 }
 
