@@ -32,7 +32,9 @@ enum class BroadPhaseKind {
 /// Invariants: spherePairs <= candidatePairs; oversizedTests <= candidatePairs.
 struct BroadPhaseStats {
   /// The structure that actually ran this step: the selected kind, or
-  /// BruteForce when the world was small enough for the tiny-world path.
+  /// BruteForce when the world was small enough for the tiny-world path, or
+  /// AabbTree when the grid was selected but the occupied cells spanned more
+  /// than its 63-bit cell keys can address (about 2^21 cells per axis).
   BroadPhaseKind kindUsed = BroadPhaseKind::BruteForce;
   /// Bodies taking part this step (active proxies), and how many are static.
   int proxyCount = 0;
@@ -52,7 +54,7 @@ struct BroadPhaseStats {
   std::int64_t oversizedTests = 0;
   /// Grid only: cell edge length used this step (metres), 0 otherwise.
   double cellSize = 0.0;
-  /// Grid only: cells holding at least one body this step.
+  /// Grid only: cells holding at least one binned body this step.
   int occupiedCells = 0;
   /// Tree only: leaves reinserted because their body left its enlarged box
   /// (or was added, removed or changed between static and dynamic).
