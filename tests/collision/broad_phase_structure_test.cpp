@@ -102,6 +102,7 @@ TEST(UniformGrid, WorldTooWideForCellKeysFallsBackToTheTree) {
     proxies.push_back(Ball({x, 0, z}, 1e-3));
   }
   BroadPhase phase(BroadPhaseKind::UniformGrid);
+  phase.SetTinyWorldProxies(0);
   ASSERT_TRUE(phase.Update(proxies));
   std::vector<BroadPhasePair> pairs;
   BroadPhaseStats stats;
