@@ -17,7 +17,7 @@ namespace talus {
 /// force path whatever is selected (see BroadPhaseStats::kindUsed and
 /// docs/collision-broad-phase.md for the crossover).
 enum class BroadPhaseKind {
-  /// Hashed uniform grid whose cell size follows the dynamic bodies'
+  /// Sparse uniform grid (memory follows the occupied cells) whose cell size follows the dynamic bodies'
   /// bounding-sphere diameters; very large bodies go to an "oversized" list
   /// tested against every body. Best for many bodies of similar size.
   UniformGrid,
