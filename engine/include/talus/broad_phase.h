@@ -17,12 +17,15 @@ namespace talus {
 /// force path whatever is selected (see BroadPhaseStats::kindUsed and
 /// docs/collision-broad-phase.md for the crossover).
 enum class BroadPhaseKind {
-  /// Sparse uniform grid (memory follows the occupied cells) whose cell size follows the dynamic bodies'
-  /// bounding-sphere diameters; very large bodies go to an "oversized" list
-  /// tested against every body. Best for many bodies of similar size.
+  /// Sparse uniform grid (memory follows the occupied cells) whose cell size
+  /// follows the dynamic bodies' bounding-sphere diameters; very large bodies
+  /// go to an "oversized" list tested against every body. The fastest kind
+  /// in every moving scene measured, mixed sizes and sparse worlds included.
   UniformGrid,
   /// Dynamic AABB tree (bounding volume hierarchy of slightly enlarged
-  /// boxes, refitted incrementally). Best for mixed sizes and sparse worlds.
+  /// boxes, updated incrementally). Prunes 3-12x more candidates than the
+  /// grid and is fastest for static sparse worlds up to ~1k bodies, but
+  /// slower than the grid elsewhere; handles any world extent.
   AabbTree,
   /// Every pair tested: O(n^2). The reference the others are checked against.
   BruteForce,
