@@ -37,7 +37,12 @@ struct TestBox {
 
 class ContactScene {
  public:
-  explicit ContactScene(const WorldSettings& settings) : m_settings(settings) {}
+  /// `margin`: corners closer to a plane than this (metres) become contact
+  /// points, with negative depth while apart (speculative contacts). The
+  /// default 1 cm keeps resting contacts from flickering; a margin above
+  /// the largest v h catches every impact before it penetrates.
+  explicit ContactScene(const WorldSettings& settings, double margin = 0.01)
+      : m_settings(settings), m_margin(margin) {}
 
   /// Adds a plane as a static body of its own; returns its body index.
   int AddPlane(const GroundPlane& plane) {
@@ -100,13 +105,8 @@ class ContactScene {
     return energy;
   }
 
-  /// Corners closer to a plane than this (metres) become contact points,
-  /// with negative depth when apart: a small speculative margin so resting
-  /// contacts do not flicker.
-  static constexpr double kMargin = 0.01;
-
  private:
-  // Every box corner within kMargin of (or behind) every plane is a point of
+  // Every box corner within the margin of (or behind) every plane is a point of
   // the box-plane manifold: normal the plane's (from B, the ground, to A,
   // the box), position midway between corner and plane, feature = corner.
   void Collide() {
@@ -123,7 +123,7 @@ class ContactScene {
           const Vec3 sign((k & 1) ? 1.0 : -1.0, (k & 2) ? 1.0 : -1.0, (k & 4) ? 1.0 : -1.0);
           const Vec3 corner = b.center + b.orientation * sign.cwiseProduct(box.halfExtents);
           const double distance = plane.normal.dot(corner) - plane.offset;
-          if (distance > kMargin) continue;
+          if (distance > m_margin) continue;
           ContactPoint& point = manifold.points[static_cast<std::size_t>(manifold.pointCount++)];
           point.position = corner - 0.5 * distance * plane.normal;
           point.depth = -distance;
@@ -147,6 +147,7 @@ class ContactScene {
   };
 
   WorldSettings m_settings;
+  double m_margin = 0.01;
   std::vector<BodySim> m_bodies;
   std::vector<PlaneBody> m_planes;
   std::vector<TestBox> m_boxes;
