@@ -27,12 +27,18 @@ std::uint64_t DirectedKey(int from, int to) {
 std::string FaceName(std::size_t face) { return "face " + std::to_string(face); }
 
 // Newell's method: the area-weighted normal of a polygon, robust for
-// slightly non-planar loops. Its length is twice the polygon's area.
+// slightly non-planar loops. Its length is twice the polygon's area. Taken
+// about the loop's centroid: cross products of raw coordinates lose the
+// normal's direction to cancellation when the face is small next to its
+// distance from the origin (a 0.1 m face at 1e4 m would be off by 1e-6 rad).
 Vec3 NewellNormal(const std::vector<Vec3>& vertices, const std::vector<int>& loop) {
+  Vec3 centroid = Vec3::Zero();
+  for (int v : loop) centroid += vertices[static_cast<std::size_t>(v)];
+  centroid /= static_cast<double>(loop.size());
   Vec3 normal = Vec3::Zero();
   for (std::size_t i = 0; i < loop.size(); ++i) {
-    const Vec3& a = vertices[static_cast<std::size_t>(loop[i])];
-    const Vec3& b = vertices[static_cast<std::size_t>(loop[(i + 1) % loop.size()])];
+    const Vec3 a = vertices[static_cast<std::size_t>(loop[i])] - centroid;
+    const Vec3 b = vertices[static_cast<std::size_t>(loop[(i + 1) % loop.size()])] - centroid;
     normal += a.cross(b);
   }
   return normal;

@@ -1,0 +1,79 @@
+// Narrow-phase settings and statistics: the public knobs the world and the
+// testbed use to select the Separating Axis Test variant and the contact
+// point generator, and the counters the narrow phase reports.
+//
+// The write-up's choices (full SAT, vertices-near-the-plane contact points)
+// stay available as the reference; the faster or more accurate variants are
+// options whose worth the testbed measures.
+#pragma once
+
+#include <cstdint>
+
+namespace talus {
+
+/// How the Separating Axis Test between two convex polyhedra searches its
+/// candidate axes. Both modes give the same verdict and, up to exact ties,
+/// the same contact axis (see docs/collision-narrow-phase.md).
+enum class SatMode {
+  /// The write-up's test: every face normal of both polyhedra and the cross
+  /// product of every edge pair, 2F + E^2 axes, each edge axis measured by
+  /// projecting both polyhedra. The reference; slow for large hulls.
+  Full,
+  /// Edge pairs pruned by the Gauss map test: only pairs whose arcs cross on
+  /// the unit sphere build a face of the Minkowski difference, and only
+  /// those can be the minimum or a separating axis (Gregorius, GDC 2013,
+  /// "The Separating Axis Test between convex polyhedra").
+  GaussMapPruned,
+};
+
+/// How the contact points of a polyhedron-polyhedron manifold are made.
+enum class ManifoldMode {
+  /// The write-up's: for an edge axis the closest points of the two edges;
+  /// for a face axis every vertex of either polyhedron close to the contact
+  /// plane and (almost) inside the other polyhedron, all with the
+  /// manifold's single depth; at most kMaxManifoldPoints (8).
+  WriteUp,
+  /// The incident face clipped against the reference face's side planes
+  /// (Sutherland-Hodgman); each point has its own depth and a feature id;
+  /// reduced to at most 4 points (deepest, then largest area).
+  Clipped,
+};
+
+/// Narrow-phase options; the defaults are the recommended (fast, accurate)
+/// choices, not the write-up's.
+struct NarrowPhaseSettings {
+  SatMode satMode = SatMode::GaussMapPruned;          ///< axis search, see SatMode
+  ManifoldMode manifoldMode = ManifoldMode::Clipped;  ///< point generator, see ManifoldMode
+  bool useSatCache = true;  ///< try each pair's last axis first (temporal coherence)
+  /// Speculative margin in metres (>= 0, default 0): pairs closer than this
+  /// but not touching still get a manifold, with negative depths.
+  double speculativeMargin = 0.0;
+};
+
+/// Counters accumulated by the narrow phase (add-only; the world resets
+/// them each step).
+struct NarrowPhaseStats {
+  std::uint64_t pairsTested = 0;      ///< shape pairs given to the narrow phase
+  std::uint64_t pairsTouching = 0;    ///< of those, pairs that produced a manifold
+  std::uint64_t satTests = 0;         ///< polyhedron-polyhedron SAT queries run
+  std::uint64_t satCacheHits = 0;     ///< SAT queries answered by the cached separating axis alone
+  std::uint64_t faceAxesTested = 0;   ///< face normals evaluated
+  std::uint64_t edgeAxesTested = 0;   ///< edge-pair cross products evaluated
+  std::uint64_t edgePairsPruned = 0;  ///< edge pairs rejected by the Gauss map test
+  std::uint64_t contactPoints = 0;    ///< contact points produced
+
+  /// Adds another set of counters to this one.
+  NarrowPhaseStats& operator+=(const NarrowPhaseStats& other) {
+    pairsTested += other.pairsTested;
+    pairsTouching += other.pairsTouching;
+    satTests += other.satTests;
+    satCacheHits += other.satCacheHits;
+    faceAxesTested += other.faceAxesTested;
+    edgeAxesTested += other.edgeAxesTested;
+    edgePairsPruned += other.edgePairsPruned;
+    contactPoints += other.contactPoints;
+    return *this;
+  }
+};
+
+}  // namespace talus

@@ -1,0 +1,400 @@
+// Quickhull in 3D (section 1 of the original write-up; Barber, Dobkin and
+// Huhdanpaa 1996 for the algorithm, Lloyd's QuickHull3D and Gregorius'
+// "Implementing Quickhull", GDC 2014, for the robust practice).
+//
+// The idea: a point that is extreme in some direction is on the hull, and a
+// point inside the current hull never will be. Start from a tetrahedron of
+// extreme points and give every outside point to one face it is in front of
+// (that face's conflict list). Then, while some face has outside points,
+// take its farthest one (the eye), find the faces it sees by a depth-first
+// walk across twins from that face (the walk's boundary, in order, is the
+// horizon), replace the visible faces by a cone of triangles from the eye to
+// the horizon, merge each new triangle with any neighbour it is not clearly
+// convex against (so coplanar points give one polygonal face and rounding
+// never leaves a concave edge), and hand the orphaned points of the deleted
+// faces to the new face they are farthest in front of, dropping those now
+// inside. Every decision uses one distance tolerance derived from the
+// input's extent, and the same tolerance is what Hull::FromPolygons checks.
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/quickhull_mesh.h"
+#include "talus/hull_builder.h"
+
+namespace talus {
+namespace {
+
+std::string Metres(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.3g m", value);
+  return buffer;
+}
+
+// Rejects NaN and infinite coordinates, naming the first bad point.
+std::optional<Error> CheckFinite(std::span<const Vec3> points) {
+  static constexpr std::array<const char*, 3> kAxis = {"x", "y", "z"};
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const double value = points[i][axis];
+      if (std::isnan(value)) {
+        return Error{"point " + std::to_string(i) + ": coordinate " + kAxis[static_cast<std::size_t>(axis)] +
+                     " is NaN"};
+      }
+      if (std::isinf(value)) {
+        return Error{"point " + std::to_string(i) + ": coordinate " + kAxis[static_cast<std::size_t>(axis)] +
+                     " is infinite"};
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+// The first tetrahedron: the two farthest apart of the six axis-extreme
+// points, the point farthest from their line, and the point farthest from
+// the plane of those three. Each step doubles as the degeneracy test.
+Result<std::array<int, 4>> FindInitialSimplex(std::span<const Vec3> points, double tolerance) {
+  std::array<int, 6> extremes{};
+  for (int axis = 0; axis < 3; ++axis) {
+    int lo = 0;
+    int hi = 0;
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      if (points[i][axis] < points[static_cast<std::size_t>(lo)][axis]) lo = static_cast<int>(i);
+      if (points[i][axis] > points[static_cast<std::size_t>(hi)][axis]) hi = static_cast<int>(i);
+    }
+    extremes[static_cast<std::size_t>(2 * axis)] = lo;
+    extremes[static_cast<std::size_t>(2 * axis + 1)] = hi;
+  }
+  auto at = [&](int i) -> const Vec3& { return points[static_cast<std::size_t>(i)]; };
+  int i0 = extremes[0];
+  int i1 = extremes[1];
+  double best = -1.0;
+  for (int a : extremes) {
+    for (int b : extremes) {
+      const double d = (at(a) - at(b)).squaredNorm();
+      if (d > best) {
+        best = d;
+        i0 = a;
+        i1 = b;
+      }
+    }
+  }
+  if (std::sqrt(best) <= tolerance) {
+    return Error{"all " + std::to_string(points.size()) + " points coincide within the tolerance " +
+                 Metres(tolerance) + ": they span no volume"};
+  }
+
+  const Vec3 direction = (at(i1) - at(i0)).normalized();
+  int i2 = -1;
+  best = -1.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double d = (points[i] - at(i0)).cross(direction).squaredNorm();
+    if (d > best) {
+      best = d;
+      i2 = static_cast<int>(i);
+    }
+  }
+  if (std::sqrt(best) <= tolerance) {
+    return Error{"all points are collinear within the tolerance " + Metres(tolerance) +
+                 " (or there are fewer than 3 distinct points): they span no volume"};
+  }
+
+  const Vec3 normal = (at(i1) - at(i0)).cross(at(i2) - at(i0)).normalized();
+  int i3 = -1;
+  best = -1.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double d = std::abs(normal.dot(points[i] - at(i0)));
+    if (d > best) {
+      best = d;
+      i3 = static_cast<int>(i);
+    }
+  }
+  if (best <= tolerance) {
+    return Error{"all points are coplanar within the tolerance " + Metres(tolerance) +
+                 " (or there are fewer than 4 distinct points): they span no volume"};
+  }
+  return std::array<int, 4>{i0, i1, i2, i3};
+}
+
+// Working state of one build: the mesh plus scratch buffers reused by every
+// iteration, so the loop allocates nothing once they have grown.
+class Builder {
+ public:
+  Builder(std::span<const Vec3> points, double tolerance, int maxVertices)
+      : m_mesh(points, tolerance), m_tolerance(tolerance), m_maxVertices(maxVertices) {}
+
+  void Run(const std::array<int, 4>& simplex);
+  [[nodiscard]] Result<Hull> Bake() const;
+
+ private:
+  void BuildTetrahedron(const std::array<int, 4>& simplex);
+  void AssignToBestFace(std::span<const int> candidates, std::span<const int> faces, int skip);
+  void ComputeHorizon(int face, int eye);
+  void AddPoint(int face, int eye);
+  void Enqueue(int face);
+
+  QuickhullMesh m_mesh;
+  double m_tolerance;
+  int m_maxVertices;
+  int m_vertexCount = 0;
+
+  std::vector<int> m_queue;  // faces waiting to be processed, first in first out
+  std::size_t m_queueHead = 0;
+  std::vector<int> m_visible;
+  std::vector<int> m_horizon;
+  std::vector<std::array<int, 3>> m_stack;  // (face, stop edge, current edge)
+  std::vector<int> m_newFaces;
+  std::vector<int> m_orphans;
+  std::vector<int> m_stamp;  // per point, for counting removed vertices
+  int m_stampValue = 0;
+};
+
+void Builder::BuildTetrahedron(const std::array<int, 4>& s) {
+  // Orient the base so that the apex is behind it.
+  int a = s[0];
+  int b = s[1];
+  const int c = s[2];
+  const int d = s[3];
+  const Vec3& pa = m_mesh.Point(a);
+  if ((m_mesh.Point(b) - pa).cross(m_mesh.Point(c) - pa).dot(m_mesh.Point(d) - pa) > 0.0) std::swap(a, b);
+  const int base = m_mesh.AddTriangle(a, b, c);
+  const int fBad = m_mesh.AddTriangle(b, a, d);
+  const int fCbd = m_mesh.AddTriangle(c, b, d);
+  const int fAcd = m_mesh.AddTriangle(a, c, d);
+  auto edge = [&](int f, int k) {
+    int e = m_mesh.Face(f).edge;
+    for (int i = 0; i < k; ++i) e = m_mesh.Edge(e).next;
+    return e;
+  };
+  m_mesh.LinkTwins(edge(base, 0), edge(fBad, 0));  // a-b
+  m_mesh.LinkTwins(edge(base, 1), edge(fCbd, 0));  // b-c
+  m_mesh.LinkTwins(edge(base, 2), edge(fAcd, 0));  // c-a
+  m_mesh.LinkTwins(edge(fBad, 1), edge(fAcd, 2));  // a-d
+  m_mesh.LinkTwins(edge(fBad, 2), edge(fCbd, 1));  // d-b
+  m_mesh.LinkTwins(edge(fCbd, 2), edge(fAcd, 1));  // d-c
+  m_vertexCount = 4;
+  m_newFaces = {base, fBad, fCbd, fAcd};
+}
+
+// Gives each candidate point to the face it is farthest in front of, or
+// drops it when it is within the tolerance of (or behind) all of them.
+void Builder::AssignToBestFace(std::span<const int> candidates, std::span<const int> faces, int skip) {
+  for (int p : candidates) {
+    if (p == skip) continue;
+    int bestFace = -1;
+    double bestDistance = m_tolerance;
+    for (int f : faces) {
+      if (m_mesh.Face(f).state != QhFaceState::kAlive) continue;
+      const double d = m_mesh.Distance(f, p);
+      if (d > bestDistance) {
+        bestDistance = d;
+        bestFace = f;
+      }
+    }
+    if (bestFace >= 0) m_mesh.AddConflict(bestFace, p, bestDistance);
+  }
+}
+
+void Builder::Enqueue(int face) {
+  QhFace& f = m_mesh.Face(face);
+  if (f.queued || f.conflictHead < 0) return;
+  f.queued = true;
+  m_queue.push_back(face);
+}
+
+void Builder::Run(const std::array<int, 4>& simplex) {
+  BuildTetrahedron(simplex);
+  const auto pointCount = static_cast<int>(m_mesh.Points().size());
+  std::vector<int> all(static_cast<std::size_t>(pointCount));
+  for (int i = 0; i < pointCount; ++i) all[static_cast<std::size_t>(i)] = i;
+  for (int corner : simplex) all[static_cast<std::size_t>(corner)] = -1;
+  std::erase(all, -1);
+  AssignToBestFace(all, m_newFaces, -1);
+  for (int f : m_newFaces) Enqueue(f);
+  if (m_maxVertices > 0) m_stamp.assign(static_cast<std::size_t>(pointCount), 0);
+
+  while (m_queueHead < m_queue.size()) {
+    const int face = m_queue[m_queueHead++];
+    // Keep the queue compact: drop the consumed prefix now and then.
+    if (m_queueHead > 4096 && 2 * m_queueHead > m_queue.size()) {
+      m_queue.erase(m_queue.begin(), m_queue.begin() + static_cast<std::ptrdiff_t>(m_queueHead));
+      m_queueHead = 0;
+    }
+    QhFace& f = m_mesh.Face(face);
+    f.queued = false;
+    if (f.state != QhFaceState::kAlive || f.conflictHead < 0) continue;
+    if (m_maxVertices > 0 && m_vertexCount >= m_maxVertices) break;
+    AddPoint(face, f.farthestPoint);
+  }
+}
+
+// Depth-first walk over the faces the eye sees, starting at `face` and
+// crossing each edge to its twin. Entering a face through an edge and
+// walking its border from the edge after it lists the horizon edges (those
+// whose twin's face is not visible) counter-clockwise around the visible
+// region. An explicit stack keeps deep walks off the call stack.
+void Builder::ComputeHorizon(int face, int eye) {
+  m_visible.clear();
+  m_horizon.clear();
+  m_stack.clear();
+  m_mesh.Face(face).state = QhFaceState::kVisible;
+  m_visible.push_back(face);
+  const int first = m_mesh.Face(face).edge;
+  m_stack.push_back({face, first, first});
+  bool atRoot = true;
+  while (!m_stack.empty()) {
+    auto& top = m_stack.back();
+    const int e = top[2];
+    if (e == top[1] && !atRoot) {
+      m_stack.pop_back();
+      continue;
+    }
+    atRoot = false;
+    top[2] = m_mesh.Edge(e).next;
+    const int twin = m_mesh.Edge(e).twin;
+    const int neighbour = m_mesh.Edge(twin).face;
+    if (m_mesh.Face(neighbour).state == QhFaceState::kVisible) continue;
+    if (m_mesh.Distance(neighbour, eye) > m_tolerance) {
+      m_mesh.Face(neighbour).state = QhFaceState::kVisible;
+      m_visible.push_back(neighbour);
+      const int start = m_mesh.Edge(twin).next;
+      m_stack.push_back({neighbour, twin, start});  // stop on coming back to the entry edge
+    } else {
+      m_horizon.push_back(e);
+    }
+  }
+}
+
+void Builder::AddPoint(int face, int eye) {
+  ComputeHorizon(face, eye);
+
+  if (m_maxVertices > 0) {
+    // Vertices of visible faces that are not on the horizon leave the hull.
+    ++m_stampValue;
+    for (int e : m_horizon) m_stamp[static_cast<std::size_t>(m_mesh.Edge(e).origin)] = m_stampValue;
+    for (int v : m_visible) {
+      const int start = m_mesh.Face(v).edge;
+      int e = start;
+      do {
+        auto& mark = m_stamp[static_cast<std::size_t>(m_mesh.Edge(e).origin)];
+        if (mark != m_stampValue) {
+          mark = m_stampValue;
+          --m_vertexCount;
+        }
+        e = m_mesh.Edge(e).next;
+      } while (e != start);
+    }
+    ++m_vertexCount;
+  }
+
+  // The horizon as (origin, hidden twin) pairs, before the edges are freed.
+  m_orphans.clear();
+  for (int v : m_visible) m_mesh.TakeConflicts(v, m_orphans);
+  for (int& e : m_horizon) e = m_mesh.Edge(e).twin;  // now the hidden side's half-edge
+  for (int v : m_visible) m_mesh.DeleteFaceAndEdges(v);
+
+  // The cone: one triangle per horizon edge, hidden twin -> (b, a) becomes
+  // (a, b, eye) on the new side; neighbours share the eye's side edges.
+  m_newFaces.clear();
+  for (int hidden : m_horizon) {
+    const int b = m_mesh.Edge(hidden).origin;
+    const int a = m_mesh.Edge(m_mesh.Edge(hidden).next).origin;
+    const int nf = m_mesh.AddTriangle(a, b, eye);
+    m_mesh.LinkTwins(m_mesh.Face(nf).edge, hidden);
+    m_newFaces.push_back(nf);
+  }
+  const std::size_t n = m_newFaces.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    assert(m_mesh.Edge(m_horizon[i]).origin == m_mesh.Edge(m_mesh.Edge(m_horizon[(i + 1) % n]).next).origin);
+    const int here = m_mesh.Face(m_newFaces[i]).edge;
+    const int there = m_mesh.Face(m_newFaces[(i + 1) % n]).edge;
+    m_mesh.LinkTwins(m_mesh.Edge(here).next, m_mesh.Edge(there).prev);  // b -> eye with eye -> b
+  }
+
+  // Merge each new face with every neighbour it is not clearly convex to.
+  for (int nf : m_newFaces) {
+    bool merged = true;
+    while (merged && m_mesh.Face(nf).state == QhFaceState::kAlive) {
+      merged = false;
+      const int start = m_mesh.Face(nf).edge;
+      int e = start;
+      do {
+        if (m_mesh.ShouldMerge(nf, e)) {
+          m_vertexCount -= m_mesh.MergeAcross(nf, e, m_orphans);
+          merged = true;
+          break;
+        }
+        e = m_mesh.Edge(e).next;
+      } while (e != start);
+    }
+  }
+
+  AssignToBestFace(m_orphans, m_newFaces, eye);
+  for (int nf : m_newFaces) {
+    if (m_mesh.Face(nf).state == QhFaceState::kAlive) Enqueue(nf);
+  }
+}
+
+Result<Hull> Builder::Bake() const {
+  // Vertices numbered by first appearance walking the face pool in order:
+  // deterministic, and independent of how the input was laid out in memory.
+  std::vector<int> vertexOf(m_mesh.Points().size(), -1);
+  std::vector<Vec3> vertices;
+  std::vector<std::vector<int>> faces;
+  std::vector<int> loop;
+  for (int f = 0; f < m_mesh.FacePoolSize(); ++f) {
+    if (m_mesh.Face(f).state != QhFaceState::kAlive) continue;
+    m_mesh.FaceLoop(f, loop);
+    for (int& p : loop) {
+      int& v = vertexOf[static_cast<std::size_t>(p)];
+      if (v < 0) {
+        v = static_cast<int>(vertices.size());
+        vertices.push_back(m_mesh.Point(p));
+      }
+      p = v;
+    }
+    faces.push_back(loop);
+  }
+  auto hull = Hull::FromPolygons(std::move(vertices), faces, m_tolerance);
+  if (!hull) {
+    return Error{
+        "Quickhull produced a hull that failed validation (please keep this point set as a "
+        "regression case): " +
+        hull.GetError().message};
+  }
+  return hull;
+}
+
+}  // namespace
+
+Result<Hull> BuildHull(std::span<const Vec3> points, const HullBuildSettings& settings) {
+  if (settings.maxVertices != 0 && settings.maxVertices < 4) {
+    return Error{"HullBuildSettings::maxVertices must be 0 (no cap) or at least 4, got " +
+                 std::to_string(settings.maxVertices)};
+  }
+  if (!std::isfinite(settings.tolerance) || settings.tolerance < 0.0) {
+    return Error{"HullBuildSettings::tolerance must be finite and >= 0, got " +
+                 std::to_string(settings.tolerance)};
+  }
+  if (points.size() < 4) {
+    return Error{"a convex hull needs at least 4 points, got " + std::to_string(points.size())};
+  }
+  if (points.size() > static_cast<std::size_t>(std::numeric_limits<int>::max() / 8)) {
+    return Error{"too many points for a hull: " + std::to_string(points.size())};
+  }
+  if (auto error = CheckFinite(points)) return *error;
+  const double tolerance = settings.tolerance > 0.0 ? settings.tolerance : Hull::DefaultTolerance(points);
+  auto simplex = FindInitialSimplex(points, tolerance);
+  if (!simplex) return simplex.GetError();
+  Builder builder(points, tolerance, settings.maxVertices);
+  builder.Run(simplex.Value());
+  return builder.Bake();
+}
+
+}  // namespace talus

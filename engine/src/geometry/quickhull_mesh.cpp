@@ -1,0 +1,255 @@
+// The working half-edge mesh of Quickhull: pools, planes, conflict lists and
+// face merging. See quickhull_mesh.h for the invariants.
+#include "geometry/quickhull_mesh.h"
+
+#include <algorithm>
+#include <cassert>
+
+namespace talus {
+
+QuickhullMesh::QuickhullMesh(std::span<const Vec3> points, double tolerance)
+    : m_points(points), m_tolerance(tolerance), m_nextConflict(points.size(), -1) {
+  // A hull of n vertices has at most 2n - 4 triangles and 6n - 12 half-edges;
+  // reserving for a modest hull avoids regrowth in the common case.
+  const std::size_t guess = std::min<std::size_t>(points.size(), 4096);
+  m_edges.reserve(6 * guess + 64);
+  m_faces.reserve(2 * guess + 32);
+}
+
+int QuickhullMesh::AllocateEdge() {
+  if (!m_freeEdges.empty()) {
+    const int e = m_freeEdges.back();
+    m_freeEdges.pop_back();
+    return e;
+  }
+  m_edges.emplace_back();
+  return static_cast<int>(m_edges.size()) - 1;
+}
+
+int QuickhullMesh::AllocateFace() {
+  if (!m_freeFaces.empty()) {
+    const int f = m_freeFaces.back();
+    m_freeFaces.pop_back();
+    return f;
+  }
+  m_faces.emplace_back();
+  return static_cast<int>(m_faces.size()) - 1;
+}
+
+void QuickhullMesh::FreeEdge(int e) {
+  Edge(e).face = -1;
+  m_freeEdges.push_back(e);
+}
+
+void QuickhullMesh::FreeFace(int f, std::vector<int>& orphans) {
+  TakeConflicts(f, orphans);
+  // `queued` is left as it is on purpose: a queue entry may still name this
+  // slot, and a face that later reuses the slot is then already queued.
+  Face(f).state = QhFaceState::kDeleted;
+  Face(f).edge = -1;
+  m_freeFaces.push_back(f);
+}
+
+int QuickhullMesh::AddTriangle(int a, int b, int c) {
+  const int f = AllocateFace();
+  const int e0 = AllocateEdge();
+  const int e1 = AllocateEdge();
+  const int e2 = AllocateEdge();
+  Edge(e0) = {.origin = a, .twin = -1, .next = e1, .prev = e2, .face = f};
+  Edge(e1) = {.origin = b, .twin = -1, .next = e2, .prev = e0, .face = f};
+  Edge(e2) = {.origin = c, .twin = -1, .next = e0, .prev = e1, .face = f};
+  QhFace& face = Face(f);
+  face.edge = e0;
+  face.state = QhFaceState::kAlive;
+  face.conflictHead = -1;
+  face.farthestPoint = -1;
+  face.farthestDistance = 0.0;
+  face.conflictCount = 0;
+  UpdatePlane(f);
+  return f;
+}
+
+void QuickhullMesh::UpdatePlane(int f) {
+  QhFace& face = Face(f);
+  // Centroid first, then Newell's normal about it: differences of nearby
+  // points keep full precision even far from the origin.
+  Vec3 centroid = Vec3::Zero();
+  int count = 0;
+  int e = face.edge;
+  do {
+    centroid += Point(Edge(e).origin);
+    ++count;
+    e = Edge(e).next;
+  } while (e != face.edge);
+  centroid /= static_cast<double>(count);
+  Vec3 normal = Vec3::Zero();
+  e = face.edge;
+  do {
+    const Vec3 a = Point(Edge(e).origin) - centroid;
+    const Vec3 b = Point(Edge(Edge(e).next).origin) - centroid;
+    normal += a.cross(b);
+    e = Edge(e).next;
+  } while (e != face.edge);
+  const double length = normal.norm();
+  // A zero-area sliver keeps a zero normal: every distance to it is then 0,
+  // which is "not clearly behind", so the merge pass absorbs it.
+  if (length > 0.0) normal /= length;
+  face.vertexCount = count;
+  face.centroid = centroid;
+  face.normal = normal;
+  face.offset = normal.dot(centroid);
+}
+
+void QuickhullMesh::DeleteFaceAndEdges(int f) {
+  const int start = Face(f).edge;
+  int e = start;
+  do {
+    const int next = Edge(e).next;
+    FreeEdge(e);
+    e = next;
+  } while (e != start);
+  assert(Face(f).conflictHead < 0);
+  Face(f).state = QhFaceState::kDeleted;
+  Face(f).edge = -1;
+  m_freeFaces.push_back(f);
+}
+
+void QuickhullMesh::AddConflict(int f, int p, double distance) {
+  QhFace& face = Face(f);
+  m_nextConflict[static_cast<std::size_t>(p)] = face.conflictHead;
+  face.conflictHead = p;
+  ++face.conflictCount;
+  if (face.farthestPoint < 0 || distance > face.farthestDistance) {
+    face.farthestPoint = p;
+    face.farthestDistance = distance;
+  }
+}
+
+void QuickhullMesh::TakeConflicts(int f, std::vector<int>& out) {
+  QhFace& face = Face(f);
+  for (int p = face.conflictHead; p >= 0; p = m_nextConflict[static_cast<std::size_t>(p)]) out.push_back(p);
+  face.conflictHead = -1;
+  face.farthestPoint = -1;
+  face.farthestDistance = 0.0;
+  face.conflictCount = 0;
+}
+
+bool QuickhullMesh::ShouldMerge(int f, int e) const {
+  const QhFace& a = Face(f);
+  const QhFace& b = Face(Edge(Edge(e).twin).face);
+  // Convex and distinct only when each centroid is clearly behind the
+  // other's plane; anything else (coplanar within tolerance, or concave
+  // from rounding) becomes one face.
+  const double bAboveA = a.normal.dot(b.centroid) - a.offset;
+  const double aAboveB = b.normal.dot(a.centroid) - b.offset;
+  return bAboveA > -m_tolerance || aAboveB > -m_tolerance;
+}
+
+int QuickhullMesh::MergeAcross(int f, int e, std::vector<int>& orphans) {
+  const int g = Edge(Edge(e).twin).face;
+  assert(g != f && Face(g).state == QhFaceState::kAlive);
+  // The shared boundary may be a run of several edges: find its ends.
+  int start = e;
+  while (Edge(Edge(Edge(start).prev).twin).face == g) {
+    start = Edge(start).prev;
+    assert(start != e);
+  }
+  int end = e;
+  while (Edge(Edge(Edge(end).next).twin).face == g) end = Edge(end).next;
+  const int fBefore = Edge(start).prev;
+  const int fAfter = Edge(end).next;
+  const int gAfter = Edge(Edge(start).twin).next;
+  const int gBefore = Edge(Edge(end).twin).prev;
+  assert(Edge(gAfter).face == g && gAfter != Edge(end).twin);
+
+  // g's remaining border joins f's.
+  for (int h = gAfter;; h = Edge(h).next) {
+    Edge(h).face = f;
+    if (h == gBefore) break;
+  }
+  int removed = -1;  // a run of k edges removes its k - 1 inner vertices
+  for (int h = start;;) {
+    const int next = Edge(h).next;
+    FreeEdge(Edge(h).twin);
+    FreeEdge(h);
+    ++removed;
+    if (h == end) break;
+    h = next;
+  }
+  Edge(fBefore).next = gAfter;
+  Edge(gAfter).prev = fBefore;
+  Edge(gBefore).next = fAfter;
+  Edge(fAfter).prev = gBefore;
+  Face(f).edge = fBefore;
+  FreeFace(g, orphans);
+
+  // A junction vertex left with the same neighbour on both sides has only
+  // two faces around it: remove it (repeat until none is left).
+  bool repaired = true;
+  while (repaired) {
+    repaired = false;
+    int h = Face(f).edge;
+    do {
+      const int n = Edge(h).next;
+      if (Edge(Edge(h).twin).face == Edge(Edge(n).twin).face) {
+        removed += RepairJunction(f, h, orphans);
+        repaired = true;
+        break;
+      }
+      h = n;
+    } while (h != Face(f).edge);
+  }
+  UpdatePlane(f);
+  return removed;
+}
+
+int QuickhullMesh::RepairJunction(int f, int in, std::vector<int>& orphans) {
+  // f runs u -in-> v -out-> w; the neighbour h runs w -tout-> v -tin-> u.
+  const int out = Edge(in).next;
+  const int tin = Edge(in).twin;
+  const int tout = Edge(out).twin;
+  const int h = Edge(tin).face;
+  assert(Edge(tout).next == tin);
+  if (Face(h).vertexCount == 3) {
+    // h would shrink to two edges: absorb it. Its third edge x (u -> w)
+    // hands its twin to f's shortened edge.
+    const int x = Edge(tin).next;
+    assert(Edge(x).next == tout && Edge(Edge(x).twin).face != f);
+    const int after = Edge(out).next;
+    Edge(in).next = after;
+    Edge(after).prev = in;
+    LinkTwins(in, Edge(x).twin);
+    FreeEdge(out);
+    FreeEdge(tin);
+    FreeEdge(tout);
+    FreeEdge(x);
+    FreeFace(h, orphans);
+  } else {
+    // Drop v from both faces: in becomes u -> w, tout becomes w -> u.
+    const int fAfter = Edge(out).next;
+    Edge(in).next = fAfter;
+    Edge(fAfter).prev = in;
+    const int hAfter = Edge(tin).next;
+    Edge(tout).next = hAfter;
+    Edge(hAfter).prev = tout;
+    LinkTwins(in, tout);
+    FreeEdge(out);
+    FreeEdge(tin);
+    Face(h).edge = tout;
+    UpdatePlane(h);
+  }
+  Face(f).edge = in;
+  return 1;
+}
+
+void QuickhullMesh::FaceLoop(int f, std::vector<int>& loop) const {
+  loop.clear();
+  const int start = Face(f).edge;
+  int e = start;
+  do {
+    loop.push_back(Edge(e).origin);
+    e = Edge(e).next;
+  } while (e != start);
+}
+
+}  // namespace talus
