@@ -8,8 +8,10 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 #include "talus/math.h"
+#include "talus/shape.h"
 
 namespace talus {
 
@@ -45,7 +47,15 @@ struct BodyDef {
   Vec3 linearVelocity = Vec3::Zero();
   /// Angular velocity in world space, rad/s. Default at rest.
   Vec3 angularVelocity = Vec3::Zero();
-  /// Mass in kg, > 0; used by dynamic bodies only. Default 1 kg.
+  /// The collision geometry in the body frame; none (the default) means the
+  /// body collides with nothing. Shapes share their hull, so copies are cheap.
+  std::optional<Shape> shape = std::nullopt;
+  /// Density in kg/m^3. When > 0 (and the body is dynamic with a shape) the
+  /// mass, inertia and centre of mass come from the shape and this density,
+  /// and `mass`, `localInertia` and `localCenterOfMass` are ignored. Default
+  /// 0: use the given mass data. Negative or non-finite is refused.
+  double density = 0.0;
+  /// Mass in kg, > 0; used by dynamic bodies without a density. Default 1 kg.
   double mass = 1.0;
   /// Inertia tensor about the centre of mass in body axes, kg m^2; must be
   /// symmetric positive definite for dynamic bodies. Default that of a 1 kg

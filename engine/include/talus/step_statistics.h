@@ -6,6 +6,9 @@
 
 #include <cstdint>
 
+#include "talus/broad_phase.h"
+#include "talus/narrow_phase.h"
+
 namespace talus {
 
 /// Wall-clock seconds spent in each stage of one step.
@@ -21,7 +24,7 @@ struct StageTimes {
 };
 
 struct StepStatistics {
-  StageTimes seconds;
+  StageTimes seconds = {};
   std::int32_t bodies = 0;                ///< live bodies
   std::int32_t awakeBodies = 0;           ///< dynamic bodies integrated this step
   std::int32_t sleepingBodies = 0;        ///< dynamic bodies skipped because asleep
@@ -35,6 +38,8 @@ struct StepStatistics {
   std::int32_t restitutionSkipped = 0;    ///< points whose restitution work was skipped (e = 0)
   std::int32_t warmStartedPoints = 0;     ///< points that found last step's impulses by feature id
   std::int32_t islands = 0;               ///< islands of awake dynamic bodies
+  BroadPhaseStats broadPhase = {};        ///< the broad phase's own counters
+  NarrowPhaseStats narrowPhase = {};      ///< the narrow phase's own counters
 };
 
 }  // namespace talus

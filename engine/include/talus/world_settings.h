@@ -8,7 +8,9 @@
 
 #include <string>
 
+#include "talus/broad_phase.h"
 #include "talus/math.h"
+#include "talus/narrow_phase.h"
 
 namespace talus {
 
@@ -68,6 +70,11 @@ struct WorldSettings {
   FrictionCombine frictionCombine = FrictionCombine::GeometricMean;
   /// Restitution combine rule. Default Max.
   RestitutionCombine restitutionCombine = RestitutionCombine::Max;
+  /// Broad phase structure. Default UniformGrid (the write-up's).
+  BroadPhaseKind broadPhase = BroadPhaseKind::UniformGrid;
+  /// SAT mode, manifold generator, SAT cache and speculative margin (see
+  /// talus/narrow_phase.h); the margin must be finite and >= 0.
+  NarrowPhaseSettings narrowPhase = {};
   /// Let islands at rest fall asleep and cost nothing. Default on.
   bool sleeping = true;
   /// A body is at rest while its linear speed stays below this, m/s, >= 0.

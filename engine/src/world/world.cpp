@@ -43,6 +43,9 @@ std::string CheckBodyDef(const BodyDef& def) {
     return "BodyDef.angularVelocity " + Describe(def.angularVelocity) + " is not finite";
   }
   if (!Finite(def.localCenterOfMass)) return "BodyDef.localCenterOfMass is not finite";
+  if (!std::isfinite(def.density) || def.density < 0.0) {
+    return "BodyDef.density = " + std::to_string(def.density) + " kg/m^3 must be finite and >= 0";
+  }
   if (!std::isfinite(def.friction) || def.friction < 0.0) {
     return "BodyDef.friction = " + std::to_string(def.friction) + " must be finite and >= 0";
   }
@@ -50,6 +53,7 @@ std::string CheckBodyDef(const BodyDef& def) {
     return "BodyDef.restitution = " + std::to_string(def.restitution) + " must be in [0, 1]";
   }
   if (def.type != BodyType::Dynamic) return {};
+  if (def.shape && def.density > 0.0) return {};
   if (!std::isfinite(def.mass) || def.mass <= 0.0) {
     return "BodyDef.mass = " + std::to_string(def.mass) + " kg must be finite and > 0 for a dynamic body";
   }
@@ -86,6 +90,10 @@ std::string ValidateSettings(const WorldSettings& s) {
   if (s.positionIterations < 1 || s.positionIterations > 1000) {
     return "WorldSettings.positionIterations = " + std::to_string(s.positionIterations) +
            " is outside [1, 1000]";
+  }
+  if (!std::isfinite(s.narrowPhase.speculativeMargin) || s.narrowPhase.speculativeMargin < 0.0) {
+    return "WorldSettings.narrowPhase.speculativeMargin = " +
+           std::to_string(s.narrowPhase.speculativeMargin) + " m must be finite and >= 0";
   }
   constexpr double kHuge = 1e300;
   for (const std::string& error :
@@ -129,6 +137,22 @@ Status World::SetSettings(const WorldSettings& settings) {
 
 Result<BodyId> World::CreateBody(const BodyDef& def) {
   if (std::string error = CheckBodyDef(def); !error.empty()) return Error{error};
+  // Mass data from the shape and density when asked for, else as given.
+  const bool dynamic = def.type == BodyType::Dynamic;
+  double mass = def.mass;
+  Mat3 inertia = def.localInertia;
+  Vec3 localCenter = def.localCenterOfMass;
+  if (dynamic && def.shape && def.density > 0.0) {
+    const Result<MassProperties> props = def.shape->ComputeMass(def.density);
+    if (!props) return Error{"BodyDef.shape mass properties: " + props.GetError().message};
+    mass = props.Value().mass;
+    inertia = props.Value().inertia;
+    localCenter = props.Value().centerOfMass;
+    if (!(mass > 0.0) || Eigen::LLT<Mat3>(inertia).info() != Eigen::Success) {
+      return Error{"BodyDef.shape at density " + std::to_string(def.density) +
+                   " kg/m^3 gives no positive mass and inertia"};
+    }
+  }
   WorldData& d = *m_data;
   std::int32_t index = 0;
   if (!d.freeSlots.empty()) {
@@ -139,23 +163,23 @@ Result<BodyId> World::CreateBody(const BodyDef& def) {
     d.sims.emplace_back();
     d.sleep.emplace_back();
     d.records.emplace_back();
+    d.shapes.emplace_back();
   }
   const std::size_t i = static_cast<std::size_t>(index);
-  const bool dynamic = def.type == BodyType::Dynamic;
 
   BodySim sim;
   sim.type = def.type;
   sim.orientation = def.orientation.normalized();
-  sim.localCenter = def.localCenterOfMass;
-  sim.center = def.position + sim.orientation * def.localCenterOfMass;
+  sim.localCenter = localCenter;
+  sim.center = def.position + sim.orientation * localCenter;
   if (def.type != BodyType::Static) {
     sim.linearVelocity = def.linearVelocity;
     sim.angularVelocity = def.angularVelocity;
   }
   if (dynamic) {
-    sim.invMass = 1.0 / def.mass;
-    sim.inertiaLocal = def.localInertia;
-    sim.invInertiaLocal = def.localInertia.inverse();
+    sim.invMass = 1.0 / mass;
+    sim.inertiaLocal = inertia;
+    sim.invInertiaLocal = inertia.inverse();
   }
   sim.UpdateWorldInertia();
   d.sims[i] = sim;
@@ -165,8 +189,9 @@ Result<BodyId> World::CreateBody(const BodyDef& def) {
   record.alive = true;
   record.friction = def.friction;
   record.restitution = def.restitution;
-  record.mass = dynamic ? def.mass : 0.0;
-  record.localInertia = dynamic ? def.localInertia : Mat3::Zero();
+  record.mass = dynamic ? mass : 0.0;
+  record.localInertia = dynamic ? inertia : Mat3::Zero();
+  d.shapes[i] = def.shape;
   ++d.liveBodies;
   return BodyId{index, record.generation};
 }
@@ -203,11 +228,19 @@ Status World::DestroyBody(BodyId id) {
   }
   EraseContactsOf(d.contacts, id.index);
   EraseContactsOf(d.previousContacts, id.index);
+  // The SAT caches of its pairs name its hull: a new body in the slot must
+  // not inherit them.
+  const auto involves = [index = id.index](const PairSatCache& c) {
+    return static_cast<int>(c.pairKey >> 32) == index || static_cast<int>(c.pairKey & 0xffffffffu) == index;
+  };
+  std::erase_if(d.satCaches, involves);
+  std::erase_if(d.previousSatCaches, involves);
   d.records[i].alive = false;
   ++d.records[i].generation;
   d.sims[i] = BodySim{};
   d.sims[i].awake = false;
   d.sleep[i] = SleepState{};
+  d.shapes[i].reset();
   d.freeSlots.push_back(id.index);
   --d.liveBodies;
   return std::monostate{};

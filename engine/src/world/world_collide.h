@@ -1,22 +1,33 @@
-// The World's collision stage: from body states to this step's persistent
-// contacts.
+// The World's collision stages: from body states to this step's persistent
+// contacts (section 2 of the write-up: broad phase, then narrow phase).
 //
-// Collide moves last step's contacts to `previousContacts` (for warm
-// starting) and fills `contacts` with one Contact per touching pair, sorted
-// by pair key, materials mixed by the settings' combine rules. Pairs of two
-// bodies that cannot move (static or kinematic against static or
-// kinematic) are never tested; pairs whose bodies are all asleep or static
-// keep last step's contact unchanged without a narrow-phase test, so a
-// sleeping island stays connected and costs nothing.
+// UpdateBroadPhase hands the broad phase one bounding sphere per body slot
+// (dead and shapeless slots inactive; static and kinematic bodies marked
+// static, so pairs of two bodies that cannot be pushed are never found). It
+// runs before anything else in the step and is the one stage that can
+// refuse (a body beyond the broad phase's coordinate range), so a refusal
+// leaves the world unchanged.
+//
+// FindContacts moves last step's contacts to `previousContacts` (for warm
+// starting) and fills `contacts` with one Contact per touching pair, in the
+// broad phase's (a, b) order, which is pair-key order. Pairs whose bodies
+// are all asleep (or asleep against static or kinematic) skip the narrow
+// phase and keep last step's contact, so a sleeping island stays connected
+// and costs nothing.
 #pragma once
 
+#include "talus/result.h"
 #include "talus/step_statistics.h"
 #include "world/world_data.h"
 
 namespace talus {
 
-/// Rebuilds `d.contacts` for the current body positions; adds its counts to
-/// `stats`.
-void Collide(WorldData& d, StepStatistics& stats);
+/// Feeds the broad phase this step's bounding spheres; an Error (nothing
+/// changed) when a body left the broad phase's valid range.
+Result<int> UpdateBroadPhase(WorldData& d);
+
+/// Rebuilds `d.contacts` from the broad phase's pairs and the narrow phase;
+/// adds its counts to `stats`.
+void FindContacts(WorldData& d, StepStatistics& stats);
 
 }  // namespace talus

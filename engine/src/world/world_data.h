@@ -8,19 +8,29 @@
 // so the same sequence of calls always gives the same indices. A dead slot
 // is a static body with no contacts, so every stage skips it for free.
 //
+// `shapes` (cold, by body index) is each body's collision geometry or none.
+// The broad phase gets one proxy per slot (inactive for dead or shapeless
+// slots). `satCaches` keeps, per tested pair, the SAT's last axis, sorted by
+// pair key like the contacts and carried over by the same merge walk.
+//
 // `contacts` holds this step's touching pairs sorted by pair key, with the
 // accumulated impulses the solver wrote back; the next step matches against
 // it for warm starting.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
+
+#include "collision/broad_phase.h"
+#include "collision/sat.h"
 
 #include "dynamics/body_sim.h"
 #include "dynamics/contact.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/sleep.h"
 #include "talus/body.h"
+#include "talus/shape.h"
 #include "talus/world_settings.h"
 
 namespace talus {
@@ -35,13 +45,26 @@ struct BodyRecord {
   Mat3 localInertia = Mat3::Zero();  ///< kg m^2 as given (0 unless dynamic)
 };
 
+/// The SAT's temporal-coherence cache of one tested pair.
+struct PairSatCache {
+  std::uint64_t pairKey = 0;
+  SatCache cache;
+};
+
 struct WorldData {
   WorldSettings settings;
   std::vector<BodySim> sims;
   std::vector<SleepState> sleep;
   std::vector<BodyRecord> records;
   std::vector<std::int32_t> freeSlots;
+  std::vector<std::optional<Shape>> shapes;
   int liveBodies = 0;
+
+  BroadPhase broadPhase;
+  std::vector<BroadPhaseProxy> proxies;
+  std::vector<BroadPhasePair> pairs;
+  std::vector<PairSatCache> satCaches;
+  std::vector<PairSatCache> previousSatCaches;
 
   std::vector<Contact> contacts;          ///< this step's, sorted by pair key
   std::vector<Contact> previousContacts;  ///< last step's, for warm starting

@@ -1,8 +1,10 @@
 // World::Step: THE step. It reads top to bottom as the pipeline of section 3
 // of the original write-up, each stage a function of its own:
 //
+//   0. UpdateBroadPhase     bounding spheres in (the only stage that may
+//                           refuse, so it runs before anything changes)
 //   1. IntegrateVelocities  gravity, forces, torques (+ gyroscopic term)
-//   2. Collide              candidate pairs, manifolds, persistent contacts
+//   2. FindContacts         candidate pairs, manifolds, persistent contacts
 //   3. PrepareContacts      warm-start matching, constraint rows
 //   4. SolveVelocities      sequential impulses (+ split-impulse positions)
 //   5. IntegratePositions   x += h v, q = exp(h w / 2) q
@@ -75,13 +77,17 @@ Result<StepStatistics> World::Step(double dt) {
   WorldData& d = *m_data;
   StepStatistics stats;
   StageClock clock;
+  if (const Result<int> proxies = UpdateBroadPhase(d); !proxies) {
+    return Error{"World::Step refused: " + proxies.GetError().message};
+  }
   CountBodies(d, stats);
+  const double broadPhaseUpdate = clock.Lap();
 
   stats.awakeBodies = IntegrateVelocities(d.sims, d.settings.gravity, d.settings.gyroscopic, dt);
   stats.seconds.integrateVelocities = clock.Lap();
 
-  Collide(d, stats);
-  stats.seconds.collide = clock.Lap();
+  FindContacts(d, stats);
+  stats.seconds.collide = broadPhaseUpdate + clock.Lap();
 
   PrepareContacts(d, dt, stats);
   stats.seconds.prepareContacts = clock.Lap();
