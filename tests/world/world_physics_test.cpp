@@ -209,6 +209,30 @@ TEST(WorldPhysics, SleepingStackWakesWhenHitAndWhenPushed) {
   EXPECT_TRUE(world.IsValid(falling));
 }
 
+TEST(WorldPhysics, MovingKinematicBodyWakesAndPushesASleepingBody) {
+  World world;
+  AddGround(world);
+  const BodyId box = world
+                         .CreateBody({.type = BodyType::Dynamic,
+                                      .position = {0, 0.5, 0},
+                                      .shape = Box(Vec3::Constant(0.5)),
+                                      .density = 1000.0})
+                         .Value();
+  for (int n = 0; n < 120; ++n) ASSERT_TRUE(world.Step(kH));
+  ASSERT_FALSE(world.GetBodyState(box).Value().awake);
+  // A kinematic pusher sliding in along +x at 1 m/s from 0.5 m away.
+  ASSERT_TRUE(world.CreateBody({.type = BodyType::Kinematic,
+                                .position = {-1.5, 0.5, 0},
+                                .linearVelocity = {1, 0, 0},
+                                .shape = Box({0.5, 0.4, 0.5})}));
+  for (int n = 0; n < 60; ++n) ASSERT_TRUE(world.Step(kH));
+  const BodyState s = world.GetBodyState(box).Value();
+  EXPECT_TRUE(s.awake);
+  // Pushed along: after 1 s the pusher's face is at x = 0, so the box's
+  // centre is near 0.5 m.
+  EXPECT_GT(s.position.x(), 0.4);
+}
+
 TEST(WorldPhysics, StaticPairsAndFrictionlessContactsCostNothing) {
   WorldSettings settings;
   settings.sleeping = false;
