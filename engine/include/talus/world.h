@@ -85,11 +85,6 @@ class World {
   /// changed, for a bad dt. Returns what the step did and skipped.
   Result<StepStatistics> Step(double dt);
 
-  /// Internal state for the engine's own stages (engine/src/world); not part
-  /// of the stable API.
-  [[nodiscard]] WorldData& Data() { return *m_data; }
-  [[nodiscard]] const WorldData& Data() const { return *m_data; }
-
  private:
   explicit World(std::unique_ptr<WorldData> data);
   std::unique_ptr<WorldData> m_data;
