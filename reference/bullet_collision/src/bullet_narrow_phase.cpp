@@ -1,7 +1,7 @@
 // Bullet's pair detectors on zero-margin hull shapes. btPointCollector
 // reports the normal on B pointing towards A and the point on B; the point
 // on A is then pointOnB + normal * distance. btGjkEpaSolver2 reports its
-// witnesses on each shape and a normal from A towards B, negated here.
+// witnesses on each shape and a normal from B towards A, as Talus.
 #include "talus/reference/bullet_narrow_phase.h"
 
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
@@ -82,7 +82,7 @@ BulletAnswer BulletPairQuery(const BulletHullShape& a, const Transform& xfA, con
     return answer;
   }
   answer.signedDistance = results.distance;
-  answer.normal = -FromBullet(results.normal);
+  answer.normal = FromBullet(results.normal);
   answer.point = 0.5 * (FromBullet(results.witnesses[0]) + FromBullet(results.witnesses[1]));
   return Finish(answer);
 }

@@ -65,9 +65,18 @@ Result<PenetrationTruth> ComputePenetrationTruth(const Hull& a, const Transform&
                                                  const Transform& xfB) {
   const std::vector<Vec3> points = MinkowskiDifferencePoints(a, xfA, b, xfB);
   Result<Hull> built = BuildHull(points);
+  // BuildHull refuses the rare set it cannot bake at its default tolerance
+  // (many nearly coplanar differences); a coarser one still gives planes
+  // within nanometres on metre-sized shapes. Counted in builderRetries.
+  int retries = 0;
+  for (double factor = 10.0; !built && factor <= 1000.0; factor *= 10.0) {
+    ++retries;
+    built = BuildHull(points, {.maxVertices = 0, .tolerance = factor * Hull::DefaultTolerance(points)});
+  }
   if (!built) return Error{"Minkowski difference: " + built.GetError().message};
   const Hull& d = built.Value();
   PenetrationTruth truth;
+  truth.builderRetries = retries;
   truth.differenceVertices = d.VertexCount();
   truth.differenceFaces = d.FaceCount();
 
