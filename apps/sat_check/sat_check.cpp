@@ -331,7 +331,10 @@ Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {
         for (const Vec3& p : answer.points) {
           const double outside = std::max(Outside(pair.a, pair.xfA, p), Outside(pair.b, pair.xfB, p));
           sample.pointOutside.push_back(outside);
-          if (outside > settings.pointTolerance) ++out.pointsOverTolerance;
+          // Misplaced: farther out of either shape than the true depth
+          // (a point midway between the surfaces of a contact patch is
+          // within that of both) plus the tolerance.
+          if (outside > settings.pointTolerance + truth.Depth()) ++out.pointsOverTolerance;
         }
       }
       record.results.push_back(result);

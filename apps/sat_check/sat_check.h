@@ -25,8 +25,8 @@ struct SatCheckSettings {
   /// Pairs whose true |signed distance| is below this (metres) are in the
   /// touching band: a verdict either way is acceptable there. 1e-6 m.
   double touchingBand = 1e-6;
-  /// A contact point counts as misplaced when it lies farther than this
-  /// (metres) outside either shape. 1e-6 m.
+  /// A contact point counts as misplaced when it lies farther than the
+  /// true depth plus this (metres) outside either shape. 1e-6 m.
   double pointTolerance = 1e-6;
   int timingRepeats = 3;       ///< each timed query runs this many times (>= 1); 0 turns timing off
   bool checkWithQhull = true;  ///< cross-check each Minkowski difference with qhull
@@ -68,7 +68,7 @@ struct MethodReport {
   /// (m, >= 0): how much worse the normal is than the best, robust to ties.
   Distribution normalExcess;
   Distribution pointOutside;            ///< per contact point: distance outside the farther shape (m)
-  int pointsOverTolerance = 0;          ///< contact points farther out than pointTolerance
+  int pointsOverTolerance = 0;          ///< points farther out of a shape than true depth + pointTolerance
   Distribution timeNs;                  ///< time per query (ns)
   std::vector<CaseRecord> worstDepth;   ///< largest depth errors
   std::vector<CaseRecord> worstNormal;  ///< largest normal excesses

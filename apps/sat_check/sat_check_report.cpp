@@ -140,7 +140,9 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
          "Depth error |d - d*| (m), normal angle (rad, pairs with a unique minimum), normal excess (overlap "
          "along "
          "the reported normal minus the true depth, m), contact points outside either shape (m); p50 / p99 / "
-         "max.\n\n"
+         "max. Points > tol: points farther out of either shape than the true depth + "
+      << Format("%.0e", report.settings.pointTolerance)
+      << " m.\n\n"
          "| method | depth error | normal angle | normal excess | point outside | points > tol | time p50 "
          "(ns) |\n"
          "|---|---|---|---|---|---|---|\n";

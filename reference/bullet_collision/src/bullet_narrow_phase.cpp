@@ -1,7 +1,7 @@
 // Bullet's pair detectors on zero-margin hull shapes. btPointCollector
 // reports the normal on B pointing towards A and the point on B; the point
 // on A is then pointOnB + normal * distance. btGjkEpaSolver2 reports its
-// witnesses on each shape and a normal from B towards A, as Talus.
+// witnesses on each shape; the normal is taken from them.
 #include "talus/reference/bullet_narrow_phase.h"
 
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
@@ -82,7 +82,12 @@ BulletAnswer BulletPairQuery(const BulletHullShape& a, const Transform& xfA, con
     return answer;
   }
   answer.signedDistance = results.distance;
-  answer.normal = FromBullet(results.normal);
+  // The witnesses fix the normal's sign: A's witness minus B's points from
+  // B towards A when separated and the other way when penetrating.
+  const Vec3 witnessA = FromBullet(results.witnesses[0]);
+  const Vec3 witnessB = FromBullet(results.witnesses[1]);
+  const Vec3 between = results.distance < 0.0 ? witnessB - witnessA : witnessA - witnessB;
+  answer.normal = between.norm() > 1e-12 ? between : FromBullet(results.normal);
   answer.point = 0.5 * (FromBullet(results.witnesses[0]) + FromBullet(results.witnesses[1]));
   return Finish(answer);
 }
