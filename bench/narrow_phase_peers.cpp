@@ -114,7 +114,10 @@ void BM_NarrowPhasePeers(benchmark::State& state) {
                            .intersecting;
         break;
     }
-    benchmark::DoNotOptimize(intersecting);
+    // An int, not the bool: DoNotOptimize on a bool let GCC read back a
+    // register with stray upper bits as the bool's value.
+    int verdict = intersecting ? 1 : 0;
+    benchmark::DoNotOptimize(verdict);
   }
   if (intersecting != (state.range(1) != 0)) state.SkipWithError("pair is not in the intended state");
   state.counters["queries/s"] =
