@@ -24,8 +24,8 @@ using reference::CcdAnswer;
 using reference::CcdObject;
 using reference::CcdStatus;
 
-// Plane offsets in the "inside a polyhedron" test and overlaps are
-// compared with no tolerance: the tolerances are applied by the measures.
+// One method's answer on one pair; depth and normal only when the method
+// gives them, points in world space.
 struct Answer {
   bool ok = true;
   bool intersecting = false;
