@@ -7,12 +7,15 @@
 // next to building it.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <optional>
 #include <string>
 
 #include "talus/hull.h"
+
+#include "geometry/polygon_normal.h"
 
 namespace talus {
 namespace {
@@ -24,17 +27,18 @@ std::string FaceName(std::size_t face) { return "face " + std::to_string(face); 
 // about the loop's centroid: cross products of raw coordinates lose the
 // normal's direction to cancellation when the face is small next to its
 // distance from the origin (a 0.1 m face at 1e4 m would be off by 1e-6 rad).
+// The cross products are accurate ones (geometry/polygon_normal.h), or a
+// long thin face gets a plane that misses its own vertices.
 Vec3 NewellNormal(const std::vector<Vec3>& vertices, const std::vector<int>& loop) {
   Vec3 centroid = Vec3::Zero();
   for (int v : loop) centroid += vertices[static_cast<std::size_t>(v)];
   centroid /= static_cast<double>(loop.size());
-  Vec3 normal = Vec3::Zero();
-  for (std::size_t i = 0; i < loop.size(); ++i) {
-    const Vec3 a = vertices[static_cast<std::size_t>(loop[i])] - centroid;
-    const Vec3 b = vertices[static_cast<std::size_t>(loop[(i + 1) % loop.size()])] - centroid;
-    normal += a.cross(b);
-  }
-  return normal;
+  return PolygonNormal(
+      static_cast<int>(loop.size()),
+      [&](int i) -> const Vec3& {
+        return vertices[static_cast<std::size_t>(loop[static_cast<std::size_t>(i)])];
+      },
+      centroid);
 }
 
 std::optional<Error> CheckFaceLoops(const std::vector<Vec3>& vertices,
@@ -209,8 +213,10 @@ Result<Hull> Hull::FromPolygons(std::vector<Vec3> vertices, const std::vector<st
       const Vec3& b = vertices[static_cast<std::size_t>(loop[(i + 1) % loop.size()])];
       const Vec3& c = vertices[static_cast<std::size_t>(loop[(i + 2) % loop.size()])];
       if (std::abs(normal.dot(a) - offset) > tolerance) {
-        return Error{FaceName(f) + " is not planar: vertex " + std::to_string(loop[i]) + " is " +
-                     std::to_string(std::abs(normal.dot(a) - offset)) + " m off its plane"};
+        char distance[64];
+        std::snprintf(distance, sizeof(distance), "%.3g m off its plane (tolerance %.3g m)",
+                      std::abs(normal.dot(a) - offset), tolerance);
+        return Error{FaceName(f) + " is not planar: vertex " + std::to_string(loop[i]) + " is " + distance};
       }
       // c must not lie right of the directed line a -> b (seen from outside).
       const Vec3 ab = b - a;

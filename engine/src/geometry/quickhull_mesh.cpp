@@ -2,6 +2,8 @@
 // face merging. See quickhull_mesh.h for the invariants.
 #include "geometry/quickhull_mesh.h"
 
+#include "geometry/polygon_normal.h"
+
 #include <algorithm>
 #include <cassert>
 
@@ -95,14 +97,18 @@ void QuickhullMesh::UpdatePlane(int f) {
     e = Edge(e).next;
   } while (e != face.edge);
   centroid /= static_cast<double>(count);
-  Vec3 normal = Vec3::Zero();
+  // Accurate cross products (geometry/polygon_normal.h): thin faces keep a
+  // plane that fits their vertices. The loop is walked once into a small
+  // buffer so the normal sees the vertices by position.
+  m_loopScratch.clear();
   e = face.edge;
   do {
-    const Vec3 a = Point(Edge(e).origin) - centroid;
-    const Vec3 b = Point(Edge(Edge(e).next).origin) - centroid;
-    normal += a.cross(b);
+    m_loopScratch.push_back(Edge(e).origin);
     e = Edge(e).next;
   } while (e != face.edge);
+  Vec3 normal = PolygonNormal(
+      count, [&](int i) -> const Vec3& { return Point(m_loopScratch[static_cast<std::size_t>(i)]); },
+      centroid);
   const double length = normal.norm();
   // A zero-area sliver keeps a zero normal: every distance to it is then 0,
   // which is "not clearly behind", so the merge pass absorbs it.

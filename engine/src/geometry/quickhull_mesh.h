@@ -148,6 +148,7 @@ class QuickhullMesh {
   std::vector<QhFace> m_faces;
   std::vector<int> m_freeEdges;
   std::vector<int> m_freeFaces;
+  std::vector<int> m_loopScratch;  // UpdatePlane's copy of a face's border (point indices)
 };
 
 }  // namespace talus
