@@ -248,7 +248,6 @@ Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {
     }
     const bool inBand = std::abs(truth.signedDistance) < settings.touchingBand;
     if (truth.intersecting) ++report.truth.intersecting;
-    if (truth.builderRetries > 0) ++report.truth.builderRetries;
     if (inBand) ++report.truth.touchingBand;
     if (truth.intersecting && truth.minimumFaces > 1) ++report.truth.tiedMinimum;
 

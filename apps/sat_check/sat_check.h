@@ -82,10 +82,9 @@ struct TruthReport {
   int boxClosedFormChecks = 0;         ///< face-aligned box pairs checked in closed form
   double boxClosedFormMaxError = 0.0;  ///< metres, largest |truth - closed form|
   int boxClosedFormVerdictMismatches = 0;
-  int intersecting = 0;    ///< pairs the truth calls intersecting
-  int touchingBand = 0;    ///< pairs within the touching band
-  int tiedMinimum = 0;     ///< intersecting pairs whose minimum direction is not unique
-  int builderRetries = 0;  ///< pairs whose Minkowski hull needed a coarser BuildHull tolerance
+  int intersecting = 0;  ///< pairs the truth calls intersecting
+  int touchingBand = 0;  ///< pairs within the touching band
+  int tiedMinimum = 0;   ///< intersecting pairs whose minimum direction is not unique
 };
 
 /// One method's answer on one pair, kept for the JSON's per-pair table.

@@ -61,7 +61,6 @@ std::string ReportToJson(const SatCheckReport& report) {
   json["truth"] = {{"intersecting", t.intersecting},
                    {"touchingBand", t.touchingBand},
                    {"tiedMinimum", t.tiedMinimum},
-                   {"builderRetries", t.builderRetries},
                    {"qhullChecks", t.qhullChecks},
                    {"qhullMismatches", t.qhullMismatches},
                    {"qhullMessages", t.qhullMessages},
@@ -124,12 +123,10 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
     out << (i ? ", " : "") << report.alignmentCounts[i] << " " << ToString(static_cast<Alignment>(i));
   out << ". Truth: " << t.intersecting << " intersecting, " << t.touchingBand << " within the touching band ("
       << Format("%.0e", report.settings.touchingBand) << " m), " << t.tiedMinimum
-      << " with a tied minimum direction, " << t.builderRetries
-      << " needing a coarser BuildHull tolerance; Minkowski hull vs qhull: " << t.qhullMismatches
-      << " mismatches in " << t.qhullChecks
-      << "; face-aligned boxes vs closed form: " << t.boxClosedFormChecks << " checked, max error "
-      << Format("%.2e", t.boxClosedFormMaxError) << " m, " << t.boxClosedFormVerdictMismatches
-      << " verdict mismatches.\n\n";
+      << " with a tied minimum direction; Minkowski hull vs qhull: " << t.qhullMismatches << " mismatches in "
+      << t.qhullChecks << "; face-aligned boxes vs closed form: " << t.boxClosedFormChecks
+      << " checked, max error " << Format("%.2e", t.boxClosedFormMaxError) << " m, "
+      << t.boxClosedFormVerdictMismatches << " verdict mismatches.\n\n";
 
   out << "### Verdicts\n\n| method | agree | disagree | in band | oracle failures |\n|---|---|---|---|---|\n";
   for (const MethodReport& m : report.methods) {

@@ -18,19 +18,6 @@ namespace {
 // Plane offsets within this of the minimum count as ties (metres).
 constexpr double kTieTolerance = 1e-9;
 
-// BuildHull refuses the rare set it cannot bake at its default tolerance
-// (many nearly coplanar differences); a coarser one (10x, 100x, 1000x)
-// still gives planes within nanometres on metre-sized shapes.
-Result<Hull> BuildDifferenceHull(const std::vector<Vec3>& points, int* retries) {
-  Result<Hull> built = BuildHull(points);
-  *retries = 0;
-  for (double factor = 10.0; !built && factor <= 1000.0; factor *= 10.0) {
-    ++*retries;
-    built = BuildHull(points, {.maxVertices = 0, .tolerance = factor * Hull::DefaultTolerance(points)});
-  }
-  return built;
-}
-
 }  // namespace
 
 std::vector<Vec3> MinkowskiDifferencePoints(const Hull& a, const Transform& xfA, const Hull& b,
@@ -77,12 +64,10 @@ Vec3 ClosestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
 Result<PenetrationTruth> ComputePenetrationTruth(const Hull& a, const Transform& xfA, const Hull& b,
                                                  const Transform& xfB) {
   const std::vector<Vec3> points = MinkowskiDifferencePoints(a, xfA, b, xfB);
-  int retries = 0;
-  Result<Hull> built = BuildDifferenceHull(points, &retries);
+  Result<Hull> built = BuildHull(points);
   if (!built) return Error{"Minkowski difference: " + built.GetError().message};
   const Hull& d = built.Value();
   PenetrationTruth truth;
-  truth.builderRetries = retries;
   truth.differenceVertices = d.VertexCount();
   truth.differenceFaces = d.FaceCount();
 
@@ -130,8 +115,7 @@ Result<PenetrationTruth> ComputePenetrationTruth(const Hull& a, const Transform&
 Result<bool> CheckMinkowskiWithQhull(const Hull& a, const Transform& xfA, const Hull& b, const Transform& xfB,
                                      double relativeTolerance) {
   const std::vector<Vec3> points = MinkowskiDifferencePoints(a, xfA, b, xfB);
-  int retries = 0;
-  Result<Hull> built = BuildDifferenceHull(points, &retries);
+  Result<Hull> built = BuildHull(points);
   if (!built) return Error{"BuildHull: " + built.GetError().message};
   Result<QhullHull> qhull = QhullConvexHull(points);
   if (!qhull) return Error{"qhull: " + qhull.GetError().message};

@@ -40,9 +40,6 @@ struct PenetrationTruth {
   /// Faces of D whose plane offset is within 1e-9 m of the minimum: more
   /// than one means the minimum direction is not unique (a tie).
   int minimumFaces = 0;
-  /// Times BuildHull had to be retried with a coarser tolerance (10x, 100x,
-  /// 1000x its default) to bake D; 0 almost always.
-  int builderRetries = 0;
 
   /// Penetration depth in metres (0 when separated).
   [[nodiscard]] double Depth() const { return intersecting ? -signedDistance : 0.0; }
