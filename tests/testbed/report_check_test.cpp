@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string>
 
+#include <sys/wait.h>
+
 #include "talus/harness/regression_check.h"
 #include "talus/harness/report.h"
 #include "talus/harness/results_file.h"
