@@ -5,7 +5,6 @@
 
 #include <cmath>
 
-#include "talus/contact_query.h"
 #include "talus/world.h"
 
 namespace talus {
@@ -21,9 +20,9 @@ TEST(ContactQuery, RestingBoxReportsItsFourBottomCornersWithNormalFromBToA) {
                                .shape = Shape::CreateBox(Vec3(0.5, 0.5, 0.5)).Value(),
                                .friction = 0.3});
   ASSERT_TRUE(ground && box);
-  EXPECT_TRUE(GetContactPoints(world).empty()) << "no step yet";
+  EXPECT_TRUE(world.GetContactPoints().empty()) << "no step yet";
   ASSERT_TRUE(world.Step(1.0 / 60.0));
-  const auto points = GetContactPoints(world);
+  const auto points = world.GetContactPoints();
   ASSERT_EQ(points.size(), 4u);
   for (const ContactPointInfo& point : points) {
     ASSERT_TRUE(world.IsValid(point.bodyA) && world.IsValid(point.bodyB));

@@ -1,20 +1,17 @@
-// Reading back the contacts of a World: the points the last World::Step
-// found and handed to the solver, for tools (the testbed, debug drawing)
-// that must see them through the public API.
+// ContactPointInfo: one contact point of a World as World::GetContactPoints
+// reports it, for tools (the testbed, debug drawing) that must see the
+// contacts the last step found through the public API.
 //
-// The list is a copy, made on request; the step never builds it. Pairs come
+// The list is a copy, made on request (engine/src/world/contact_query.cpp);
+// the step never builds it. Pairs come
 // in the World's pair-key order (body A's index, then B's), points in
 // manifold order, so the same world state always gives the same list.
 #pragma once
-
-#include <vector>
 
 #include "talus/body.h"
 #include "talus/math.h"
 
 namespace talus {
-
-class World;
 
 /// One contact point of the last step.
 struct ContactPointInfo {
@@ -26,9 +23,5 @@ struct ContactPointInfo {
   double friction = 0.0;         ///< the pair's combined Coulomb coefficient
   double restitution = 0.0;      ///< the pair's combined restitution
 };
-
-/// Every contact point the last World::Step found (empty before the first
-/// step, and after a body of a pair was destroyed).
-std::vector<ContactPointInfo> GetContactPoints(const World& world);
 
 }  // namespace talus

@@ -1,5 +1,6 @@
-// GetContactPoints (talus/contact_query.h): a copy of the World's contact
-// list, which world_step.cpp keeps sorted by pair key for warm starting.
+// World::GetContactPoints (talus/world.h, talus/contact_query.h): a copy of
+// the World's contact list, which world_step.cpp keeps sorted by pair key
+// for warm starting.
 #include "talus/contact_query.h"
 
 #include "talus/world.h"
@@ -7,8 +8,8 @@
 
 namespace talus {
 
-std::vector<ContactPointInfo> GetContactPoints(const World& world) {
-  const WorldData& data = world.Data();
+std::vector<ContactPointInfo> World::GetContactPoints() const {
+  const WorldData& data = *m_data;
   std::vector<ContactPointInfo> points;
   for (const Contact& contact : data.contacts) {
     const BodyId bodyA{contact.bodyA, data.records[static_cast<std::size_t>(contact.bodyA)].generation};

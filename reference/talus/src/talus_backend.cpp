@@ -6,7 +6,7 @@
 // from BuildHull on the file's points); the centre of mass and the inertia
 // about it come from ComputeBodyMass, given as localCenterOfMass and
 // localInertia (body axes), so the engine and the peers agree on mass data
-// to the last bit. Contacts come from talus::GetContactPoints (public API):
+// to the last bit. Contacts come from World::GetContactPoints (public API):
 // one point per manifold point, normal from B to A, depth > 0 when overlapping.
 #include "talus/reference/talus_backend.h"
 
@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "talus/body.h"
-#include "talus/contact_query.h"
 #include "talus/hull_builder.h"
 #include "talus/reference/body_mass.h"
 #include "talus/shape.h"
@@ -217,7 +216,7 @@ harness::BodyState TalusBackend::GetBodyState(int index) const {
 
 std::vector<harness::ContactPoint> TalusBackend::GetContacts() const {
   std::vector<harness::ContactPoint> contacts;
-  for (const ContactPointInfo& point : GetContactPoints(m_world)) {
+  for (const ContactPointInfo& point : m_world.GetContactPoints()) {
     const int bodyA = m_scenarioIndexOfSlot.at(static_cast<std::size_t>(point.bodyA.index));
     const int bodyB = m_scenarioIndexOfSlot.at(static_cast<std::size_t>(point.bodyB.index));
     contacts.push_back({bodyA, bodyB, point.position, point.normal, point.depth});
