@@ -45,6 +45,18 @@ std::vector<MetricResult> EvaluateTruth(const Run& run, const Truth& truth, cons
           return EvaluateRestHeight(run, truth, kind, trajectory);
         } else if constexpr (std::is_same_v<Kind, BounceHeightsTruth>) {
           return EvaluateBounceHeights(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, StackRestTruth>) {
+          return EvaluateStackRest(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, HullRestTruth>) {
+          return EvaluateHullRest(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, InclineSlideTruth>) {
+          return EvaluateInclineSlide(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, InclineTipTruth>) {
+          return EvaluateInclineTip(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, TorqueFreeTruth>) {
+          return EvaluateTorqueFree(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, FlipPeriodTruth>) {
+          return EvaluateFlipPeriod(run, truth, kind, trajectory);
         } else {
           static_assert(std::is_same_v<Kind, ConvergedReferenceTruth>, "a truth kind has no evaluator");
           return {};  // the runner compares against a finer run
