@@ -387,7 +387,8 @@ struct Sweep {
   std::string name;
   std::vector<json::json_pointer> targets;
   std::vector<json> values;
-  bool perTarget = false;  // each value holds one entry per target
+  bool perTarget = false;           // each value holds one entry per target
+  std::vector<std::string> labels;  // one per value, or empty
 };
 
 // Reads the sweeps and checks that every target names an existing field
@@ -400,7 +401,8 @@ Result<std::vector<Sweep>> ReadSweeps(const json& doc, std::string_view file) {
     Sweep sweep{entry["name"].get<std::string>(),
                 {},
                 entry["values"].get<std::vector<json>>(),
-                entry.value("perTarget", false)};
+                entry.value("perTarget", false),
+                {}};
     for (size_t t = 0; t < entry["targets"].size(); ++t) {
       const std::string where = "/sweeps/" + std::to_string(i) + "/targets/" + std::to_string(t);
       const std::string text = entry["targets"][t].get<std::string>();
@@ -412,6 +414,13 @@ Result<std::vector<Sweep>> ReadSweeps(const json& doc, std::string_view file) {
         sweep.targets.push_back(target);
       } catch (const json::exception&) {
         return FieldError(file, where, "\"" + text + "\" is not a JSON pointer");
+      }
+    }
+    if (entry.contains("labels")) {
+      sweep.labels = entry["labels"].get<std::vector<std::string>>();
+      if (sweep.labels.size() != sweep.values.size()) {
+        return FieldError(file, "/sweeps/" + std::to_string(i) + "/labels",
+                          "needs one label per value (" + std::to_string(sweep.values.size()) + ")");
       }
     }
     for (size_t v = 0; sweep.perTarget && v < sweep.values.size(); ++v) {
@@ -473,7 +482,9 @@ Result<std::vector<Run>> ParseScenarioText(std::string_view text, std::string_vi
         instance[sweep.targets[t]] = sweep.perTarget ? value[t] : value;
       }
       // A perTarget value is labelled by its first entry (the swept parameter).
-      const std::string shown = sweep.perTarget ? value[0].dump() : value.dump();
+      const std::string shown = !sweep.labels.empty() ? sweep.labels[index[s]]
+                                : sweep.perTarget     ? value[0].dump()
+                                                      : value.dump();
       run.sweepValues.push_back({sweep.name, shown});
       label += (label.empty() ? "" : ",") + sweep.name + "=" + shown;
     }
