@@ -1,0 +1,49 @@
+// talus-testbed: the command line of the testbed. Parses arguments with
+// CLI11 and hands them to the subcommands (testbed_commands.h).
+#include <CLI/CLI.hpp>
+
+#include "testbed_commands.h"
+
+int main(int argc, char** argv) {
+  using namespace talus::testbed;
+  CLI::App app{"Talus testbed: runs scenarios through Talus, Bullet and ODE, reports and checks accuracy"};
+  app.require_subcommand(1);
+
+  RunOptions run;
+  CLI::App* runCommand = app.add_subcommand("run", "run scenarios through backends and write results.json");
+  runCommand->add_option("scenarios", run.scenarios, "scenario files or folders (default: scenarios/)");
+  runCommand->add_option("-b,--backend", run.backends, "backends to run (repeat or comma-separate)")
+      ->delimiter(',');
+  runCommand->add_option("-o,--out", run.out, "output folder for results.json")->capture_default_str();
+  runCommand->add_option("-j,--jobs", run.jobs, "threads (0 = every core)")->check(CLI::NonNegativeNumber);
+  runCommand->add_flag("--deterministic", run.deterministic, "zero wall times so reruns are byte-identical");
+  runCommand->add_flag("-q,--quiet", run.quiet, "no progress on stderr");
+
+  ReportOptions report;
+  CLI::App* reportCommand = app.add_subcommand("report", "write summary.md, results.csv and report.html");
+  reportCommand->add_option("results", report.results, "results.json of a run")->required();
+  reportCommand->add_option("-o,--out", report.out, "report folder (default: beside the results)");
+  reportCommand->add_option("--chart-js", report.chartJs,
+                            "charting library to inline (default: Chart.js from npm)");
+
+  CheckOptions check;
+  CLI::App* checkCommand =
+      app.add_subcommand("check", "check Talus's metrics against the scenario tolerances");
+  checkCommand->add_option("scenarios", check.scenarios, "scenario files or folders (default: scenarios/)");
+  checkCommand->add_option("-r,--results", check.results, "check this results.json instead of running");
+  checkCommand->add_option("-b,--backend", check.backend, "backend whose metrics are checked")
+      ->capture_default_str();
+  checkCommand->add_option("-j,--jobs", check.jobs, "threads (0 = every core)")
+      ->check(CLI::NonNegativeNumber);
+  checkCommand->add_flag("-q,--quiet", check.quiet, "no progress on stderr");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int code = app.exit(error);
+    return code == 0 ? kExitOk : kExitBadInput;
+  }
+  if (*runCommand) return RunCommand(run);
+  if (*reportCommand) return ReportCommand(report);
+  return CheckCommand(check);
+}

@@ -1,0 +1,164 @@
+// The subcommands of talus-testbed: argument checks, loading, running,
+// writing and printing. All numbers come from the harness library; this
+// file only wires it to files and the terminal.
+#include "testbed_commands.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <thread>
+
+#include "talus/harness/regression_check.h"
+#include "talus/harness/report.h"
+#include "talus/harness/results_file.h"
+#include "talus/harness/runner.h"
+#include "talus/reference/bullet_backend.h"
+#include "talus/reference/ode_backend.h"
+#include "talus/reference/talus_backend.h"
+
+namespace talus::testbed {
+namespace {
+
+namespace fs = std::filesystem;
+using harness::ResultsFile;
+
+const harness::BackendRegistry& Registry() {
+  static const harness::BackendRegistry registry = [] {
+    harness::BackendRegistry r;
+    reference::RegisterTalusBackends(r);
+    reference::RegisterBulletBackends(r);
+    reference::RegisterOdeBackends(r);
+    return r;
+  }();
+  return registry;
+}
+
+int Jobs(int asked) {
+  if (asked > 0) return asked;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+std::vector<fs::path> ScenarioPaths(const std::vector<std::string>& given) {
+  std::vector<fs::path> paths(given.begin(), given.end());
+  if (paths.empty())
+    paths.push_back(fs::exists("scenarios") ? fs::path("scenarios") : fs::path(TALUS_DEFAULT_SCENARIOS));
+  return paths;
+}
+
+// Loads and runs; prints the error and returns nothing on bad input.
+std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
+                                      const std::vector<std::string>& backends, int jobs, bool deterministic,
+                                      bool quiet) {
+  auto runs = harness::LoadScenarios(ScenarioPaths(scenarios));
+  if (!runs) {
+    std::cerr << "talus-testbed: " << runs.GetError().message << "\n";
+    return std::nullopt;
+  }
+  harness::RunnerOptions options;
+  options.backends = backends;
+  options.jobs = Jobs(jobs);
+  options.deterministic = deterministic;
+  if (!quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+  auto results = harness::RunAll(Registry(), runs.Value(), options);
+  if (!results) {
+    std::cerr << "talus-testbed: " << results.GetError().message << "\n";
+    return std::nullopt;
+  }
+  ResultsFile file;
+  file.backends = backends;
+  file.deterministic = deterministic;
+  file.results = std::move(results).Value();
+  return file;
+}
+
+// Prints every run a backend refused; whether there was one.
+bool ReportRunErrors(const ResultsFile& file) {
+  bool any = false;
+  for (const harness::RunResult& r : file.results) {
+    if (r.error.empty()) continue;
+    std::cerr << "talus-testbed: " << r.runId << " with " << r.backend << " failed: " << r.error << "\n";
+    any = true;
+  }
+  return any;
+}
+
+}  // namespace
+
+std::vector<std::string> DefaultBackends() {
+  return {"talus", "talus-writeup", "talus-split", "bullet", "ode-step", "ode-quickstep"};
+}
+
+int RunCommand(const RunOptions& options) {
+  const std::vector<std::string> backends = options.backends.empty() ? DefaultBackends() : options.backends;
+  auto file = LoadAndRun(options.scenarios, backends, options.jobs, options.deterministic, options.quiet);
+  if (!file) return kExitBadInput;
+  std::error_code error;
+  fs::create_directories(options.out, error);
+  if (error) {
+    std::cerr << "talus-testbed: " << options.out << ": " << error.message() << "\n";
+    return kExitBadInput;
+  }
+  const fs::path path = fs::path(options.out) / "results.json";
+  auto written = harness::WriteResultsFile(path, *file);
+  if (!written) {
+    std::cerr << "talus-testbed: " << written.GetError().message << "\n";
+    return kExitBadInput;
+  }
+  std::cout << harness::OverviewTable(*file) << "\nresults: " << path.string() << "\n";
+  return ReportRunErrors(*file) ? kExitFailed : kExitOk;
+}
+
+int ReportCommand(const ReportOptions& options) {
+  auto file = harness::ReadResultsFile(options.results);
+  if (!file) {
+    std::cerr << "talus-testbed: " << file.GetError().message << "\n";
+    return kExitBadInput;
+  }
+  const fs::path folder =
+      options.out.empty() ? fs::path(options.results).parent_path() : fs::path(options.out);
+  const fs::path chartJs =
+      options.chartJs.empty() ? fs::path(TALUS_DEFAULT_CHART_JS) : fs::path(options.chartJs);
+  auto written = harness::WriteReport(file.Value(), folder.empty() ? fs::path(".") : folder, chartJs);
+  if (!written) {
+    std::cerr << "talus-testbed: " << written.GetError().message << "\n";
+    return kExitBadInput;
+  }
+  const fs::path shown = folder.empty() ? fs::path(".") : folder;
+  std::cout << harness::OverviewTable(file.Value()) << "\nreport: " << (shown / "report.html").string()
+            << "\nsummary: " << (shown / "summary.md").string()
+            << "\ndata: " << (shown / "results.csv").string() << ", " << (shown / "results.json").string()
+            << "\n";
+  return kExitOk;
+}
+
+int CheckCommand(const CheckOptions& options) {
+  ResultsFile file;
+  if (!options.results.empty()) {
+    if (!options.scenarios.empty()) {
+      std::cerr << "talus-testbed: check takes either scenario paths or --results, not both\n";
+      return kExitBadInput;
+    }
+    auto read = harness::ReadResultsFile(options.results);
+    if (!read) {
+      std::cerr << "talus-testbed: " << read.GetError().message << "\n";
+      return kExitBadInput;
+    }
+    file = std::move(read).Value();
+  } else {
+    auto ran = LoadAndRun(options.scenarios, {options.backend}, options.jobs, true, options.quiet);
+    if (!ran) return kExitBadInput;
+    file = std::move(*ran);
+  }
+  const harness::CheckOutcome outcome = harness::CheckResults(file, options.backend);
+  if (!outcome.Ok()) {
+    std::cout << "check FAILED for " << options.backend << ": " << outcome.problems.size() << " problem(s)\n";
+    for (const std::string& problem : outcome.problems) std::cout << "  " << problem << "\n";
+    return kExitFailed;
+  }
+  std::cout << "check passed for " << options.backend << ": " << outcome.checkedMetrics << " metrics in "
+            << outcome.runs << " runs within tolerance\n";
+  return kExitOk;
+}
+
+}  // namespace talus::testbed

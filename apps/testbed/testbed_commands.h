@@ -1,0 +1,47 @@
+// The subcommands of `talus-testbed` (docs/testbed-runner.md): each takes
+// its parsed options and returns the process exit code, printing results on
+// stdout and errors and progress on stderr.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace talus::testbed {
+
+/// Exit codes: 0 success; 1 a check found regressions or a run failed;
+/// 2 bad input (arguments, scenario files, results files).
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailed = 1;
+inline constexpr int kExitBadInput = 2;
+
+/// The backends `run` uses when none are named: Talus's three variants and
+/// every peer.
+std::vector<std::string> DefaultBackends();
+
+struct RunOptions {
+  std::vector<std::string> scenarios;  ///< files or folders; empty = the default folder
+  std::vector<std::string> backends;   ///< empty = DefaultBackends()
+  std::string out = "reports/latest";  ///< folder for results.json
+  int jobs = 0;                        ///< 0 = every core
+  bool deterministic = false;          ///< zero wall times
+  bool quiet = false;                  ///< no progress lines
+};
+int RunCommand(const RunOptions& options);
+
+struct ReportOptions {
+  std::string results;  ///< results.json of a run
+  std::string out;      ///< report folder; empty = the results file's folder
+  std::string chartJs;  ///< charting library; empty = the npm copy under harness/report
+};
+int ReportCommand(const ReportOptions& options);
+
+struct CheckOptions {
+  std::vector<std::string> scenarios;  ///< as for run, when no results file is given
+  std::string results;                 ///< check this results.json instead of running
+  std::string backend = "talus";       ///< whose metrics are checked
+  int jobs = 0;                        ///< 0 = every core
+  bool quiet = false;
+};
+int CheckCommand(const CheckOptions& options);
+
+}  // namespace talus::testbed

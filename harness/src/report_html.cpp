@@ -1,0 +1,246 @@
+// report.html and the writing of every report file (report.h).
+//
+// The page's tables are summary.md's, converted line by line (headings,
+// pipe tables, paragraphs), so the two never disagree. The plots are drawn
+// in the browser by the inlined charting library from the results' plot
+// series, embedded as JSON in a <script type="application/json"> element:
+// per run, the height of every body that moves and the total energy over
+// time, one line per backend and body; and the median time per step of
+// every backend per run, as bars.
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "talus/harness/report.h"
+#include "text_util.h"
+
+namespace talus::harness {
+namespace {
+
+std::string Escape(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+// Markdown inline code `x` becomes <code>x</code> (after escaping).
+std::string Inline(std::string_view text) {
+  std::string escaped = Escape(text);
+  std::string out;
+  bool open = false;
+  for (char c : escaped) {
+    if (c == '`') {
+      out += open ? "</code>" : "<code>";
+      open = !open;
+    } else {
+      out += c;
+    }
+  }
+  if (open) out += "</code>";
+  return out;
+}
+
+std::vector<std::string> SplitRow(const std::string& line) {
+  std::vector<std::string> cells;
+  std::string cell;
+  for (std::size_t i = 1; i < line.size(); ++i) {
+    if (line[i] == '|') {
+      const auto first = cell.find_first_not_of(' ');
+      const auto last = cell.find_last_not_of(' ');
+      cells.push_back(first == std::string::npos ? std::string() : cell.substr(first, last - first + 1));
+      cell.clear();
+    } else {
+      cell += line[i];
+    }
+  }
+  return cells;
+}
+
+std::string MarkdownToHtml(const std::string& markdown) {
+  std::istringstream in(markdown);
+  std::ostringstream out;
+  std::string line;
+  bool inTable = false;
+  bool headerRow = false;
+  while (std::getline(in, line)) {
+    const bool tableLine = !line.empty() && line[0] == '|';
+    if (inTable && !tableLine) {
+      out << "</table>\n";
+      inTable = false;
+    }
+    if (tableLine) {
+      if (line.rfind("|---", 0) == 0) continue;
+      if (!inTable) {
+        out << "<table>\n";
+        inTable = true;
+        headerRow = true;
+      }
+      out << "<tr>";
+      for (const std::string& cell : SplitRow(line)) {
+        const char* tag = headerRow ? "th" : "td";
+        const bool fail = cell.size() >= 4 && cell.compare(cell.size() - 4, 4, "FAIL") == 0;
+        const bool ok = cell.size() >= 3 && cell.compare(cell.size() - 3, 3, " ok") == 0;
+        out << "<" << tag
+            << (fail ? " class=\"fail\""
+                : ok ? " class=\"ok\""
+                     : "")
+            << ">" << Inline(cell) << "</" << tag << ">";
+      }
+      out << "</tr>\n";
+      headerRow = false;
+    } else if (line.rfind("### ", 0) == 0) {
+      out << "<h3>" << Inline(line.substr(4)) << "</h3>\n";
+    } else if (line.rfind("## ", 0) == 0) {
+      out << "<h2>" << Inline(line.substr(3)) << "</h2>\n";
+    } else if (line.rfind("# ", 0) == 0) {
+      out << "<h1>" << Inline(line.substr(2)) << "</h1>\n";
+    } else if (!line.empty()) {
+      out << "<p>" << Inline(line) << "</p>\n";
+    }
+  }
+  if (inTable) out << "</table>\n";
+  return out.str();
+}
+
+// What the page's script plots, as JSON.
+nlohmann::ordered_json PlotData(const ResultsFile& file) {
+  nlohmann::ordered_json data;
+  data["backends"] = file.backends;
+  data["runs"] = nlohmann::ordered_json::array();
+  for (const RunResult& r : file.results) {
+    if (data["runs"].empty() || data["runs"].back()["id"] != r.runId) {
+      data["runs"].push_back(
+          {{"id", r.runId}, {"bodies", r.bodyNames}, {"results", nlohmann::ordered_json::array()}});
+    }
+    nlohmann::ordered_json entry;
+    entry["backend"] = r.backend;
+    entry["medianStepSeconds"] = r.wallSecondsPerStepMedian;
+    entry["time"] = r.series.time;
+    entry["heights"] = r.series.heights;
+    entry["energy"] = r.series.energy;
+    data["runs"].back()["results"].push_back(entry);
+  }
+  return data;
+}
+
+// Keeps "</script" out of inlined text so the element cannot end early.
+std::string ScriptSafe(std::string text) {
+  for (std::size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) {
+    text.replace(at, 2, "<\\/");
+  }
+  return text;
+}
+
+constexpr const char* kStyle = R"(body{font-family:sans-serif;margin:2em;max-width:90em}
+table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:.25em .6em;text-align:left}
+th{background:#eee}td.ok{background:#e6f4e6}td.fail{background:#f8d7d7;font-weight:bold}
+.plots{display:flex;flex-wrap:wrap;gap:1em}.plot{width:44em;height:22em}code{background:#f4f4f4})";
+
+constexpr const char* kScript = R"(
+const data = JSON.parse(document.getElementById('plot-data').textContent);
+const palette = ['#1f77b4','#d62728','#2ca02c','#ff7f0e','#9467bd','#8c564b','#e377c2','#7f7f7f'];
+const section = document.getElementById('plots');
+function addChart(title, config) {
+  const box = document.createElement('div'); box.className = 'plot';
+  const canvas = document.createElement('canvas'); box.appendChild(canvas); section.appendChild(box);
+  config.options = Object.assign({animation:false, maintainAspectRatio:false,
+    plugins:{title:{display:true,text:title}}}, config.options || {});
+  new Chart(canvas, config);
+}
+function color(i) { return palette[i % palette.length]; }
+const timeBars = {labels: [], datasets: data.backends.map((b, i) => ({label: b, data: [], backgroundColor: color(i)}))};
+for (const run of data.runs) {
+  const heights = [], energies = [];
+  run.results.forEach(result => {
+    const k = data.backends.indexOf(result.backend);
+    result.heights.forEach((series, b) => {
+      if (series.length < 2 || Math.max(...series) - Math.min(...series) < 1e-12) return;
+      heights.push({label: result.backend + ' ' + run.bodies[b], borderColor: color(k), pointRadius: 0,
+                    borderWidth: 1, data: series.map((y, j) => ({x: result.time[j], y: y}))});
+    });
+    if (result.energy.length > 1)
+      energies.push({label: result.backend, borderColor: color(k), pointRadius: 0, borderWidth: 1,
+                     data: result.energy.map((e, j) => ({x: result.time[j], y: e}))});
+  });
+  const axes = (y) => ({x:{type:'linear',title:{display:true,text:'time (s)'}},y:{title:{display:true,text:y}}});
+  if (heights.length) addChart(run.id + ': height of the centre of mass',
+                               {type:'line', data:{datasets:heights}, options:{scales:axes('m')}});
+  if (energies.length) addChart(run.id + ': total energy',
+                                {type:'line', data:{datasets:energies}, options:{scales:axes('J')}});
+  timeBars.labels.push(run.id);
+  timeBars.datasets.forEach(d => {
+    const r = run.results.find(x => x.backend === d.label);
+    d.data.push(r ? r.medianStepSeconds * 1e6 : null);
+  });
+}
+addChart('median wall time per step (us)', {type:'bar', data:timeBars,
+  options:{scales:{y:{type:'logarithmic',title:{display:true,text:'us'}}}}});
+)";
+
+Result<std::monostate> WriteText(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) return Error{Concat({path.string(), ": cannot write"})};
+  return std::monostate{};
+}
+
+}  // namespace
+
+std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary) {
+  std::ostringstream out;
+  out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      << "<title>Talus testbed report</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n";
+  out << MarkdownToHtml(SummaryMarkdown(file));
+  out << "<h2>Plots</h2>\n<div class=\"plots\" id=\"plots\"></div>\n";
+  out << "<script type=\"application/json\" id=\"plot-data\">" << ScriptSafe(PlotData(file).dump())
+      << "</script>\n";
+  out << "<script>\n" << ScriptSafe(std::string(chartLibrary)) << "\n</script>\n";
+  out << "<script>" << kScript << "</script>\n</body>\n</html>\n";
+  return out.str();
+}
+
+Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesystem::path& folder,
+                                   const std::filesystem::path& chartLibraryPath) {
+  std::ifstream library(chartLibraryPath, std::ios::binary);
+  if (!library) {
+    return Error{Concat({chartLibraryPath.string(),
+                         ": charting library not found (run scripts/install-deps.sh, which runs npm ci in "
+                         "harness/report)"})};
+  }
+  std::ostringstream js;
+  js << library.rdbuf();
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error) return Error{Concat({folder.string(), ": ", error.message()})};
+  const std::pair<const char*, std::string> files[] = {
+      {"summary.md", SummaryMarkdown(file)},
+      {"results.csv", ResultsCsv(file)},
+      {"results.json", ResultsToJson(file)},
+      {"report.html", ReportHtml(file, js.str())},
+  };
+  for (const auto& [name, text] : files) {
+    auto written = WriteText(folder / name, text);
+    if (!written) return written;
+  }
+  return std::monostate{};
+}
+
+}  // namespace talus::harness
