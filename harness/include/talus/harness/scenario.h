@@ -184,7 +184,7 @@ struct Scenario {
 /// One resolved value of a sweep parameter.
 struct SweepValue {
   std::string name;   ///< the sweep's name, e.g. "mu"
-  std::string value;  ///< the value as compact JSON, e.g. "0.3" or "[1,0,0]"
+  std::string value;  ///< the sweep's label for it, else its compact JSON (first entry for perTarget), e.g. "0.3"
 };
 
 /// One run: a scenario with its sweep values applied, plus the stepping the
