@@ -1,0 +1,227 @@
+// The results file, the regression check and the report: JSON round trips
+// exactly, malformed files are refused at the right place, the check flags
+// a doctored result (library and command line, by exit code), and the
+// report files are written and well formed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "talus/harness/regression_check.h"
+#include "talus/harness/report.h"
+#include "talus/harness/results_file.h"
+#include "talus/harness/runner.h"
+#include "talus/reference/talus_backend.h"
+
+namespace talus::harness {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A small real results file: Talus on the box rest and sliding scenarios.
+const ResultsFile& SmallResults() {
+  static const ResultsFile file = [] {
+    BackendRegistry registry;
+    reference::RegisterTalusBackends(registry);
+    auto runs = LoadScenarios(
+        {std::string(TALUS_SCENARIO_DIR) + "/stacking", std::string(TALUS_SCENARIO_DIR) + "/sliding"});
+    EXPECT_TRUE(runs);
+    RunnerOptions options;
+    options.backends = {"talus", "talus-writeup"};
+    options.deterministic = true;
+    auto results = RunAll(registry, runs.Value(), options);
+    EXPECT_TRUE(results);
+    return ResultsFile{options.backends, true, results.Value()};
+  }();
+  return file;
+}
+
+// A copy whose first checked Talus metric measured 10% (and 1 cm) off.
+ResultsFile Doctored() {
+  ResultsFile file = SmallResults();
+  for (RunResult& r : file.results) {
+    if (r.backend != "talus") continue;
+    for (MetricResult& m : r.metrics) {
+      if (!m.checked) continue;
+      m.measured = m.measured * 1.1 + 0.01;
+      Judge(m, m.tolerance);
+      return file;
+    }
+  }
+  ADD_FAILURE() << "no checked metric";
+  return file;
+}
+
+fs::path ScratchDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("talus_testbed_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Fields of one CSV line, honouring RFC 4180 quotes.
+std::size_t CsvFieldCount(const std::string& line) {
+  std::size_t fields = 1;
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"') quoted = !quoted;
+    if (c == ',' && !quoted) ++fields;
+  }
+  return fields;
+}
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(ResultsFile, RoundTripsToTheSameBytesWithNaNAsNull) {
+  ResultsFile file = SmallResults();
+  file.results[0].metrics[0].measured = std::nan("");
+  const std::string json = ResultsToJson(file);
+  EXPECT_NE(json.find("\"measured\": null"), std::string::npos);
+  auto read = ResultsFromJson(json);
+  ASSERT_TRUE(read) << read.GetError().message;
+  EXPECT_TRUE(std::isnan(read.Value().results[0].metrics[0].measured));
+  EXPECT_EQ(ResultsToJson(read.Value()), json);
+}
+
+TEST(ResultsFile, MalformedFilesAreRefusedWithThePlace) {
+  EXPECT_FALSE(ResultsFromJson("{ not json"));
+  auto wrongFormat = ResultsFromJson(R"({"format": "other", "version": 1})");
+  ASSERT_FALSE(wrongFormat);
+  EXPECT_NE(wrongFormat.GetError().message.find("/format"), std::string::npos);
+  nlohmann::json j = nlohmann::json::parse(ResultsToJson(SmallResults()));
+  j["results"][1]["metrics"][0].erase("measured");
+  auto missing = ResultsFromJson(j.dump());
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.GetError().message.find("/results/1/metrics/0: missing field \"measured\""),
+            std::string::npos)
+      << missing.GetError().message;
+}
+
+TEST(RegressionCheck, PassingResultsPassAndADoctoredMetricIsNamedWithItsNumbers) {
+  const CheckOutcome good = CheckResults(SmallResults(), "talus");
+  EXPECT_TRUE(good.Ok()) << (good.problems.empty() ? "" : good.problems[0]);
+  EXPECT_GT(good.checkedMetrics, 6);
+  const CheckOutcome bad = CheckResults(Doctored(), "talus");
+  ASSERT_EQ(bad.problems.size(), 1u);
+  EXPECT_EQ(bad.failedMetrics, 1);
+  EXPECT_NE(bad.problems[0].find("measured"), std::string::npos);
+  EXPECT_NE(bad.problems[0].find("beyond the tolerance"), std::string::npos);
+  // The doctored Talus metric does not affect another backend's check.
+  EXPECT_TRUE(CheckResults(Doctored(), "talus-writeup").Ok());
+}
+
+TEST(RegressionCheck, AFailedRunOrAMissingBackendIsAProblem) {
+  ResultsFile file = SmallResults();
+  file.results[0].error = "talus: body \"box\": bad hull";
+  file.results[0].metrics.clear();
+  const CheckOutcome failed = CheckResults(file, "talus");
+  ASSERT_FALSE(failed.Ok());
+  EXPECT_NE(failed.problems[0].find("the run failed"), std::string::npos);
+  EXPECT_FALSE(CheckResults(SmallResults(), "bullet").Ok());
+}
+
+TEST(Report, FilesAreWrittenAndWellFormed) {
+  const fs::path dir = ScratchDir("report");
+  const fs::path chart = dir / "fake_chart.js";
+  std::ofstream(chart) << "window.Chart = function() {}; // </script> must not end the element\n";
+  auto written = WriteReport(SmallResults(), dir / "out", chart);
+  ASSERT_TRUE(written) << written.GetError().message;
+
+  // JSON: parses back to the same results.
+  auto json = ReadResultsFile(dir / "out" / "results.json");
+  ASSERT_TRUE(json) << json.GetError().message;
+  EXPECT_EQ(json.Value().results.size(), SmallResults().results.size());
+
+  // CSV: a header and one row per metric, every row with the header's field count.
+  std::istringstream csv(ReadText(dir / "out" / "results.csv"));
+  std::string line;
+  std::size_t rows = 0;
+  std::getline(csv, line);
+  const std::size_t fields = CsvFieldCount(line);
+  std::size_t metrics = 0;
+  for (const RunResult& r : SmallResults().results) metrics += r.metrics.size();
+  while (std::getline(csv, line)) {
+    ++rows;
+    EXPECT_EQ(CsvFieldCount(line), fields) << line;
+  }
+  EXPECT_EQ(rows, metrics);
+
+  // Markdown: every run has a section, with the settings at the end.
+  const std::string summary = ReadText(dir / "out" / "summary.md");
+  for (const RunResult& r : SmallResults().results) {
+    EXPECT_NE(summary.find("## " + r.runId + "\n"), std::string::npos) << r.runId;
+  }
+  EXPECT_NE(summary.find("### talus-writeup"), std::string::npos);
+
+  // HTML: one document, the library inlined without its closing tag, the
+  // plot data parseable, no external resource.
+  const std::string html = ReadText(dir / "out" / "report.html");
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(html.find("window.Chart = function"), std::string::npos);
+  EXPECT_EQ(html.find("// </script>"), std::string::npos);
+  EXPECT_EQ(html.find("http"), std::string::npos);
+  EXPECT_EQ(std::count(html.begin(), html.end(), '<') > 0 && html.find("</html>") != std::string::npos, true);
+  const std::string open = "<script type=\"application/json\" id=\"plot-data\">";
+  const auto start = html.find(open);
+  ASSERT_NE(start, std::string::npos);
+  const auto end = html.find("</script>", start);
+  std::string data = html.substr(start + open.size(), end - start - open.size());
+  const auto plot = nlohmann::json::parse(data, nullptr, false);
+  ASSERT_FALSE(plot.is_discarded());
+  EXPECT_EQ(plot["runs"].size(), 7u);  // box_rest and the 6 box_slide runs
+  // Missing charting library: a clear error naming the file.
+  auto missing = WriteReport(SmallResults(), dir / "out2", dir / "missing.js");
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.GetError().message.find("missing.js"), std::string::npos);
+}
+
+#ifdef TALUS_TESTBED_BINARY
+int Shell(const std::string& command) {
+  const int status = std::system((command + " >/dev/null 2>&1").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(TestbedCommand, CheckExitsNonZeroOnARegressionAndZeroWhenPassing) {
+  const fs::path dir = ScratchDir("check");
+  ASSERT_TRUE(WriteResultsFile(dir / "good.json", SmallResults()));
+  ASSERT_TRUE(WriteResultsFile(dir / "bad.json", Doctored()));
+  const std::string binary = TALUS_TESTBED_BINARY;
+  EXPECT_EQ(Shell(binary + " check --results " + (dir / "good.json").string()), 0);
+  EXPECT_EQ(Shell(binary + " check --results " + (dir / "bad.json").string()), 1);
+  EXPECT_EQ(Shell(binary + " check --results " + (dir / "none.json").string()), 2);
+  EXPECT_EQ(Shell(binary + " check --backend bullet --results " + (dir / "good.json").string()), 1);
+}
+
+TEST(TestbedCommand, RunWritesDeterministicResultsAndRefusesBadArguments) {
+  const fs::path dir = ScratchDir("run");
+  const std::string binary = TALUS_TESTBED_BINARY;
+  const std::string scenario = std::string(TALUS_SCENARIO_DIR) + "/stacking/box_rest.json";
+  const std::string common = " run " + scenario + " -q --deterministic -b talus,ode-step -o ";
+  ASSERT_EQ(Shell(binary + common + (dir / "a").string() + " -j 1"), 0);
+  ASSERT_EQ(Shell(binary + common + (dir / "b").string() + " -j 3"), 0);
+  EXPECT_EQ(ReadText(dir / "a" / "results.json"), ReadText(dir / "b" / "results.json"));
+  EXPECT_EQ(Shell(binary + " run " + scenario + " -q -b havok -o " + (dir / "c").string()), 2);
+  EXPECT_EQ(Shell(binary + " run /nonexistent.json -q -o " + (dir / "c").string()), 2);
+  EXPECT_EQ(Shell(binary + " run --jobs -3"), 2);
+  EXPECT_EQ(Shell(binary + " frobnicate"), 2);
+  const fs::path chart = dir / "chart.js";
+  std::ofstream(chart) << "window.Chart = function() {};\n";
+  EXPECT_EQ(
+      Shell(binary + " report " + (dir / "a" / "results.json").string() + " --chart-js " + chart.string()),
+      0);
+  EXPECT_TRUE(fs::exists(dir / "a" / "report.html"));
+}
+#endif
+
+}  // namespace
+}  // namespace talus::harness
