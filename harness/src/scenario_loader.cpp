@@ -377,6 +377,7 @@ Result<Scenario> MapScenario(const json& doc, std::string_view file) {
         truth.tolerance.absolute = entry["tolerance"].value("absolute", 0.0);
         truth.tolerance.relative = entry["tolerance"].value("relative", 0.0);
       }
+      truth.gate = entry.value("gate", true);
       scenario.truths.push_back(truth);
     }
   }

@@ -297,6 +297,21 @@ TEST(ScenarioSet, SpinTruthsMustMatchTheirBox) {
       << message;
 }
 
+TEST(ScenarioSet, GateDefaultsToOnAndMustBeABoolean) {
+  json doc = SlideDoc();
+  auto runs = ParseScenarioText(doc.dump(), "t.json");
+  ASSERT_TRUE(runs);
+  EXPECT_TRUE(runs.Value()[0].scenario.truths[0].gate);
+  doc["truths"][0]["gate"] = false;
+  runs = ParseScenarioText(doc.dump(), "t.json");
+  ASSERT_TRUE(runs);
+  EXPECT_FALSE(runs.Value()[0].scenario.truths[0].gate);
+  doc["truths"][0]["gate"] = "no";
+  const std::string message = Refusal(doc);
+  EXPECT_NE(message.find("/truths/0/gate: must be of type boolean, not string"), std::string::npos)
+      << message;
+}
+
 TEST(ScenarioSet, BadPerTargetSweepsAreRefused) {
   json doc = SlideDoc();
   doc["sweeps"] = {{{"name", "mu"},

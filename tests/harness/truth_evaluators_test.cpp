@@ -217,6 +217,27 @@ TEST(TruthEvaluators, FlipPeriodFromTheBodyFrameSpinMatchesTheTruth) {
   EXPECT_FALSE(frozen[0].pass);
 }
 
+TEST(TruthEvaluators, TruthsOutsideTheGateAreJudgedButNotChecked) {
+  const harness::Run run = LoadRun("tumbling/box_torque_free.json");
+  Truth truth = run.scenario.truths[0];
+  EXPECT_FALSE(truth.gate);  // the file says "gate": false
+  Trajectory trajectory;
+  trajectory.timeStep = run.timeStep;
+  BodyState state;
+  state.angularVelocity = Vec3(1, 0, 0);  // far from the truth's spin: fails
+  state.worldInertia = Mat3::Identity();
+  trajectory.samples.push_back(MakeSample(run, 0, {state}));
+  state.angularVelocity = Vec3(0, 1, 0);
+  trajectory.samples.push_back(MakeSample(run, 1, {state}));
+  for (const bool gate : {false, true}) {
+    truth.gate = gate;
+    for (const MetricResult& metric : EvaluateTruth(run, truth, trajectory)) {
+      EXPECT_EQ(metric.checked, gate) << metric.name;
+      EXPECT_FALSE(metric.pass) << metric.name;
+    }
+  }
+}
+
 TEST(TruthEvaluators, SlidingStopMeasuresStopTimeAndLateralDeviation) {
   const harness::Run run = LoadRun("sliding/box_slide_directions.json", 1);  // 30 degrees
   const Truth& truth = run.scenario.truths[0];

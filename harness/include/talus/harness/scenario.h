@@ -168,6 +168,10 @@ struct Truth {
   TruthKind kind;
   int body = -1;  ///< index into Scenario::bodies, -1 when the truth is about the whole world
   Tolerance tolerance;
+  /// Whether the truth's metrics count in the CI check (MetricResult::checked).
+  /// False for a known shortfall of the engine under test: still measured,
+  /// judged and reported, but not failing the gate. Default true.
+  bool gate = true;
 };
 
 /// One scenario, fully resolved (sweeps already applied).
@@ -183,8 +187,9 @@ struct Scenario {
 
 /// One resolved value of a sweep parameter.
 struct SweepValue {
-  std::string name;   ///< the sweep's name, e.g. "mu"
-  std::string value;  ///< the sweep's label for it, else its compact JSON (first entry for perTarget), e.g. "0.3"
+  std::string name;  ///< the sweep's name, e.g. "mu"
+  std::string
+      value;  ///< the sweep's label for it, else its compact JSON (first entry for perTarget), e.g. "0.3"
 };
 
 /// One run: a scenario with its sweep values applied, plus the stepping the
