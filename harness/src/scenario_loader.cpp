@@ -273,24 +273,27 @@ Result<TruthKind> MapHullRest(const TruthContext& c) {
   return TruthKind(truth);
 }
 
-// Torque-free truths are written in the body's principal frame: for a box
-// body that is its own frame, so the moments must be in the box's
-// proportions and omega must be the file's world angular velocity seen
-// from the body.
+// Torque-free truths are written in the body's principal frame, so they
+// need a box body, whose own frame is principal: the moments must be in the
+// box's proportions and omega must be the file's world angular velocity
+// seen from the body.
 Result<TruthKind> MapSpin(const TruthContext& c, bool flip) {
   const Vec3 inertia = ReadVec3(c.entry["inertia"]);
   const Vec3 omega = ReadVec3(c.entry["omega"]);
   const BodySpec& body = c.bodies[c.body];
-  if (const auto* box = std::get_if<BoxShape>(&body.shape)) {
-    const Vec3 e = box->halfExtents.cwiseProduct(box->halfExtents);
-    const Vec3 shape(e.y() + e.z(), e.x() + e.z(), e.x() + e.y());
-    const Vec3 scaled = shape * (inertia.sum() / shape.sum());
-    if ((scaled - inertia).norm() > kSpinConsistencyTolerance * inertia.norm()) {
-      std::ostringstream problem;
-      problem << "is not in the proportions of the box's principal moments (" << shape.x() << " : "
-              << shape.y() << " : " << shape.z() << ")";
-      return FieldError(c.file, c.pointer + "/inertia", problem.str());
-    }
+  const auto* box = std::get_if<BoxShape>(&body.shape);
+  if (box == nullptr || body.motion != Motion::Dynamic) {
+    return FieldError(c.file, c.pointer + "/body",
+                      "a spin truth needs a dynamic box body (its frame is principal)");
+  }
+  const Vec3 e = box->halfExtents.cwiseProduct(box->halfExtents);
+  const Vec3 shape(e.y() + e.z(), e.x() + e.z(), e.x() + e.y());
+  const Vec3 scaled = shape * (inertia.sum() / shape.sum());
+  if ((scaled - inertia).norm() > kSpinConsistencyTolerance * inertia.norm()) {
+    std::ostringstream problem;
+    problem << "is not in the proportions of the box's principal moments (" << shape.x() << " : " << shape.y()
+            << " : " << shape.z() << ")";
+    return FieldError(c.file, c.pointer + "/inertia", problem.str());
   }
   const Vec3 bodyOmega = body.orientation.conjugate() * body.angularVelocity;
   if ((bodyOmega - omega).norm() > kSpinConsistencyTolerance * (1.0 + omega.norm())) {

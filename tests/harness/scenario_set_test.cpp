@@ -170,7 +170,7 @@ TEST(ScenarioSet, SpinTruthsDescribeTheirBox) {
   ASSERT_TRUE(interval);
   // The run must hold at least three flips for two measured intervals.
   EXPECT_GT(runs[0].steps * runs[0].timeStep, 3.0 * interval.Value());
-  const auto& spin =
+  const TorqueFreeTruth spin =
       std::get<TorqueFreeTruth>(Load("tumbling/box_torque_free.json")[0].scenario.truths[0].kind);
   EXPECT_EQ(spin.omega, Vec3(0.5, 0.5, 3.0));
 }
@@ -285,6 +285,9 @@ TEST(ScenarioSet, SpinTruthsMustMatchTheirBox) {
   truth["omega"] = {0.01, 3, 0.02};
   ExpectRefused(truth, "/truths/0/omega: differs from the body's angularVelocity");
   truth["omega"] = {0.01, 3, 0.01};
+  truth["body"] = "hull";
+  ExpectRefused(truth, "/truths/0/body: a spin truth needs a dynamic box body");
+  truth["body"] = "box";
   truth["kind"] = "flip_period";
   json doc = SlideDoc();
   doc["truths"][0] = truth;
