@@ -3,6 +3,8 @@
 #   make test      install deps, build, run every test (plain + ASan/UBSan)
 #   make build     configure and build the release tree in build/
 #   make format    reformat the sources with clang-format
+#   make report    run the default scenarios through Talus, Bullet and ODE
+#                  and write the comparison report to reports/latest/
 #
 # JOBS sets build and test parallelism (default: all cores).
 
@@ -13,8 +15,10 @@ CMAKE ?= cmake
 GENERATOR ?= Ninja
 CTEST_FLAGS ?= --output-on-failure --no-tests=error -j $(JOBS)
 SOURCES = $(shell git ls-files '*.cpp' '*.h' 2>/dev/null)
+REPORT_DIR ?= reports/latest
+TESTBED = $(BUILD_DIR)/apps/testbed/talus-testbed
 
-.PHONY: deps configure build test test-release test-asan format format-check clean
+.PHONY: deps configure build test test-release test-asan format format-check clean report
 
 deps:
 	@scripts/install-deps.sh
@@ -37,6 +41,13 @@ test-asan: deps
 	cd $(ASAN_DIR) && ctest $(CTEST_FLAGS) -LE slow
 
 test: format-check test-release test-asan
+
+# Every engine (talus and its variants, bullet, ode-step, ode-quickstep) on
+# the default suite; the report is written even when a run failed, and the
+# target then fails.
+report: build
+	@status=0; $(TESTBED) run scenarios --jobs $(JOBS) --out $(REPORT_DIR) >/dev/null || status=$$?; \
+	  $(TESTBED) report $(REPORT_DIR)/results.json && exit $$status
 
 format:
 	clang-format -i $(SOURCES)

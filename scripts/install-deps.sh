@@ -18,6 +18,23 @@ packages=(
   clang-format                      # style check
 )
 
+# The report inlines Chart.js, pinned by harness/report/package-lock.json;
+# `npm ci` installs exactly that into harness/report/node_modules, quietly,
+# and only when it is missing or older than the lock. Only the HTML report
+# needs it, so a failure is a warning.
+install_chart_library() {
+  local dir
+  dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/harness/report"
+  local stamp="$dir/node_modules/.package-lock.json"
+  if [ -f "$stamp" ] && [ ! "$dir/package-lock.json" -nt "$stamp" ]; then return 0; fi
+  if ! (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null 2>&1); then
+    # Only the HTML report needs it (tests inline a stand-in), so a failure
+    # warns instead of stopping the build; `talus-testbed report` says the same.
+    echo "install-deps: warning: 'npm ci' in harness/report failed; the HTML report needs it." >&2
+    echo "install-deps: check the network and rerun scripts/install-deps.sh." >&2
+  fi
+}
+
 if [ "${TALUS_SKIP_DEPS:-0}" = 1 ]; then exit 0; fi
 
 missing=()
@@ -26,7 +43,16 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+# Node and npm fetch the report's charting library. Checked by command, not
+# by package: a Node from another source (which bundles npm) conflicts with
+# Debian's npm package, and serves as well.
+if ! command -v npm >/dev/null 2>&1; then
+  missing+=(nodejs npm)
+fi
+if [ ${#missing[@]} -eq 0 ]; then
+  install_chart_library
+  exit 0
+fi
 
 if ! command -v apt-get >/dev/null 2>&1; then
   echo "install-deps: this is not a Debian-like system (no apt-get)." >&2
@@ -53,3 +79,4 @@ if ! "${sudo[@]}" apt-get update -qq >/dev/null \
   echo "install-deps: check the network and the apt sources, then rerun scripts/install-deps.sh." >&2
   exit 1
 fi
+install_chart_library

@@ -14,6 +14,13 @@ int main(int argc, char** argv) {
   runCommand->add_option("scenarios", run.scenarios, "scenario files or folders (default: scenarios/)");
   runCommand->add_option("-b,--backend", run.backends, "backends to run (repeat or comma-separate)")
       ->delimiter(',');
+  runCommand
+      ->add_option("--time-step", run.timeSteps, "run each scenario at these time steps (s, comma-separated)")
+      ->delimiter(',');
+  runCommand
+      ->add_option("--iterations", run.iterations,
+                   "run each scenario with these solver iterations (0 = default)")
+      ->delimiter(',');
   runCommand->add_option("-o,--out", run.out, "output folder for results.json")->capture_default_str();
   runCommand->add_option("-j,--jobs", run.jobs, "threads (0 = every core)")->check(CLI::NonNegativeNumber);
   runCommand->add_flag("--deterministic", run.deterministic, "zero wall times so reruns are byte-identical");

@@ -49,8 +49,14 @@ std::vector<fs::path> ScenarioPaths(const std::vector<std::string>& given) {
 // Loads and runs; prints the error and returns nothing on bad input.
 std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
                                       const std::vector<std::string>& backends, int jobs, bool deterministic,
-                                      bool quiet) {
-  auto runs = harness::LoadScenarios(ScenarioPaths(scenarios));
+                                      bool quiet, const std::vector<double>& timeSteps = {},
+                                      const std::vector<int>& iterations = {}) {
+  auto loaded = harness::LoadScenarios(ScenarioPaths(scenarios));
+  if (!loaded) {
+    std::cerr << "talus-testbed: " << loaded.GetError().message << "\n";
+    return std::nullopt;
+  }
+  auto runs = harness::ExpandStepping(loaded.Value(), timeSteps, iterations);
   if (!runs) {
     std::cerr << "talus-testbed: " << runs.GetError().message << "\n";
     return std::nullopt;
@@ -91,7 +97,8 @@ std::vector<std::string> DefaultBackends() {
 
 int RunCommand(const RunOptions& options) {
   const std::vector<std::string> backends = options.backends.empty() ? DefaultBackends() : options.backends;
-  auto file = LoadAndRun(options.scenarios, backends, options.jobs, options.deterministic, options.quiet);
+  auto file = LoadAndRun(options.scenarios, backends, options.jobs, options.deterministic, options.quiet,
+                         options.timeSteps, options.iterations);
   if (!file) return kExitBadInput;
   std::error_code error;
   fs::create_directories(options.out, error);

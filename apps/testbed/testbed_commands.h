@@ -21,6 +21,8 @@ std::vector<std::string> DefaultBackends();
 struct RunOptions {
   std::vector<std::string> scenarios;  ///< files or folders; empty = the default folder
   std::vector<std::string> backends;   ///< empty = DefaultBackends()
+  std::vector<double> timeSteps;       ///< seconds; each run again per value (empty = the file's)
+  std::vector<int> iterations;         ///< each run again per value, 0 = engine default (empty = the file's)
   std::string out = "reports/latest";  ///< folder for results.json
   int jobs = 0;                        ///< 0 = every core
   bool deterministic = false;          ///< zero wall times

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cassert>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <mutex>
@@ -99,6 +100,47 @@ Result<std::vector<Run>> LoadScenarios(const std::vector<fs::path>& paths) {
     for (Run& run : loaded.Value()) runs.push_back(std::move(run));
   }
   return runs;
+}
+
+Result<std::vector<Run>> ExpandStepping(const std::vector<Run>& runs, const std::vector<double>& timeSteps,
+                                        const std::vector<int>& iterations) {
+  for (double h : timeSteps) {
+    if (!(h > 0.0 && h <= 1.0)) return Error{Concat({"time step ", FormatNumber(h), " s is not in (0, 1]"})};
+  }
+  for (int n : iterations) {
+    if (n < 0) return Error{Concat({"iterations ", std::to_string(n), " is negative (0 = engine default)"})};
+  }
+  if (timeSteps.empty() && iterations.empty()) return runs;
+  std::vector<Run> expanded;
+  for (const Run& run : runs) {
+    const std::vector<double> hs = timeSteps.empty() ? std::vector<double>{run.timeStep} : timeSteps;
+    const std::vector<int> ns = iterations.empty() ? std::vector<int>{run.iterations} : iterations;
+    const double duration = run.steps * run.timeStep;
+    for (double h : hs) {
+      for (int n : ns) {
+        Run copy = run;
+        std::string suffix;
+        if (!timeSteps.empty()) {
+          copy.timeStep = h;
+          copy.steps = std::max(1, static_cast<int>(std::lround(duration / h)));
+          copy.sweepValues.push_back({"h", FormatNumber(h, 17)});
+          suffix = Concat({"h=", FormatNumber(h, 17)});
+        }
+        if (!iterations.empty()) {
+          copy.iterations = n;
+          copy.sweepValues.push_back({"iterations", std::to_string(n)});
+          suffix.append(suffix.empty() ? "" : ",").append("iterations=").append(std::to_string(n));
+        }
+        if (!copy.id.empty() && copy.id.back() == ']') {
+          copy.id.insert(copy.id.size() - 1, Concat({",", suffix}));
+        } else {
+          copy.id.append("[").append(suffix).append("]");
+        }
+        expanded.push_back(std::move(copy));
+      }
+    }
+  }
+  return expanded;
 }
 
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,

@@ -92,6 +92,26 @@ TEST(UniformGrid, WorldWithoutDynamicBodiesBinsNothing) {
   EXPECT_EQ(stats.occupiedCells, 0);
 }
 
+TEST(UniformGrid, WorldTooWideForCellKeysFallsBackToTheTree) {
+  // 1 mm bodies (2 mm cells) spread over 2e8 m: 10^11 cells per axis, more
+  // than 63 key bits; the step must still be exact.
+  std::vector<BroadPhaseProxy> proxies;
+  for (int i = 0; i < 40; ++i) {
+    const double x = (i % 2 == 0 ? -1e8 : 1e8) + 0.0015 * (i / 4);
+    const double z = (i % 4 < 2 ? -1e8 : 1e8);
+    proxies.push_back(Ball({x, 0, z}, 1e-3));
+  }
+  BroadPhase phase(BroadPhaseKind::UniformGrid);
+  phase.SetTinyWorldProxies(0);
+  ASSERT_TRUE(phase.Update(proxies));
+  std::vector<BroadPhasePair> pairs;
+  BroadPhaseStats stats;
+  phase.FindPairs(pairs, stats);
+  EXPECT_EQ(stats.kindUsed, BroadPhaseKind::AabbTree);
+  EXPECT_EQ(pairs.size(), 4u * 9u);
+  EXPECT_EQ(pairs, OraclePairs(proxies));
+}
+
 TEST(BroadPhase, TouchingSpheresArePairedAndSeparatedOnesAreNot) {
   // Centres 1 m apart, radii 0.5 each: exactly touching (all exact in binary).
   for (const BroadPhaseKind kind :

@@ -265,15 +265,16 @@ TEST(ContactSolver, CarryImpulsesMatchesPointsByFeatureIdInAnyOrder) {
   ContactManifold before{};
   before.normal = Vec3::UnitY();
   before.pointCount = 3;
-  for (int i = 0; i < 3; ++i)
-    before.points[static_cast<std::size_t>(i)] = {Vec3::Zero(), 0.0, 10u + static_cast<std::uint32_t>(i)};
+  for (int i = 0; i < 3; ++i) {
+    before.points[static_cast<std::size_t>(i)] = {Vec3(i, 0, 0), 0.0, 10u + static_cast<std::uint32_t>(i)};
+  }
   Contact old = MakeContact(1, 0, before, 0.5, 0.0);
   old.normalImpulse = {1.0, 2.0, 3.0};
   old.frictionImpulse[2] = Vec3(0.5, 0, 0);
   ContactManifold after = before;
-  after.points[0].featureId = 12;  // was point 2
-  after.points[1].featureId = 99;  // new feature
-  after.points[2].featureId = 10;  // was point 0
+  after.points[0] = {Vec3(2, 0, 0), 0.0, 12};  // was point 2
+  after.points[1] = {Vec3(7, 0, 0), 0.0, 99};  // a new feature far from every old point
+  after.points[2] = {Vec3(0, 0, 0), 0.0, 10};  // was point 0
   Contact fresh = MakeContact(1, 0, after, 0.5, 0.0);
   Contact otherPair = MakeContact(2, 0, before, 0.5, 0.0);
   std::vector<Contact> previous = {old};
@@ -284,6 +285,29 @@ TEST(ContactSolver, CarryImpulsesMatchesPointsByFeatureIdInAnyOrder) {
   EXPECT_EQ(current[0].normalImpulse[1], 0.0);
   EXPECT_EQ(current[0].normalImpulse[2], 1.0);
   EXPECT_EQ(current[1].normalImpulse[0], 0.0);
+}
+
+TEST(ContactSolver, CarryImpulsesFallsBackToTheNearestOldPointWhenIdsChange) {
+  ContactManifold before{};
+  before.normal = Vec3::UnitY();
+  before.pointCount = 2;
+  before.points[0] = {Vec3(0, 0, 0), 0.0, 1};
+  before.points[1] = {Vec3(1, 0, 0), 0.0, 2};
+  Contact old = MakeContact(1, 0, before, 0.5, 0.0);
+  old.normalImpulse = {4.0, 5.0};
+  ContactManifold after = before;
+  // Renamed (the narrow phase swapped reference faces) but within the 1 cm
+  // match distance of the old points; the third is new and too far.
+  after.pointCount = 3;
+  after.points[0] = {Vec3(1.004, 0, 0), 0.0, 77};
+  after.points[1] = {Vec3(0.003, 0, 0), 0.0, 78};
+  after.points[2] = {Vec3(0.5, 0, 0), 0.0, 79};
+  std::vector<Contact> previous = {old};
+  std::vector<Contact> current = {MakeContact(1, 0, after, 0.5, 0.0)};
+  EXPECT_EQ(CarryImpulses(previous, current), 2);
+  EXPECT_EQ(current[0].normalImpulse[0], 5.0);
+  EXPECT_EQ(current[0].normalImpulse[1], 4.0);
+  EXPECT_EQ(current[0].normalImpulse[2], 0.0);
 }
 
 TEST(ContactSolver, CombineRulesMatchTheirDefinitions) {

@@ -169,6 +169,44 @@ TEST(Runner, LongRunsAreThinnedButKeepTheirLastStep) {
   }
 }
 
+TEST(Runner, SteppingExpansionKeepsTheDurationAndNamesTheRuns) {
+  const std::vector<ScenarioRun> runs = Load("sliding/box_slide.json");  // 6 runs of 2.5 s
+  auto expanded = ExpandStepping(runs, {0.01, 0.004}, {0, 5});
+  ASSERT_TRUE(expanded) << expanded.GetError().message;
+  ASSERT_EQ(expanded.Value().size(), 24u);
+  const ScenarioRun& run = expanded.Value()[3];  // first sweep point, h = 0.004, 5 iterations
+  EXPECT_EQ(run.id, "box_slide[mu=0.3,v0=1,h=0.0040000000000000001,iterations=5]");
+  EXPECT_EQ(run.steps, 625);
+  EXPECT_EQ(run.iterations, 5);
+  EXPECT_EQ(expanded.Value()[0].iterations, 0);
+  EXPECT_EQ(expanded.Value()[0].steps, 250);
+  // Empty lists keep the runs as they are; bad values are refused.
+  auto same = ExpandStepping(runs, {}, {});
+  ASSERT_TRUE(same);
+  EXPECT_EQ(same.Value()[0].id, runs[0].id);
+  EXPECT_FALSE(ExpandStepping(runs, {0.0}, {}));
+  EXPECT_FALSE(ExpandStepping(runs, {}, {-1}));
+}
+
+TEST(Runner, ConvergedReferenceMeasuresTheIntegratorLagOfFreeFall) {
+  // Symplectic Euler lags the parabola by g h t / 2, so a run at h against
+  // one at h / 4 differs by g t (h - h / 4) / 2 at time t, largest at the end.
+  auto runs = Load("tumbling/box_free_fall.json");
+  ASSERT_EQ(runs.size(), 1u);
+  ScenarioRun run = runs[0];
+  run.scenario.truths = {Truth{ConvergedReferenceTruth{4}, 0, Tolerance{0.1, 0.0}}};
+  for (const char* backend : {"talus", "ode-step"}) {
+    const RunResult result = RunOne(Registry(), run, backend, RunnerOptions{});
+    ASSERT_TRUE(result.error.empty()) << result.error;
+    const MetricResult* position = Find(result, "converged_reference.position");
+    ASSERT_NE(position, nullptr);
+    const double t = run.steps * run.timeStep;
+    EXPECT_NEAR(position->measured, 9.81 * t * (run.timeStep - run.timeStep / 4) / 2, 1e-9) << backend;
+    EXPECT_TRUE(position->pass);
+    ASSERT_NE(Find(result, "converged_reference.orientation"), nullptr);
+  }
+}
+
 TEST(TalusBackend, HullBodyOriginIsTheScenarioFrameAndCentreOfMassItsCentroid) {
   // A unit cube written with its corner at the body origin: the centroid
   // is at (0.5, 0.5, 0.5) in the body frame, rotated 90 degrees about z.

@@ -17,12 +17,15 @@ namespace talus {
 /// force path whatever is selected (see BroadPhaseStats::kindUsed and
 /// docs/collision-broad-phase.md for the crossover).
 enum class BroadPhaseKind {
-  /// Hashed uniform grid whose cell size follows the dynamic bodies'
-  /// bounding-sphere diameters; very large bodies go to an "oversized" list
-  /// tested against every body. Best for many bodies of similar size.
+  /// Sparse uniform grid (memory follows the occupied cells) whose cell size
+  /// follows the dynamic bodies' bounding-sphere diameters; very large bodies
+  /// go to an "oversized" list tested against every body. The fastest kind
+  /// in every moving scene measured, mixed sizes and sparse worlds included.
   UniformGrid,
   /// Dynamic AABB tree (bounding volume hierarchy of slightly enlarged
-  /// boxes, refitted incrementally). Best for mixed sizes and sparse worlds.
+  /// boxes, updated incrementally). Prunes 3-12x more candidates than the
+  /// grid and is fastest for static sparse worlds up to ~1k bodies, but
+  /// slower than the grid elsewhere; handles any world extent.
   AabbTree,
   /// Every pair tested: O(n^2). The reference the others are checked against.
   BruteForce,
@@ -32,7 +35,9 @@ enum class BroadPhaseKind {
 /// Invariants: spherePairs <= candidatePairs; oversizedTests <= candidatePairs.
 struct BroadPhaseStats {
   /// The structure that actually ran this step: the selected kind, or
-  /// BruteForce when the world was small enough for the tiny-world path.
+  /// BruteForce when the world was small enough for the tiny-world path, or
+  /// AabbTree when the grid was selected but the occupied cells spanned more
+  /// than its 63-bit cell keys can address (about 2^21 cells per axis).
   BroadPhaseKind kindUsed = BroadPhaseKind::BruteForce;
   /// Bodies taking part this step (active proxies), and how many are static.
   int proxyCount = 0;
@@ -52,7 +57,7 @@ struct BroadPhaseStats {
   std::int64_t oversizedTests = 0;
   /// Grid only: cell edge length used this step (metres), 0 otherwise.
   double cellSize = 0.0;
-  /// Grid only: cells holding at least one body this step.
+  /// Grid only: cells holding at least one binned body this step.
   int occupiedCells = 0;
   /// Tree only: leaves reinserted because their body left its enlarged box
   /// (or was added, removed or changed between static and dynamic).

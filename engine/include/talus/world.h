@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "talus/body.h"
+#include "talus/contact_query.h"
 #include "talus/result.h"
 #include "talus/step_statistics.h"
 #include "talus/world_settings.h"
@@ -81,14 +82,14 @@ class World {
   /// Changes angular momentum at once by `impulse` (N m s, world space).
   Status ApplyAngularImpulse(BodyId id, const Vec3& impulse);
 
+  /// Every contact point the last Step found and solved (empty before the
+  /// first step; a destroyed body's contacts are gone), in pair order (body
+  /// A's index, then B's) and manifold order. A copy made on request.
+  [[nodiscard]] std::vector<ContactPointInfo> GetContactPoints() const;
+
   /// Advances the world by `dt` seconds (finite, > 0). Refused, with nothing
   /// changed, for a bad dt. Returns what the step did and skipped.
   Result<StepStatistics> Step(double dt);
-
-  /// Internal state for the engine's own stages (engine/src/world); not part
-  /// of the stable API.
-  [[nodiscard]] WorldData& Data() { return *m_data; }
-  [[nodiscard]] const WorldData& Data() const { return *m_data; }
 
  private:
   explicit World(std::unique_ptr<WorldData> data);

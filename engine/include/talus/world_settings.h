@@ -73,8 +73,13 @@ struct WorldSettings {
   /// Broad phase structure. Default UniformGrid (the write-up's).
   BroadPhaseKind broadPhase = BroadPhaseKind::UniformGrid;
   /// SAT mode, manifold generator, SAT cache and speculative margin (see
-  /// talus/narrow_phase.h); the margin must be finite and >= 0.
-  NarrowPhaseSettings narrowPhase = {};
+  /// talus/narrow_phase.h); the margin must be finite and >= 0. The World's
+  /// default margin is 0.02 m, not the narrow phase's 0: points that lift by
+  /// round-off stay in the manifold (as speculative rows, dynamics/
+  /// contact_solver.h), so resting contacts keep their warm start; measured,
+  /// a resting box settles to 3e-7 m of its true height with it and to
+  /// 2 mm (inside the slop) without.
+  NarrowPhaseSettings narrowPhase = {.speculativeMargin = 0.02};
   /// Let islands at rest fall asleep and cost nothing. Default on.
   bool sleeping = true;
   /// A body is at rest while its linear speed stays below this, m/s, >= 0.

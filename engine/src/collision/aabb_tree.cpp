@@ -1,6 +1,6 @@
 // Dynamic AABB tree broad phase. Insertion by the surface area heuristic and
-// AVL-style rotations follow the published design of Box2D's b2DynamicTree
-// (Catto) and Bullet's btDbvt (Presson); the code here is our own.
+// rotations by surface area follow the published design of Box2D's dynamic
+// tree (Catto) and Bullet's btDbvt (Presson); the code here is our own.
 #include "collision/aabb_tree.h"
 
 #include <algorithm>
@@ -185,66 +185,71 @@ void AabbTree::RemoveLeaf(int leaf) {
   RefitUpwards(grandParent);
 }
 
+void AabbTree::Refit(int node) {
+  Node& n = m_nodes[static_cast<std::size_t>(node)];
+  const Node& c1 = m_nodes[static_cast<std::size_t>(n.child1)];
+  const Node& c2 = m_nodes[static_cast<std::size_t>(n.child2)];
+  n.height = 1 + std::max(c1.height, c2.height);
+  n.box = Union(c1.box, c2.box);
+  n.hasDynamic = c1.hasDynamic || c2.hasDynamic;
+}
+
 void AabbTree::RefitUpwards(int node) {
   while (node != kNull) {
-    node = Balance(node);
-    Node& n = m_nodes[static_cast<std::size_t>(node)];
-    const Node& c1 = m_nodes[static_cast<std::size_t>(n.child1)];
-    const Node& c2 = m_nodes[static_cast<std::size_t>(n.child2)];
-    n.height = 1 + std::max(c1.height, c2.height);
-    n.box = Union(c1.box, c2.box);
-    n.hasDynamic = c1.hasDynamic || c2.hasDynamic;
-    node = n.parent;
+    Refit(node);
+    Rotate(node);
+    node = m_nodes[static_cast<std::size_t>(node)].parent;
   }
 }
 
-// Rotation: if one child of A is more than one level taller, that child C
-// (children F, G) takes A's place; A keeps its other child and adopts the
-// shorter of F and G, C keeps the taller. Heights and boxes of A and C are
-// recomputed; everything above is refitted by the caller.
-int AabbTree::Balance(int a) {
-  Node& na = m_nodes[static_cast<std::size_t>(a)];
-  if (na.IsLeaf() || na.height < 2) return a;
-  const int h1 = m_nodes[static_cast<std::size_t>(na.child1)].height;
-  const int h2 = m_nodes[static_cast<std::size_t>(na.child2)].height;
-  if (h1 - h2 >= -1 && h1 - h2 <= 1) return a;
-
-  const bool rotateSecond = h2 > h1;
-  const int c = rotateSecond ? na.child2 : na.child1;
-  const int other = rotateSecond ? na.child1 : na.child2;
-  Node& nc = m_nodes[static_cast<std::size_t>(c)];
-  const int f = nc.child1;
-  const int g = nc.child2;
-
-  // C replaces A under A's parent.
-  nc.parent = na.parent;
-  if (nc.parent != kNull) {
-    Node& p = m_nodes[static_cast<std::size_t>(nc.parent)];
-    (p.child1 == a ? p.child1 : p.child2) = c;
-  } else {
-    m_root = c;
+// Tree rotation by surface area (the idea of Box2D v3's b2RotateNodes, after
+// Kopta et al., "Fast, effective BVH updates for animated scenes"): at node A
+// with children B and C, swapping B with a child of C (or C with a child of
+// B) keeps A's box but can shrink the box of the child that changes. Take
+// the swap that shrinks it most, if any. Rotations by height alone (as in
+// Box2D v2.4) keep the tree shallow but let boxes grow loose: measured 254
+// node visits per body at 100k bodies, against 53 without any rotation.
+void AabbTree::Rotate(int a) {
+  const Node& na = m_nodes[static_cast<std::size_t>(a)];
+  if (na.IsLeaf()) return;
+  const int b = na.child1;
+  const int c = na.child2;
+  double bestGain = 0.0;
+  int moveUp = kNull;    // grandchild that moves up to be A's child
+  int moveDown = kNull;  // A's child that moves down in its place
+  // Swapping `down` (a child of A) with grandchild `up` under `parent`,
+  // whose other child is `stay`: parent's box becomes down + stay.
+  auto consider = [&](int down, int parent, int up, int stay) {
+    const double before = SurfaceArea(m_nodes[static_cast<std::size_t>(parent)].box);
+    const double after = SurfaceArea(
+        Union(m_nodes[static_cast<std::size_t>(down)].box, m_nodes[static_cast<std::size_t>(stay)].box));
+    if (before - after > bestGain) {
+      bestGain = before - after;
+      moveUp = up;
+      moveDown = down;
+    }
+  };
+  const Node& nb = m_nodes[static_cast<std::size_t>(b)];
+  const Node& nc = m_nodes[static_cast<std::size_t>(c)];
+  if (!nc.IsLeaf()) {
+    consider(b, c, nc.child1, nc.child2);
+    consider(b, c, nc.child2, nc.child1);
   }
-  na.parent = c;
+  if (!nb.IsLeaf()) {
+    consider(c, b, nb.child1, nb.child2);
+    consider(c, b, nb.child2, nb.child1);
+  }
+  if (moveUp == kNull) return;
 
-  const bool fTaller =
-      m_nodes[static_cast<std::size_t>(f)].height > m_nodes[static_cast<std::size_t>(g)].height;
-  const int keep = fTaller ? f : g;
-  const int move = fTaller ? g : f;
-  nc.child1 = a;
-  nc.child2 = keep;
-  (rotateSecond ? na.child2 : na.child1) = move;
-  m_nodes[static_cast<std::size_t>(move)].parent = a;
-
-  const Node& no = m_nodes[static_cast<std::size_t>(other)];
-  const Node& nm = m_nodes[static_cast<std::size_t>(move)];
-  const Node& nk = m_nodes[static_cast<std::size_t>(keep)];
-  na.box = Union(no.box, nm.box);
-  na.height = 1 + std::max(no.height, nm.height);
-  nc.box = Union(na.box, nk.box);
-  nc.height = 1 + std::max(na.height, nk.height);
-  na.hasDynamic = no.hasDynamic || nm.hasDynamic;
-  nc.hasDynamic = na.hasDynamic || nk.hasDynamic;
-  return c;
+  const int parent = m_nodes[static_cast<std::size_t>(moveUp)].parent;
+  Node& np = m_nodes[static_cast<std::size_t>(parent)];
+  (np.child1 == moveUp ? np.child1 : np.child2) = moveDown;
+  m_nodes[static_cast<std::size_t>(moveDown)].parent = parent;
+  Node& nodeA = m_nodes[static_cast<std::size_t>(a)];
+  (nodeA.child1 == moveDown ? nodeA.child1 : nodeA.child2) = moveUp;
+  m_nodes[static_cast<std::size_t>(moveUp)].parent = a;
+  Refit(parent);
+  Refit(a);
 }
 
 // Simultaneous descent of the tree against itself: a node paired with

@@ -48,7 +48,11 @@ void BroadPhase::FindPairs(std::vector<BroadPhasePair>& out, BroadPhaseStats& st
   stats.kindUsed = kind;
   switch (kind) {
     case BroadPhaseKind::UniformGrid:
-      m_grid.FindPairs(m_proxies, out, stats);
+      if (m_grid.FindPairs(m_proxies, out, stats)) break;
+      // The occupied cells span too far for the grid's keys: the tree
+      // handles any extent.
+      stats.kindUsed = BroadPhaseKind::AabbTree;
+      m_tree.FindPairs(m_proxies, out, stats);
       break;
     case BroadPhaseKind::AabbTree:
       m_tree.FindPairs(m_proxies, out, stats);

@@ -52,9 +52,14 @@ Contact MakeContact(int bodyA, int bodyB, const ContactManifold& manifold, doubl
   return contact;
 }
 
-// Both lists are sorted by pair key, so one forward walk pairs them up; per
-// pair the manifolds have at most eight points each, so the feature match is
-// a direct 8 x 8 search with no allocation.
+// Both lists are sorted by pair key, so one forward walk pairs them up. Per
+// pair the manifolds have at most eight points each, so the matches are a
+// direct 8 x 8 search with no allocation: first by feature id, then, for the
+// points still unmatched, the nearest unmatched old point within
+// kWarmStartMatchDistance (the narrow phase may name the same physical point
+// differently from one step to the next, e.g. when two parallel faces swap
+// the roles of reference and incident face; Bullet matches by proximity
+// alone for the same reason).
 int CarryImpulses(std::span<const Contact> previous, std::span<Contact> current) {
   int matched = 0;
   std::size_t old = 0;
@@ -64,16 +69,41 @@ int CarryImpulses(std::span<const Contact> previous, std::span<Contact> current)
     if (old == previous.size()) break;
     const Contact& before = previous[old];
     if (before.PairKey() != key) continue;
-    for (int i = 0; i < fresh.manifold.pointCount; ++i) {
-      const std::uint32_t feature = fresh.manifold.points[static_cast<std::size_t>(i)].featureId;
-      for (int j = 0; j < before.manifold.pointCount; ++j) {
-        if (before.manifold.points[static_cast<std::size_t>(j)].featureId != feature) continue;
-        fresh.normalImpulse[static_cast<std::size_t>(i)] = before.normalImpulse[static_cast<std::size_t>(j)];
-        fresh.frictionImpulse[static_cast<std::size_t>(i)] =
-            before.frictionImpulse[static_cast<std::size_t>(j)];
-        ++matched;
-        break;
+    std::array<bool, kMaxManifoldPoints> used{};
+    std::array<bool, kMaxManifoldPoints> found{};
+    const auto take = [&](std::size_t i, std::size_t j) {
+      fresh.normalImpulse[i] = before.normalImpulse[j];
+      fresh.frictionImpulse[i] = before.frictionImpulse[j];
+      used[j] = true;
+      found[i] = true;
+      ++matched;
+    };
+    const std::size_t freshCount = static_cast<std::size_t>(fresh.manifold.pointCount);
+    const std::size_t beforeCount = static_cast<std::size_t>(before.manifold.pointCount);
+    for (std::size_t i = 0; i < freshCount; ++i) {
+      const std::uint32_t feature = fresh.manifold.points[i].featureId;
+      for (std::size_t j = 0; j < beforeCount; ++j) {
+        if (!used[j] && before.manifold.points[j].featureId == feature) {
+          take(i, j);
+          break;
+        }
       }
+    }
+    constexpr double kMatch2 = kWarmStartMatchDistance * kWarmStartMatchDistance;
+    for (std::size_t i = 0; i < freshCount; ++i) {
+      if (found[i]) continue;
+      std::size_t best = beforeCount;
+      double bestDistance2 = kMatch2;
+      for (std::size_t j = 0; j < beforeCount; ++j) {
+        if (used[j]) continue;
+        const double d2 =
+            (fresh.manifold.points[i].position - before.manifold.points[j].position).squaredNorm();
+        if (d2 < bestDistance2) {
+          bestDistance2 = d2;
+          best = j;
+        }
+      }
+      if (best < beforeCount) take(i, best);
     }
   }
   return matched;

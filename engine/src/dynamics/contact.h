@@ -52,10 +52,18 @@ double MixRestitution(double a, double b, RestitutionCombine rule);
 Contact MakeContact(int bodyA, int bodyB, const ContactManifold& manifold, double friction,
                     double restitution);
 
+/// How far (metres) a contact point may be from an old point of the same
+/// pair with a different feature id and still inherit its impulses. 1 cm:
+/// well above the distance a resting or slowly sliding contact moves in one
+/// step, well below the spacing of the points of a manifold.
+inline constexpr double kWarmStartMatchDistance = 0.01;
+
 /// Warm starting: for every contact in `current` whose pair is also in
-/// `previous`, copies the accumulated impulses of each point whose feature
-/// id matches an old point's. Both lists must be sorted by PairKey. Returns
-/// the number of points that found their old impulses.
+/// `previous`, copies the accumulated impulses of each point from the old
+/// point with the same feature id or, failing that, the nearest unclaimed
+/// old point within kWarmStartMatchDistance. Each old point is used once.
+/// Both lists must be sorted by PairKey. Returns the number of points that
+/// found their old impulses.
 int CarryImpulses(std::span<const Contact> previous, std::span<Contact> current);
 
 }  // namespace talus

@@ -19,6 +19,8 @@
 //   closing speed -n.dv0 exceeds the restitution threshold and the point
 //   touches by the end of the step (depth - h n.dv0 > 0).
 //
+// Order. Each iteration sweeps all normal rows, then all friction rows.
+//
 // Friction. Cdot = t_k . dv = 0 for two tangents t1, t2 orthogonal to n
 //   (t1 along the sliding velocity when there is one, so the sliding
 //   direction gets the whole Coulomb bound).
@@ -92,7 +94,8 @@ class ContactSolver {
     Mat3 invInertiaB = Mat3::Zero();
   };
 
-  void SolvePair(std::span<BodySim> bodies, const PairRows& pair);
+  void SolveNormals(std::span<BodySim> bodies, const PairRows& pair);
+  void SolveFriction(std::span<BodySim> bodies, const PairRows& pair);
 
   std::vector<PairRows> m_pairs;
   std::vector<PointRow> m_points;

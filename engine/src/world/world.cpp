@@ -325,8 +325,13 @@ Status World::ApplyForce(BodyId id, const Vec3& force, const Vec3& worldPoint) {
   const std::size_t i = static_cast<std::size_t>(id.index);
   BodySim& sim = m_data->sims[i];
   if (sim.type != BodyType::Dynamic) return std::monostate{};
-  sim.force += force;
-  sim.torque += (worldPoint - sim.center).cross(force);
+  // Huge finite inputs can still overflow the sums: refuse those too.
+  const Vec3 newForce = sim.force + force;
+  const Vec3 newTorque = sim.torque + (worldPoint - sim.center).cross(force);
+  if (!Finite(newForce) || !Finite(newTorque))
+    return Refuse("ApplyForce: accumulated force or torque overflows");
+  sim.force = newForce;
+  sim.torque = newTorque;
   WakeBody(*m_data, i);
   return std::monostate{};
 }
@@ -340,7 +345,9 @@ Status World::ApplyTorque(BodyId id, const Vec3& torque) {
   if (std::string e = CheckCall(*this, id, "ApplyTorque torque", torque); !e.empty()) return Refuse(e);
   const std::size_t i = static_cast<std::size_t>(id.index);
   if (m_data->sims[i].type != BodyType::Dynamic) return std::monostate{};
-  m_data->sims[i].torque += torque;
+  const Vec3 newTorque = m_data->sims[i].torque + torque;
+  if (!Finite(newTorque)) return Refuse("ApplyTorque: accumulated torque overflows");
+  m_data->sims[i].torque = newTorque;
   WakeBody(*m_data, i);
   return std::monostate{};
 }
@@ -353,8 +360,11 @@ Status World::ApplyLinearImpulse(BodyId id, const Vec3& impulse, const Vec3& wor
   const std::size_t i = static_cast<std::size_t>(id.index);
   BodySim& sim = m_data->sims[i];
   if (sim.type != BodyType::Dynamic) return std::monostate{};
-  sim.linearVelocity += sim.invMass * impulse;
-  sim.angularVelocity += sim.invInertiaWorld * (worldPoint - sim.center).cross(impulse);
+  const Vec3 v = sim.linearVelocity + sim.invMass * impulse;
+  const Vec3 w = sim.angularVelocity + sim.invInertiaWorld * (worldPoint - sim.center).cross(impulse);
+  if (!Finite(v) || !Finite(w)) return Refuse("ApplyLinearImpulse: resulting velocity overflows");
+  sim.linearVelocity = v;
+  sim.angularVelocity = w;
   WakeBody(*m_data, i);
   return std::monostate{};
 }
@@ -365,7 +375,9 @@ Status World::ApplyAngularImpulse(BodyId id, const Vec3& impulse) {
   const std::size_t i = static_cast<std::size_t>(id.index);
   BodySim& sim = m_data->sims[i];
   if (sim.type != BodyType::Dynamic) return std::monostate{};
-  sim.angularVelocity += sim.invInertiaWorld * impulse;
+  const Vec3 w = sim.angularVelocity + sim.invInertiaWorld * impulse;
+  if (!Finite(w)) return Refuse("ApplyAngularImpulse: resulting angular velocity overflows");
+  sim.angularVelocity = w;
   WakeBody(*m_data, i);
   return std::monostate{};
 }

@@ -17,6 +17,23 @@ Transform BodyTransform(const BodySim& sim) {
   return {.position = sim.Origin(), .rotation = sim.orientation};
 }
 
+// Whether the body can disturb what it touches this step: an awake dynamic
+// body, or a kinematic body that is moving.
+bool Disturbs(const BodySim& sim) {
+  if (sim.type == BodyType::Kinematic) return sim.linearVelocity.any() || sim.angularVelocity.any();
+  return sim.IsSolverDynamic();
+}
+
+// A sleeping dynamic body touched by something that disturbs it wakes now,
+// so this step's solve already pushes it (its island follows at the sleep
+// pass).
+void WakeIfTouched(WorldData& d, std::size_t sleeper, const BodySim& other) {
+  BodySim& sim = d.sims[sleeper];
+  if (sim.type != BodyType::Dynamic || sim.awake || !Disturbs(other)) return;
+  sim.awake = true;
+  d.sleep[sleeper].restTime = 0.0;
+}
+
 }  // namespace
 
 Result<int> UpdateBroadPhase(WorldData& d) {
@@ -71,8 +88,9 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
     const BodySim& simA = d.sims[a];
     const BodySim& simB = d.sims[b];
 
-    // Nothing on either side can move: keep what was there.
-    if (!simA.IsSolverDynamic() && !simB.IsSolverDynamic()) {
+    // Nothing on either side can move or disturb the other: keep what was
+    // there.
+    if (!Disturbs(simA) && !Disturbs(simB)) {
       ++stats.sleepingPairsSkipped;
       if (hadContact) d.contacts.push_back(d.previousContacts[oldContact]);
       if (hadCache) d.satCaches.push_back(d.previousSatCaches[oldCache]);
@@ -84,6 +102,8 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
     // A is the lower slot: the manifold's normal points from b towards a.
     if (Collide(*d.shapes[a], BodyTransform(simA), *d.shapes[b], BodyTransform(simB), d.settings.narrowPhase,
                 &cache.cache, &stats.narrowPhase, &manifold)) {
+      WakeIfTouched(d, a, simB);
+      WakeIfTouched(d, b, simA);
       const BodyRecord& ra = d.records[a];
       const BodyRecord& rb = d.records[b];
       d.contacts.push_back(MakeContact(

@@ -6,9 +6,8 @@
 // from BuildHull on the file's points); the centre of mass and the inertia
 // about it come from ComputeBodyMass, given as localCenterOfMass and
 // localInertia (body axes), so the engine and the peers agree on mass data
-// to the last bit. Contacts are read from the world's contact list (World::
-// Data(), engine-internal but stable within this repository): one point per
-// manifold point, with the manifold's normal (B to A) and the point's depth.
+// to the last bit. Contacts come from World::GetContactPoints (public API):
+// one point per manifold point, normal from B to A, depth > 0 when overlapping.
 #include "talus/reference/talus_backend.h"
 
 #include <cassert>
@@ -23,7 +22,6 @@
 #include "talus/reference/body_mass.h"
 #include "talus/shape.h"
 #include "talus/world.h"
-#include "world/world_data.h"
 
 namespace talus::reference {
 namespace {
@@ -218,13 +216,10 @@ harness::BodyState TalusBackend::GetBodyState(int index) const {
 
 std::vector<harness::ContactPoint> TalusBackend::GetContacts() const {
   std::vector<harness::ContactPoint> contacts;
-  for (const Contact& contact : m_world.Data().contacts) {
-    const int bodyA = m_scenarioIndexOfSlot.at(static_cast<std::size_t>(contact.bodyA));
-    const int bodyB = m_scenarioIndexOfSlot.at(static_cast<std::size_t>(contact.bodyB));
-    for (int p = 0; p < contact.manifold.pointCount; ++p) {
-      const auto& point = contact.manifold.points[static_cast<std::size_t>(p)];
-      contacts.push_back({bodyA, bodyB, point.position, contact.manifold.normal, point.depth});
-    }
+  for (const ContactPointInfo& point : m_world.GetContactPoints()) {
+    const int bodyA = m_scenarioIndexOfSlot.at(static_cast<std::size_t>(point.bodyA.index));
+    const int bodyB = m_scenarioIndexOfSlot.at(static_cast<std::size_t>(point.bodyB.index));
+    contacts.push_back({bodyA, bodyB, point.position, point.normal, point.depth});
   }
   return contacts;
 }

@@ -73,6 +73,15 @@ struct RunnerOptions {
 /// Every run of every file, in that order; the first bad file is an Error.
 Result<std::vector<Run>> LoadScenarios(const std::vector<std::filesystem::path>& paths);
 
+/// The runs again for every (time step, iterations) pair: each run's
+/// duration is kept (steps = round(duration / h), at least 1), its
+/// iterations replaced (0 = engine default), and "h" and "iterations" are
+/// added to its sweep values and id ("box_slide[mu=0.3,h=0.01,iterations=5]").
+/// An empty list keeps the runs' own values for that axis. Time steps must
+/// be in (0, 1] and iterations >= 0, else an Error naming the value.
+Result<std::vector<Run>> ExpandStepping(const std::vector<Run>& runs, const std::vector<double>& timeSteps,
+                                        const std::vector<int>& iterations);
+
 /// Runs every run with every backend of `options`. An unknown backend name
 /// or bad options is an Error before anything runs; a backend refusing one
 /// run is recorded in that RunResult's `error`.

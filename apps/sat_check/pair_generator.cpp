@@ -1,0 +1,182 @@
+// Pair generation (see the header). One std::mt19937_64 drives everything,
+// drawn in a fixed order, so the pairs depend only on the seed.
+#include "pair_generator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "talus/hull_builder.h"
+
+namespace talus::validation {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Draw {
+  std::mt19937_64 rng;
+  double Uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+  int Integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
+  Vec3 UnitVector() {
+    std::normal_distribution<double> normal(0.0, 1.0);
+    for (;;) {
+      const Vec3 v(normal(rng), normal(rng), normal(rng));
+      if (v.norm() > 1e-3) return v.normalized();
+    }
+  }
+  Quat Rotation() {
+    std::normal_distribution<double> normal(0.0, 1.0);
+    for (;;) {
+      Quat q(normal(rng), normal(rng), normal(rng), normal(rng));
+      if (q.norm() > 1e-3) return q.normalized();
+    }
+  }
+};
+
+// Half extents: the largest log-uniform in [0.1, 2] m, the others that
+// times an aspect ratio in [0.2, 1].
+Vec3 Extents(Draw& draw) {
+  const double size = 0.1 * std::pow(20.0, draw.Uniform(0.0, 1.0));
+  return Vec3(size, size * draw.Uniform(0.2, 1.0), size * draw.Uniform(0.2, 1.0));
+}
+
+Shape MakeShape(Draw& draw) {
+  const Vec3 extents = Extents(draw);
+  if (draw.Integer(0, 1) == 0) return Shape::CreateBox(extents).Value();
+  static constexpr int kCounts[] = {8, 16, 32, 64};
+  const int count = kCounts[draw.Integer(0, 3)];
+  for (;;) {
+    std::vector<Vec3> points;
+    for (int i = 0; i < count; ++i) points.push_back(draw.UnitVector().cwiseProduct(extents));
+    Result<Hull> hull = BuildHull(points);
+    if (hull) return Shape::CreateHull(std::make_shared<const Hull>(std::move(hull).Value())).Value();
+  }
+}
+
+double LargestExtent(const Shape& shape) {
+  const Aabb& box = shape.LocalAabb();
+  return 0.5 * (box.max - box.min).maxCoeff();
+}
+
+// max over vertices of direction . (rotation * v), the support distance of
+// the shape about its own origin.
+double SupportDistance(const Shape& shape, const Quat& rotation, const Vec3& direction) {
+  return direction.dot(rotation * shape.Support(rotation.conjugate() * direction));
+}
+
+}  // namespace
+
+const char* ToString(Placement placement) {
+  switch (placement) {
+    case Placement::Separated:
+      return "separated";
+    case Placement::Touching:
+      return "touching";
+    case Placement::Shallow:
+      return "shallow";
+    case Placement::Deep:
+      return "deep";
+  }
+  return "unknown";
+}
+
+const char* ToString(Alignment alignment) {
+  switch (alignment) {
+    case Alignment::Random:
+      return "random";
+    case Alignment::Face:
+      return "face";
+    case Alignment::Edge:
+      return "edge";
+  }
+  return "unknown";
+}
+
+std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
+  Draw draw{std::mt19937_64(seed)};
+  std::vector<ShapePair> pairs;
+  pairs.reserve(static_cast<std::size_t>(std::max(count, 0)));
+  for (int i = 0; i < count; ++i) {
+    Shape a = MakeShape(draw);
+    Shape b = MakeShape(draw);
+    const auto placement = static_cast<Placement>(draw.Integer(0, 3));
+    const auto alignment = static_cast<Alignment>(draw.Integer(0, 2));
+    const double size = std::min(LargestExtent(a), LargestExtent(b));
+
+    const Quat rotationA = draw.Rotation();
+    Quat rotationB = draw.Rotation();
+    // n: the direction from B towards A along which the pair is placed.
+    Vec3 n = draw.UnitVector();
+    if (alignment == Alignment::Face) {
+      rotationB = rotationA;
+      // A face normal of A (for a box one of its axes), reversed: B sits
+      // against that face.
+      const auto faces = a.GetHull().Faces();
+      const Vec3 localNormal =
+          faces[static_cast<std::size_t>(draw.Integer(0, static_cast<int>(faces.size()) - 1))].plane.normal;
+      n = -(rotationA * localNormal);
+    } else if (alignment == Alignment::Edge) {
+      const int first = draw.Integer(0, 2);
+      const int second = (first + 1 + draw.Integer(0, 1)) % 3;
+      rotationB = rotationA * Quat(Eigen::AngleAxisd(0.25 * kPi, Vec3::Unit(first))) *
+                  Quat(Eigen::AngleAxisd(0.25 * kPi, Vec3::Unit(second)));
+    }
+
+    double gap = 0.0;
+    switch (placement) {
+      case Placement::Separated:
+        gap = size * draw.Uniform(0.01, 0.5);
+        break;
+      case Placement::Touching:
+        gap = size * draw.Uniform(-1e-9, 1e-9);
+        break;
+      case Placement::Shallow:
+        gap = -size * draw.Uniform(1e-3, 0.05);
+        break;
+      case Placement::Deep:
+        gap = -size * draw.Uniform(0.1, 0.8);
+        break;
+    }
+    const Vec3 positionA(draw.Uniform(-1.0, 1.0), draw.Uniform(-1.0, 1.0), draw.Uniform(-1.0, 1.0));
+    // A small offset across n, so face-aligned pairs are not centred.
+    Vec3 lateral = draw.UnitVector();
+    lateral -= n * n.dot(lateral);
+    lateral *= draw.Uniform(0.0, 0.3) * size;
+    // Along n, B's extent (towards A) and A's (towards B) meet at gap 0.
+    const double reach = SupportDistance(b, rotationB, n) + SupportDistance(a, rotationA, -n);
+    const double along = reach + gap;
+    const Vec3 positionB = positionA - n * along + lateral;
+
+    pairs.push_back({.index = i,
+                     .a = std::move(a),
+                     .b = std::move(b),
+                     .xfA = {.position = positionA, .rotation = rotationA},
+                     .xfB = {.position = positionB, .rotation = rotationB},
+                     .placement = placement,
+                     .alignment = alignment,
+                     .targetGap = gap,
+                     .size = size});
+  }
+  return pairs;
+}
+
+std::string Describe(const ShapePair& pair) {
+  std::ostringstream out;
+  out.precision(3);
+  const auto shape = [&out](const Shape& s) {
+    if (s.Type() == ShapeType::Box) {
+      const Vec3& h = s.HalfExtents();
+      out << "box " << h.x() << "x" << h.y() << "x" << h.z();
+    } else {
+      out << "hull " << s.GetHull().VertexCount() << "v";
+    }
+  };
+  shape(pair.a);
+  out << " vs ";
+  shape(pair.b);
+  out << ", " << ToString(pair.alignment) << ", " << ToString(pair.placement);
+  return out.str();
+}
+
+}  // namespace talus::validation

@@ -1,0 +1,176 @@
+// The report as JSON (every number, for the comparison report and for
+// plots) and as a Markdown section (the headline tables). The JSON layout
+// is documented in docs/collision-validation.md.
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <sstream>
+
+#include "sat_check.h"
+
+namespace talus::validation {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json ToJson(const Distribution& d) {
+  return {{"count", d.count}, {"p50", d.p50}, {"p90", d.p90}, {"p99", d.p99}, {"max", d.max}};
+}
+
+Json ToJson(const std::vector<CaseRecord>& cases) {
+  Json out = Json::array();
+  for (const CaseRecord& c : cases) {
+    out.push_back({{"pair", c.pair},
+                   {"configuration", c.configuration},
+                   {"trueSignedDistance", c.trueSignedDistance},
+                   {"methodIntersecting", c.methodIntersecting},
+                   {"value", c.value}});
+  }
+  return out;
+}
+
+std::string Format(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+std::string Percent(int part, int whole) { return whole == 0 ? "-" : Format("%.2f%%", 100.0 * part / whole); }
+
+}  // namespace
+
+std::string ReportToJson(const SatCheckReport& report) {
+  const SatCheckSettings& s = report.settings;
+  Json json;
+  json["settings"] = {{"pairs", s.pairs},
+                      {"seed", s.seed},
+                      {"touchingBand", s.touchingBand},
+                      {"pointTolerance", s.pointTolerance},
+                      {"timingRepeats", s.timingRepeats},
+                      {"checkWithQhull", s.checkWithQhull}};
+  json["pairCount"] = report.pairCount;
+  Json placements;
+  for (std::size_t i = 0; i < report.placementCounts.size(); ++i)
+    placements[ToString(static_cast<Placement>(i))] = report.placementCounts[i];
+  json["placements"] = placements;
+  Json alignments;
+  for (std::size_t i = 0; i < report.alignmentCounts.size(); ++i)
+    alignments[ToString(static_cast<Alignment>(i))] = report.alignmentCounts[i];
+  json["alignments"] = alignments;
+  const TruthReport& t = report.truth;
+  json["truth"] = {{"intersecting", t.intersecting},
+                   {"touchingBand", t.touchingBand},
+                   {"tiedMinimum", t.tiedMinimum},
+                   {"builderRetries", t.builderRetries},
+                   {"qhullChecks", t.qhullChecks},
+                   {"qhullMismatches", t.qhullMismatches},
+                   {"qhullMessages", t.qhullMessages},
+                   {"boxClosedFormChecks", t.boxClosedFormChecks},
+                   {"boxClosedFormMaxError", t.boxClosedFormMaxError},
+                   {"boxClosedFormVerdictMismatches", t.boxClosedFormVerdictMismatches}};
+  Json methods = Json::array();
+  for (const MethodReport& m : report.methods) {
+    methods.push_back({{"name", m.name},
+                       {"family", m.family},
+                       {"givesDepth", m.givesDepth},
+                       {"givesPoints", m.givesPoints},
+                       {"verdict",
+                        {{"agree", m.agree},
+                         {"disagree", m.disagree},
+                         {"touchingBandDisagree", m.touchingBandDisagree},
+                         {"oracleFailures", m.oracleFailures}}},
+                       {"disagreements", ToJson(m.disagreements)},
+                       {"depthError", ToJson(m.depthError)},
+                       {"normalAngle", ToJson(m.normalAngle)},
+                       {"normalExcess", ToJson(m.normalExcess)},
+                       {"pointOutside", ToJson(m.pointOutside)},
+                       {"pointsOverTolerance", m.pointsOverTolerance},
+                       {"timeNs", ToJson(m.timeNs)},
+                       {"timeVsAccuracy",
+                        {{"medianTimeNs", m.timeNs.p50},
+                         {"medianDepthError", m.depthError.p50},
+                         {"medianNormalAngle", m.normalAngle.p50},
+                         {"medianNormalExcess", m.normalExcess.p50}}},
+                       {"worstDepth", ToJson(m.worstDepth)},
+                       {"worstNormal", ToJson(m.worstNormal)}});
+  }
+  json["methods"] = methods;
+  Json pairs = Json::array();
+  for (const PairRecord& p : report.pairs) {
+    Json results = Json::array();
+    for (const PairMethodResult& r : p.results) {
+      results.push_back({r.ok, r.intersecting, r.depth, r.normalExcess, r.points, r.timeNs});
+    }
+    pairs.push_back({{"index", p.index},
+                     {"configuration", p.configuration},
+                     {"trueSignedDistance", p.trueSignedDistance},
+                     {"trueNormal", {p.trueNormal.x(), p.trueNormal.y(), p.trueNormal.z()}},
+                     {"results", results}});
+  }
+  json["pairResultFields"] = {"ok", "intersecting", "depth", "normalExcess", "points", "timeNs"};
+  json["pairs"] = pairs;
+  return json.dump(2) + "\n";
+}
+
+std::string ReportToMarkdown(const SatCheckReport& report) {
+  std::ostringstream out;
+  const TruthReport& t = report.truth;
+  out << "## SAT validation\n\n";
+  out << report.pairCount << " pairs (seed " << report.settings.seed << "): ";
+  for (std::size_t i = 0; i < report.placementCounts.size(); ++i)
+    out << (i ? ", " : "") << report.placementCounts[i] << " " << ToString(static_cast<Placement>(i));
+  out << "; ";
+  for (std::size_t i = 0; i < report.alignmentCounts.size(); ++i)
+    out << (i ? ", " : "") << report.alignmentCounts[i] << " " << ToString(static_cast<Alignment>(i));
+  out << ". Truth: " << t.intersecting << " intersecting, " << t.touchingBand << " within the touching band ("
+      << Format("%.0e", report.settings.touchingBand) << " m), " << t.tiedMinimum
+      << " with a tied minimum direction, " << t.builderRetries
+      << " needing a coarser BuildHull tolerance; Minkowski hull vs qhull: " << t.qhullMismatches
+      << " mismatches in " << t.qhullChecks
+      << "; face-aligned boxes vs closed form: " << t.boxClosedFormChecks << " checked, max error "
+      << Format("%.2e", t.boxClosedFormMaxError) << " m, " << t.boxClosedFormVerdictMismatches
+      << " verdict mismatches.\n\n";
+
+  out << "### Verdicts\n\n| method | agree | disagree | in band | oracle failures |\n|---|---|---|---|---|\n";
+  for (const MethodReport& m : report.methods) {
+    out << "| " << m.name << " | " << Percent(m.agree, report.pairCount) << " | " << m.disagree << " | "
+        << m.touchingBandDisagree << " | " << m.oracleFailures << " |\n";
+  }
+  out << "\n### Depth, normal and contact points against the truth\n\n"
+         "Depth error |d - d*| (m), normal angle (rad, pairs with a unique minimum), normal excess (overlap "
+         "along "
+         "the reported normal minus the true depth, m), contact points outside either shape (m); p50 / p99 / "
+         "max. Points > tol: points farther out of either shape than the true depth + "
+      << Format("%.0e", report.settings.pointTolerance)
+      << " m.\n\n"
+         "| method | depth error | normal angle | normal excess | point outside | points > tol | time p50 "
+         "(ns) |\n"
+         "|---|---|---|---|---|---|---|\n";
+  const auto triple = [](const Distribution& d) {
+    if (d.count == 0) return std::string("-");
+    return Format("%.1e", d.p50) + " / " + Format("%.1e", d.p99) + " / " + Format("%.1e", d.max);
+  };
+  for (const MethodReport& m : report.methods) {
+    out << "| " << m.name << " | " << triple(m.depthError) << " | " << triple(m.normalAngle) << " | "
+        << triple(m.normalExcess) << " | " << triple(m.pointOutside) << " | " << m.pointsOverTolerance
+        << " | " << (m.timeNs.count ? Format("%.0f", m.timeNs.p50) : std::string("-")) << " |\n";
+  }
+  out << "\n### Worst cases\n\n";
+  for (const MethodReport& m : report.methods) {
+    if (m.disagreements.empty() && (m.worstDepth.empty() || m.worstDepth.front().value < 1e-6)) continue;
+    out << "- **" << m.name << "**";
+    if (!m.disagreements.empty()) {
+      out << ": wrong verdicts (the truth is right) on " << m.disagreements.size() << " pairs, e.g. pair "
+          << m.disagreements.front().pair << " (" << m.disagreements.front().configuration
+          << ", true distance " << Format("%.3e", m.disagreements.front().trueSignedDistance) << " m)";
+    }
+    if (!m.worstDepth.empty() && m.worstDepth.front().value >= 1e-6) {
+      out << "; worst depth error " << Format("%.3e", m.worstDepth.front().value) << " m on pair "
+          << m.worstDepth.front().pair << " (" << m.worstDepth.front().configuration << ")";
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace talus::validation

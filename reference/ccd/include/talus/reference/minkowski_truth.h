@@ -1,0 +1,72 @@
+// The exact penetration truth for two convex polyhedra, independent of any
+// SAT, GJK or EPA: the Minkowski difference D = A - B is the convex hull of
+// every difference a_i - b_j of world vertices, and A and B intersect iff
+// the origin lies in D. When it does, the least translation that separates
+// them is the distance from the origin to D's boundary, which for a convex
+// polytope containing the origin is the smallest face-plane offset; the
+// face that attains it gives the direction. When it does not, the distance
+// between A and B is the distance from the origin to D (closest point over
+// D's triangulated faces).
+//
+// Conventions (docs/ARCHITECTURE.md): the normal points from B towards A,
+// i.e. it is the way A must move. Moving A by t*n moves D by t*n, so the
+// origin leaves D through its face of outward normal m when n = -m.
+//
+// D is built with talus::BuildHull and checked against qhull
+// (CheckMinkowskiWithQhull): same volume, and every difference point inside
+// the built hull, so a builder bug cannot pass silently into the truth.
+#pragma once
+
+#include <vector>
+
+#include "talus/hull.h"
+#include "talus/math.h"
+#include "talus/result.h"
+#include "talus/transform.h"
+
+namespace talus::reference {
+
+/// The exact answer for one pair.
+struct PenetrationTruth {
+  bool intersecting = false;  ///< origin inside D (boundary counts as inside)
+  /// Signed distance between A and B in metres: the gap (> 0) when
+  /// separated, minus the penetration depth (<= 0) when intersecting.
+  double signedDistance = 0.0;
+  /// Unit, from B towards A: the minimum-depth direction when intersecting,
+  /// the direction from B's closest point to A's when separated.
+  Vec3 normal = Vec3::UnitY();
+  int differenceVertices = 0;  ///< vertices of D
+  int differenceFaces = 0;     ///< faces of D (coplanar triangles merged)
+  /// Faces of D whose plane offset is within 1e-9 m of the minimum: more
+  /// than one means the minimum direction is not unique (a tie).
+  int minimumFaces = 0;
+  /// Times BuildHull had to be retried with a coarser tolerance (10x, 100x,
+  /// 1000x its default) to bake D; 0 almost always.
+  int builderRetries = 0;
+
+  /// Penetration depth in metres (0 when separated).
+  [[nodiscard]] double Depth() const { return intersecting ? -signedDistance : 0.0; }
+};
+
+/// All |A| x |B| world-space vertex differences a_i - b_j (i major).
+std::vector<Vec3> MinkowskiDifferencePoints(const Hull& a, const Transform& xfA, const Hull& b,
+                                            const Transform& xfB);
+
+/// The truth for A at xfA and B at xfB. Fails only if the difference spans
+/// no volume (cannot happen for two valid hulls) or a coordinate is not
+/// finite, with BuildHull's message.
+Result<PenetrationTruth> ComputePenetrationTruth(const Hull& a, const Transform& xfA, const Hull& b,
+                                                 const Transform& xfB);
+
+/// Cross-checks the hull BuildHull makes of the difference points against
+/// qhull's: volumes equal to `relativeTolerance` (default 1e-9) and every
+/// difference point inside the built hull to its tolerance. Returns an
+/// error describing the first mismatch.
+Result<bool> CheckMinkowskiWithQhull(const Hull& a, const Transform& xfA, const Hull& b, const Transform& xfB,
+                                     double relativeTolerance = 1e-9);
+
+/// The point of triangle (a, b, c) closest to `point` (Ericson, Real-Time
+/// Collision Detection, 5.1.5: Voronoi regions of vertices, edges, face).
+Vec3 ClosestPointOnTriangle(const Vec3& point, const Vec3& a, const Vec3& b, const Vec3& c);
+
+}  // namespace talus::reference
