@@ -9,12 +9,16 @@
 // are written in, so a sweep cannot smuggle in a value the schema forbids.
 #include "talus/harness/scenario_loader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include "scenario_schema_text.h"
+#include "talus/harness/hull_rest.h"
 #include "talus/harness/json_schema.h"
+#include "talus/harness/torque_free.h"
 
 namespace talus::harness {
 namespace {
@@ -24,6 +28,15 @@ using nlohmann::json;
 // How far a quaternion's norm may be from 1 and still count as unit: values
 // written with ~7 significant digits (e.g. 0.7071068) must pass.
 constexpr double kUnitQuaternionTolerance = 1e-6;
+// |cos| of the angle between a sliding direction and gravity above which the
+// direction is not horizontal: 1e-6 accepts directions written to ~7 digits.
+constexpr double kPerpendicularTolerance = 1e-6;
+// Angle (rad, 1 degree) within which a hull_rest faceNormal names a face:
+// normals written to 3 or 4 digits pass, neighbouring faces are far apart.
+constexpr double kFaceNormalTolerance = 0.017453292519943295;
+// Relative agreement asked of a spin truth's inertia and omega with the
+// body they describe: values written to ~7 significant digits pass.
+constexpr double kSpinConsistencyTolerance = 1e-6;
 
 // Line and column (both from 1) of byte `offset` in `text`.
 std::string LineAndColumn(std::string_view text, size_t offset) {
@@ -167,22 +180,163 @@ Quantity MapQuantity(const std::string& name) {
   return Quantity::Position;
 }
 
-TruthKind MapTruthKind(const json& truth) {
+// Looks up a body by name; -1 when there is none.
+int FindBody(const std::vector<BodySpec>& bodies, const std::string& name) {
+  for (size_t b = 0; b < bodies.size(); ++b) {
+    if (bodies[b].name == name) return static_cast<int>(b);
+  }
+  return -1;
+}
+
+// Where one truth entry sits, for messages and look-ups.
+struct TruthContext {
+  const json& entry;
+  const std::vector<BodySpec>& bodies;
+  const WorldSettings& world;
+  std::string_view file;
+  std::string pointer;  // "/truths/<i>"
+  int body = -1;        // index of the named body, -1 when none is named
+};
+
+Result<TruthKind> MapSlidingStop(const TruthContext& c) {
+  SlidingStopTruth truth{c.entry["v0"].get<double>(), c.entry["mu"].get<double>(),
+                         c.entry["g"].get<double>()};
+  if (c.entry.contains("direction")) {
+    const Vec3 direction = ReadVec3(c.entry["direction"]);
+    const double length = direction.norm();
+    if (length < 1e-12) return FieldError(c.file, c.pointer + "/direction", "direction has zero length");
+    truth.direction = direction / length;
+    if (std::abs(truth.direction.dot(c.world.gravity.normalized())) > kPerpendicularTolerance) {
+      return FieldError(c.file, c.pointer + "/direction", "must be perpendicular to gravity");
+    }
+  }
+  truth.maxLateral = c.entry.value("maxLateral", truth.maxLateral);
+  return TruthKind(truth);
+}
+
+Result<TruthKind> MapStackRest(const TruthContext& c) {
+  StackRestTruth truth;
+  truth.floor = c.entry["floor"].get<double>();
+  truth.layerHeight = c.entry["layerHeight"].get<double>();
+  truth.maxDrift = c.entry.value("maxDrift", truth.maxDrift);
+  std::vector<int> seen;
+  for (size_t l = 0; l < c.entry["layers"].size(); ++l) {
+    std::vector<int> layer;
+    for (size_t k = 0; k < c.entry["layers"][l].size(); ++k) {
+      const std::string where = c.pointer + "/layers/" + std::to_string(l) + "/" + std::to_string(k);
+      const std::string name = c.entry["layers"][l][k].get<std::string>();
+      const int body = FindBody(c.bodies, name);
+      if (body < 0) return FieldError(c.file, where, "no body named \"" + name + "\"");
+      if (std::find(seen.begin(), seen.end(), body) != seen.end()) {
+        return FieldError(c.file, where, "body \"" + name + "\" is listed twice");
+      }
+      if (c.bodies[body].motion != Motion::Dynamic) {
+        return FieldError(c.file, where, "body \"" + name + "\" is static");
+      }
+      seen.push_back(body);
+      layer.push_back(body);
+    }
+    truth.layers.push_back(std::move(layer));
+  }
+  return TruthKind(std::move(truth));
+}
+
+// The resting face must be a face of the body's hull, and a stable one: a
+// truth naming an unstable face could never be met.
+Result<TruthKind> MapHullRest(const TruthContext& c) {
+  const auto* hull = std::get_if<HullShape>(&c.bodies[c.body].shape);
+  if (hull == nullptr) return FieldError(c.file, c.pointer + "/body", "hull_rest needs a hull body");
+  const Vec3 normal = ReadVec3(c.entry["faceNormal"]);
+  if (normal.norm() < 1e-12) return FieldError(c.file, c.pointer + "/faceNormal", "normal has zero length");
+  auto analysis = AnalyseHullRest(hull->points);
+  if (!analysis) {
+    return FieldError(c.file, "/bodies/" + std::to_string(c.body) + "/shape/points",
+                      analysis.GetError().message);
+  }
+  const HullRestFace& face = analysis.Value().faces[analysis.Value().NearestFace(normal)];
+  const double angle = std::acos(std::clamp(face.normal.dot(normal.normalized()), -1.0, 1.0));
+  if (angle > kFaceNormalTolerance) {
+    std::ostringstream problem;
+    problem << "names no face of the hull (nearest face normal is " << angle * 180.0 / std::numbers::pi
+            << " degrees away)";
+    return FieldError(c.file, c.pointer + "/faceNormal", problem.str());
+  }
+  if (!face.stable) {
+    return FieldError(c.file, c.pointer + "/faceNormal",
+                      "names an unstable face (the centroid projects outside it)");
+  }
+  HullRestTruth truth;
+  truth.faceNormal = face.normal;
+  truth.floor = c.entry["floor"].get<double>();
+  truth.height = face.height;
+  truth.maxFaceAngle = c.entry.value("maxFaceAngle", truth.maxFaceAngle);
+  return TruthKind(truth);
+}
+
+// Torque-free truths are written in the body's principal frame, so they
+// need a box body, whose own frame is principal: the moments must be in the
+// box's proportions and omega must be the file's world angular velocity
+// seen from the body.
+Result<TruthKind> MapSpin(const TruthContext& c, bool flip) {
+  const Vec3 inertia = ReadVec3(c.entry["inertia"]);
+  const Vec3 omega = ReadVec3(c.entry["omega"]);
+  const BodySpec& body = c.bodies[c.body];
+  const auto* box = std::get_if<BoxShape>(&body.shape);
+  if (box == nullptr || body.motion != Motion::Dynamic) {
+    return FieldError(c.file, c.pointer + "/body",
+                      "a spin truth needs a dynamic box body (its frame is principal)");
+  }
+  const Vec3 e = box->halfExtents.cwiseProduct(box->halfExtents);
+  const Vec3 shape(e.y() + e.z(), e.x() + e.z(), e.x() + e.y());
+  const Vec3 scaled = shape * (inertia.sum() / shape.sum());
+  if ((scaled - inertia).norm() > kSpinConsistencyTolerance * inertia.norm()) {
+    std::ostringstream problem;
+    problem << "is not in the proportions of the box's principal moments (" << shape.x() << " : " << shape.y()
+            << " : " << shape.z() << ")";
+    return FieldError(c.file, c.pointer + "/inertia", problem.str());
+  }
+  const Vec3 bodyOmega = body.orientation.conjugate() * body.angularVelocity;
+  if ((bodyOmega - omega).norm() > kSpinConsistencyTolerance * (1.0 + omega.norm())) {
+    return FieldError(c.file, c.pointer + "/omega",
+                      "differs from the body's angularVelocity seen in its own frame");
+  }
+  if (!flip) return TruthKind(TorqueFreeTruth{inertia, omega});
+  auto interval = IntermediateAxisFlipInterval(inertia, omega);
+  if (!interval) return FieldError(c.file, c.pointer + "/omega", interval.GetError().message);
+  return TruthKind(FlipPeriodTruth{inertia, omega});
+}
+
+Result<TruthKind> MapTruthKind(const TruthContext& c) {
+  const json& truth = c.entry;
   const std::string kind = truth["kind"].get<std::string>();
   if (kind == "free_fall") {
-    return FreeFallTruth{truth["y0"].get<double>(), truth["v0"].get<double>(), truth["g"].get<double>()};
+    return TruthKind(
+        FreeFallTruth{truth["y0"].get<double>(), truth["v0"].get<double>(), truth["g"].get<double>()});
   }
-  if (kind == "sliding_stop") {
-    return SlidingStopTruth{truth["v0"].get<double>(), truth["mu"].get<double>(), truth["g"].get<double>()};
-  }
+  if (kind == "sliding_stop") return MapSlidingStop(c);
   if (kind == "rest_height") {
-    return RestHeightTruth{truth["height"].get<double>(),
-                           truth.value("maxJitter", RestHeightTruth{}.maxJitter)};
+    return TruthKind(RestHeightTruth{truth["height"].get<double>(),
+                                     truth.value("maxJitter", RestHeightTruth{}.maxJitter)});
   }
   if (kind == "bounce_heights") {
-    return BounceHeightsTruth{truth["h"].get<double>(), truth["e"].get<double>(), truth["count"].get<int>()};
+    return TruthKind(
+        BounceHeightsTruth{truth["h"].get<double>(), truth["e"].get<double>(), truth["count"].get<int>()});
   }
-  return ConvergedReferenceTruth{truth["timeStepDivisor"].get<int>()};
+  if (kind == "stack_rest") return MapStackRest(c);
+  if (kind == "hull_rest") return MapHullRest(c);
+  if (kind == "incline_slide") {
+    return TruthKind(
+        InclineSlideTruth{truth["angle"].get<double>(), truth["mu"].get<double>(), truth["g"].get<double>()});
+  }
+  if (kind == "incline_tip") {
+    InclineTipTruth tip{truth["angle"].get<double>(), truth["mu"].get<double>(), truth["width"].get<double>(),
+                        truth["height"].get<double>()};
+    tip.tiltThreshold = truth.value("tiltThreshold", tip.tiltThreshold);
+    return TruthKind(tip);
+  }
+  if (kind == "torque_free") return MapSpin(c, false);
+  if (kind == "flip_period") return MapSpin(c, true);
+  return TruthKind(ConvergedReferenceTruth{truth["timeStepDivisor"].get<int>()});
 }
 
 // Maps a schema-valid document to a Scenario, adding the semantic checks.
@@ -212,21 +366,21 @@ Result<Scenario> MapScenario(const json& doc, std::string_view file) {
   if (doc.contains("truths")) {
     for (size_t i = 0; i < doc["truths"].size(); ++i) {
       const json& entry = doc["truths"][i];
+      const std::string pointer = "/truths/" + std::to_string(i);
       Truth truth;
-      truth.kind = MapTruthKind(entry);
       if (entry.contains("body")) {
         const std::string name = entry["body"].get<std::string>();
-        for (size_t b = 0; b < scenario.bodies.size(); ++b) {
-          if (scenario.bodies[b].name == name) truth.body = static_cast<int>(b);
-        }
-        if (truth.body < 0) {
-          return FieldError(file, "/truths/" + std::to_string(i) + "/body", "no body named \"" + name + "\"");
-        }
+        truth.body = FindBody(scenario.bodies, name);
+        if (truth.body < 0) return FieldError(file, pointer + "/body", "no body named \"" + name + "\"");
       }
+      auto kind = MapTruthKind({entry, scenario.bodies, scenario.world, file, pointer, truth.body});
+      if (!kind) return kind.GetError();
+      truth.kind = std::move(kind).Value();
       if (entry.contains("tolerance")) {
         truth.tolerance.absolute = entry["tolerance"].value("absolute", 0.0);
         truth.tolerance.relative = entry["tolerance"].value("relative", 0.0);
       }
+      truth.gate = entry.value("gate", true);
       scenario.truths.push_back(truth);
     }
   }
@@ -237,6 +391,8 @@ struct Sweep {
   std::string name;
   std::vector<json::json_pointer> targets;
   std::vector<json> values;
+  bool perTarget = false;           // each value holds one entry per target
+  std::vector<std::string> labels;  // one per value, or empty
 };
 
 // Reads the sweeps and checks that every target names an existing field
@@ -246,7 +402,11 @@ Result<std::vector<Sweep>> ReadSweeps(const json& doc, std::string_view file) {
   if (!doc.contains("sweeps")) return sweeps;
   for (size_t i = 0; i < doc["sweeps"].size(); ++i) {
     const json& entry = doc["sweeps"][i];
-    Sweep sweep{entry["name"].get<std::string>(), {}, entry["values"].get<std::vector<json>>()};
+    Sweep sweep{entry["name"].get<std::string>(),
+                {},
+                entry["values"].get<std::vector<json>>(),
+                entry.value("perTarget", false),
+                {}};
     for (size_t t = 0; t < entry["targets"].size(); ++t) {
       const std::string where = "/sweeps/" + std::to_string(i) + "/targets/" + std::to_string(t);
       const std::string text = entry["targets"][t].get<std::string>();
@@ -258,6 +418,20 @@ Result<std::vector<Sweep>> ReadSweeps(const json& doc, std::string_view file) {
         sweep.targets.push_back(target);
       } catch (const json::exception&) {
         return FieldError(file, where, "\"" + text + "\" is not a JSON pointer");
+      }
+    }
+    if (entry.contains("labels")) {
+      sweep.labels = entry["labels"].get<std::vector<std::string>>();
+      if (sweep.labels.size() != sweep.values.size()) {
+        return FieldError(file, "/sweeps/" + std::to_string(i) + "/labels",
+                          "needs one label per value (" + std::to_string(sweep.values.size()) + ")");
+      }
+    }
+    for (size_t v = 0; sweep.perTarget && v < sweep.values.size(); ++v) {
+      if (!sweep.values[v].is_array() || sweep.values[v].size() != sweep.targets.size()) {
+        return FieldError(file, "/sweeps/" + std::to_string(i) + "/values/" + std::to_string(v),
+                          "a perTarget value must be an array of " + std::to_string(sweep.targets.size()) +
+                              " entries, one per target");
       }
     }
     sweeps.push_back(std::move(sweep));
@@ -308,9 +482,15 @@ Result<std::vector<Run>> ParseScenarioText(std::string_view text, std::string_vi
     for (size_t s = 0; s < index.size(); ++s) {
       const Sweep& sweep = sweeps.Value()[s];
       const json& value = sweep.values[index[s]];
-      for (const json::json_pointer& target : sweep.targets) instance[target] = value;
-      run.sweepValues.push_back({sweep.name, value.dump()});
-      label += (label.empty() ? "" : ",") + sweep.name + "=" + value.dump();
+      for (size_t t = 0; t < sweep.targets.size(); ++t) {
+        instance[sweep.targets[t]] = sweep.perTarget ? value[t] : value;
+      }
+      // A perTarget value is labelled by its first entry (the swept parameter).
+      const std::string shown = !sweep.labels.empty() ? sweep.labels[index[s]]
+                                : sweep.perTarget     ? value[0].dump()
+                                                      : value.dump();
+      run.sweepValues.push_back({sweep.name, shown});
+      label += (label.empty() ? "" : ",") + sweep.name + "=" + shown;
     }
     if (!label.empty()) run.id += "[" + label + "]";
     const std::string where =

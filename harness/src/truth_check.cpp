@@ -34,7 +34,7 @@ Vec3 UpAxis(const Run& run) {
 
 std::vector<MetricResult> EvaluateTruth(const Run& run, const Truth& truth, const Trajectory& trajectory) {
   assert(!trajectory.samples.empty());
-  return std::visit(
+  std::vector<MetricResult> metrics = std::visit(
       [&](const auto& kind) -> std::vector<MetricResult> {
         using Kind = std::decay_t<decltype(kind)>;
         if constexpr (std::is_same_v<Kind, FreeFallTruth>) {
@@ -45,12 +45,29 @@ std::vector<MetricResult> EvaluateTruth(const Run& run, const Truth& truth, cons
           return EvaluateRestHeight(run, truth, kind, trajectory);
         } else if constexpr (std::is_same_v<Kind, BounceHeightsTruth>) {
           return EvaluateBounceHeights(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, StackRestTruth>) {
+          return EvaluateStackRest(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, HullRestTruth>) {
+          return EvaluateHullRest(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, InclineSlideTruth>) {
+          return EvaluateInclineSlide(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, InclineTipTruth>) {
+          return EvaluateInclineTip(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, TorqueFreeTruth>) {
+          return EvaluateTorqueFree(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, FlipPeriodTruth>) {
+          return EvaluateFlipPeriod(run, truth, kind, trajectory);
         } else {
           static_assert(std::is_same_v<Kind, ConvergedReferenceTruth>, "a truth kind has no evaluator");
           return {};  // the runner compares against a finer run
         }
       },
       truth.kind);
+  // A truth outside the gate is judged and reported but never fails the check.
+  if (!truth.gate) {
+    for (MetricResult& metric : metrics) metric.checked = false;
+  }
+  return metrics;
 }
 
 int SampleStride(int steps, int maxSamples) {

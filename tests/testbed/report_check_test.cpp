@@ -30,8 +30,8 @@ const ResultsFile& SmallResults() {
   static const ResultsFile file = [] {
     BackendRegistry registry;
     reference::RegisterTalusBackends(registry);
-    auto runs = LoadScenarios(
-        {std::string(TALUS_SCENARIO_DIR) + "/stacking", std::string(TALUS_SCENARIO_DIR) + "/sliding"});
+    auto runs = LoadScenarios({std::string(TALUS_SCENARIO_DIR) + "/stacking/box_rest.json",
+                               std::string(TALUS_SCENARIO_DIR) + "/sliding/box_slide.json"});
     EXPECT_TRUE(runs);
     RunnerOptions options;
     options.backends = {"talus", "talus-writeup"};

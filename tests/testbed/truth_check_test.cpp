@@ -165,7 +165,7 @@ TEST(TruthCheck, SlidingStopMeasuresHorizontalTravelOnly) {
   trajectory.samples.back().bodies[1].centerOfMass = Vec3(0.3, 0.2, 0.4);  // 0.5 m across, 5 cm down
   const Truth truth{SlidingStopTruth{1.0, 0.1, 10.0}, 1, Tolerance{0.0, 0.01}};
   const auto metrics = EvaluateTruth(run, truth, trajectory);
-  ASSERT_EQ(metrics.size(), 1u);
+  ASSERT_EQ(metrics.size(), 3u);  // distance, stop time, lateral deviation
   EXPECT_NEAR(metrics[0].measured, 0.5, 1e-12);
   EXPECT_DOUBLE_EQ(metrics[0].truth, 0.5);  // 1 / (2 * 0.1 * 10)
   EXPECT_DOUBLE_EQ(metrics[0].truthIntegrator, SlidingStopDistanceSymplecticEuler(1.0, 0.1, 10.0, h));

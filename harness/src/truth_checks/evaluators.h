@@ -18,5 +18,17 @@ std::vector<MetricResult> EvaluateRestHeight(const Run& run, const Truth& truth,
                                              const Trajectory& trajectory);
 std::vector<MetricResult> EvaluateBounceHeights(const Run& run, const Truth& truth,
                                                 const BounceHeightsTruth& kind, const Trajectory& trajectory);
+std::vector<MetricResult> EvaluateStackRest(const Run& run, const Truth& truth, const StackRestTruth& kind,
+                                            const Trajectory& trajectory);
+std::vector<MetricResult> EvaluateHullRest(const Run& run, const Truth& truth, const HullRestTruth& kind,
+                                           const Trajectory& trajectory);
+std::vector<MetricResult> EvaluateInclineSlide(const Run& run, const Truth& truth,
+                                               const InclineSlideTruth& kind, const Trajectory& trajectory);
+std::vector<MetricResult> EvaluateInclineTip(const Run& run, const Truth& truth, const InclineTipTruth& kind,
+                                             const Trajectory& trajectory);
+std::vector<MetricResult> EvaluateTorqueFree(const Run& run, const Truth& truth, const TorqueFreeTruth& kind,
+                                             const Trajectory& trajectory);
+std::vector<MetricResult> EvaluateFlipPeriod(const Run& run, const Truth& truth, const FlipPeriodTruth& kind,
+                                             const Trajectory& trajectory);
 
 }  // namespace talus::harness

@@ -90,9 +90,12 @@ struct FreeFallTruth {
   double y0 = 0.0, v0 = 0.0, g = 9.81;
 };
 /// A body launched at v0 (m/s) on a floor with friction mu stops after
-/// v0^2 / (2 mu g) metres.
+/// v0^2 / (2 mu g) metres and v0 / (mu g) seconds, on the straight line
+/// through its start along `direction`.
 struct SlidingStopTruth {
   double v0 = 1.0, mu = 0.5, g = 9.81;
+  Vec3 direction = Vec3::UnitX();  ///< unit, world frame, perpendicular to gravity
+  double maxLateral = 0.01;        ///< metres: largest allowed distance from the launch line, >= 0
 };
 /// The centre of mass comes to rest at `height` (metres along the up axis);
 /// over the second half of the run its peak-to-peak motion stays below
@@ -107,17 +110,68 @@ struct BounceHeightsTruth {
   double h = 1.0, e = 0.5;
   int count = 1;
 };
+/// Boxes stacked in layers (bottom first) rest with their centres of mass
+/// at floor + (layer + 1/2) layerHeight and move less than maxDrift over
+/// the second half of the run. Concerns several bodies: Truth::body is -1.
+struct StackRestTruth {
+  std::vector<std::vector<int>> layers;  ///< body indices per layer, bottom layer first
+  double floor = 0.0;                    ///< metres, top of the floor along the up axis
+  double layerHeight = 1.0;              ///< metres, > 0
+  double maxDrift = 0.01;                ///< metres, >= 0
+};
+/// A hull body comes to rest on the face with outward body-frame normal
+/// `faceNormal`, a stable face (its centroid projects inside it), with its
+/// centre of mass at floor + `height`, the centroid's distance to that face's
+/// plane. The loader computes `height` from the hull (BuildHull,
+/// ComputeMassProperties) and refuses a normal that names no stable face.
+struct HullRestTruth {
+  Vec3 faceNormal = -Vec3::UnitY();  ///< unit, body frame, the face's exact normal after loading
+  double floor = 0.0;                ///< metres, top of the floor along the up axis
+  double height = 0.0;               ///< metres, computed by the loader
+  double maxFaceAngle = 0.05;        ///< radians: face normal vs down at the end, in [0, pi]
+};
+/// A block released at rest on an incline of `angle` radians slides
+/// InclineDistance(angle, mu, g, t) metres (0 when tan(angle) <= mu).
+struct InclineSlideTruth {
+  double angle = 0.0, mu = 0.5, g = 9.81;
+};
+/// A box of `width` x `height` (metres, along the slope and its normal)
+/// released on an incline stays, slides or tips as InclineBoxOutcome says;
+/// "tipped" means turned more than tiltThreshold radians from its start.
+struct InclineTipTruth {
+  double angle = 0.0, mu = 0.5, width = 1.0, height = 1.0;
+  double tiltThreshold = 0.5;  ///< radians, in (0, pi]
+};
+/// Torque-free rotation (no gravity, no contact) of a body with principal
+/// moments `inertia` (kg m^2, about its body axes) spinning at `omega`
+/// (rad/s, body frame, at the start): world angular momentum and kinetic
+/// energy stay constant.
+struct TorqueFreeTruth {
+  Vec3 inertia = Vec3::Ones();
+  Vec3 omega = Vec3::Zero();
+};
+/// The same body spun mainly about its intermediate axis turns over every
+/// IntermediateAxisFlipInterval(inertia, omega) seconds (torque_free.h).
+struct FlipPeriodTruth {
+  Vec3 inertia = Vec3::Ones();
+  Vec3 omega = Vec3::Zero();
+};
 /// No closed form: the truth is the same engine at timeStep / divisor.
 struct ConvergedReferenceTruth {
   int timeStepDivisor = 16;
 };
 using TruthKind = std::variant<FreeFallTruth, SlidingStopTruth, RestHeightTruth, BounceHeightsTruth,
-                               ConvergedReferenceTruth>;
+                               ConvergedReferenceTruth, StackRestTruth, HullRestTruth, InclineSlideTruth,
+                               InclineTipTruth, TorqueFreeTruth, FlipPeriodTruth>;
 
 struct Truth {
   TruthKind kind;
   int body = -1;  ///< index into Scenario::bodies, -1 when the truth is about the whole world
   Tolerance tolerance;
+  /// Whether the truth's metrics count in the CI check (MetricResult::checked).
+  /// False for a known shortfall of the engine under test: still measured,
+  /// judged and reported, but not failing the gate. Default true.
+  bool gate = true;
 };
 
 /// One scenario, fully resolved (sweeps already applied).
@@ -133,8 +187,9 @@ struct Scenario {
 
 /// One resolved value of a sweep parameter.
 struct SweepValue {
-  std::string name;   ///< the sweep's name, e.g. "mu"
-  std::string value;  ///< the value as compact JSON, e.g. "0.3" or "[1,0,0]"
+  std::string name;  ///< the sweep's name, e.g. "mu"
+  std::string
+      value;  ///< the sweep's label for it, else its compact JSON (first entry for perTarget), e.g. "0.3"
 };
 
 /// One run: a scenario with its sweep values applied, plus the stepping the

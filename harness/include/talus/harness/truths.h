@@ -25,6 +25,49 @@ double SlidingStopDistance(double v0, double mu, double g);
 /// exactly mu g h of speed per step and clamps at zero: h sum_k max(0, v0 - k mu g h).
 double SlidingStopDistanceSymplecticEuler(double v0, double mu, double g, double h);
 
+/// Time (s) the same slide lasts: v0 / (mu g).
+double SlidingStopTime(double v0, double mu, double g);
+
+/// The same for symplectic Euler steps of h seconds under the clamped
+/// solver above: the first step whose speed reaches zero, ceil(v0 / (mu g h)) h.
+double SlidingStopTimeSymplecticEuler(double v0, double mu, double g, double h);
+
+/// Rest height (m, of the centre of mass along the up axis) of a box in layer
+/// `layer` (0 = on the floor) of a stack of boxes each `layerHeight` metres
+/// tall standing on a floor whose top is at `floor`: floor + (layer + 1/2)
+/// layerHeight. Rigid contact: integrator and continuous answers agree.
+double StackRestHeight(double floor, double layerHeight, int layer);
+
+/// Acceleration (m/s^2) along an incline of `angle` radians (in [0, pi/2))
+/// of a block with friction mu under gravity g: g (sin angle - mu cos angle)
+/// when tan(angle) > mu, else 0 (static friction holds it).
+double InclineAcceleration(double angle, double mu, double g);
+
+/// Distance (m) slid along that incline after t seconds from rest: a t^2 / 2.
+double InclineDistance(double angle, double mu, double g, double t);
+
+/// The same after n symplectic Euler steps of h seconds: v_k = k a h and
+/// x_n = h sum_{k=1..n} v_k = a h^2 n (n + 1) / 2 = a t^2 / 2 + a h t / 2.
+double InclineDistanceSymplecticEuler(double angle, double mu, double g, double h, int n);
+
+/// What a box standing on an incline does.
+enum class InclineOutcome {
+  Stays,   ///< static friction holds it and the weight's line stays inside the base
+  Slides,  ///< it slides without turning over
+  Tips,    ///< it turns over its downhill edge
+};
+
+/// The outcome for a box of base `width` (m, along the slope) and `height`
+/// (m, along the slope normal), friction mu, on an incline of `angle` rad.
+/// Moment balance about the centre of mass puts the normal force's centre
+/// at (h/2) f/N from the middle of the base, where f/N is tan(angle) while
+/// it holds and mu while it slides; the box tips when that passes the
+/// downhill edge (w/2): held, when tan(angle) > w/h; sliding, when mu > w/h.
+InclineOutcome InclineBoxOutcome(double angle, double mu, double width, double height);
+
+/// "stays", "slides" or "tips".
+const char* InclineOutcomeName(InclineOutcome outcome);
+
 /// Apex heights after each of the first `count` bounces of a body dropped
 /// from h metres (its lowest point above the floor) with restitution e:
 /// e^2 h, e^4 h, ... (velocity after bounce k is e^k times the impact speed).

@@ -1,0 +1,346 @@
+// The shipped scenario set: every file loads, sweeps expand into the runs
+// the files promise, the new truth kinds map to what the closed forms need,
+// and bad values of every new field are refused with the field's pointer.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <string>
+
+#include "talus/harness/hull_rest.h"
+#include "talus/harness/scenario_loader.h"
+#include "talus/harness/torque_free.h"
+#include "talus/harness/truths.h"
+
+namespace talus::harness {
+namespace {
+
+using nlohmann::json;
+
+const std::string kScenarioDir = TALUS_SCENARIO_DIR;
+
+std::vector<harness::Run> Load(const std::string& file) {
+  auto runs = LoadScenarioFile(kScenarioDir + "/" + file);
+  EXPECT_TRUE(runs) << (runs ? "" : runs.GetError().message);
+  return runs ? runs.Value() : std::vector<harness::Run>{};
+}
+
+TEST(ScenarioSet, EveryScenarioFileLoadsIntoItsRuns) {
+  const std::map<std::string, size_t> expected = {
+      {"stacking/box_rest.json", 1},
+      {"stacking/box_column_2.json", 1},
+      {"stacking/box_column_5.json", 1},
+      {"stacking/box_column_10.json", 1},
+      {"stacking/box_pyramid_4.json", 1},
+      {"stacking/hull_rest.json", 1},
+      {"sliding/box_slide.json", 6},
+      {"sliding/box_slide_directions.json", 12},
+      {"sliding/box_incline.json", 5},
+      {"sliding/tall_box_tipping.json", 4},
+      {"tumbling/box_free_fall.json", 1},
+      {"tumbling/box_torque_free.json", 1},
+      {"tumbling/box_intermediate_axis.json", 1},
+      {"tumbling/box_toss.json", 1},
+      {"bouncing/sphere_bounce.json", 1},
+      {"bouncing/sphere_bounce_series.json", 3},
+  };
+  for (const auto& [file, count] : expected) {
+    const auto runs = Load(file);
+    EXPECT_EQ(runs.size(), count) << file;
+    for (const harness::Run& run : runs) {
+      EXPECT_FALSE(run.scenario.description.empty()) << file << " needs a description";
+      EXPECT_FALSE(run.scenario.truths.empty()) << file << " has no truth";
+    }
+  }
+}
+
+TEST(ScenarioSet, ColumnsListOneBoxPerLayerRestingOnEachOther) {
+  for (const int n : {2, 5, 10}) {
+    const auto runs = Load("stacking/box_column_" + std::to_string(n) + ".json");
+    ASSERT_EQ(runs.size(), 1u);
+    const Scenario& s = runs[0].scenario;
+    ASSERT_EQ(s.truths[0].body, -1);
+    const auto& truth = std::get<StackRestTruth>(s.truths[0].kind);
+    ASSERT_EQ(truth.layers.size(), static_cast<size_t>(n));
+    for (int layer = 0; layer < n; ++layer) {
+      ASSERT_EQ(truth.layers[layer].size(), 1u);
+      // Placed exactly where the truth says they rest: no drop, no overlap.
+      EXPECT_NEAR(s.bodies[truth.layers[layer][0]].position.y(),
+                  StackRestHeight(truth.floor, truth.layerHeight, layer), 1e-12);
+    }
+    EXPECT_EQ(runs[0].steps, 600);  // 10 s at 60 Hz
+  }
+}
+
+TEST(ScenarioSet, PyramidLayersShrinkByOne) {
+  const auto runs = Load("stacking/box_pyramid_4.json");
+  ASSERT_EQ(runs.size(), 1u);
+  const auto& truth = std::get<StackRestTruth>(runs[0].scenario.truths[0].kind);
+  ASSERT_EQ(truth.layers.size(), 4u);
+  for (size_t layer = 0; layer < 4; ++layer) EXPECT_EQ(truth.layers[layer].size(), 4 - layer);
+}
+
+TEST(ScenarioSet, HullRestHeightIsTheCentroidDistanceToTheBottomFace) {
+  const auto runs = Load("stacking/hull_rest.json");
+  ASSERT_EQ(runs.size(), 1u);
+  const Scenario& s = runs[0].scenario;
+  const auto& truth = std::get<HullRestTruth>(s.truths[0].kind);
+  const auto& points = std::get<HullShape>(s.bodies[1].shape).points;
+  // Independent: the bottom face is the plane y = 0 of the body frame, so
+  // the height is the centroid's y, here from the divergence theorem over
+  // the hull's faces (the analysis's centroid) checked against the lowest point.
+  const auto analysis = AnalyseHullRest(points);
+  ASSERT_TRUE(analysis);
+  double lowest = 1e9;
+  for (const Vec3& p : points) lowest = std::min(lowest, p.y());
+  EXPECT_EQ(lowest, 0.0);
+  EXPECT_NEAR(truth.height, analysis.Value().centroid.y(), 1e-12);
+  EXPECT_NEAR(truth.faceNormal.y(), -1.0, 1e-12);
+  // The centroid is off the body origin in every direction: a backend that
+  // puts the centre of mass at the origin is caught.
+  EXPECT_GT(std::abs(analysis.Value().centroid.x()), 0.1);
+  EXPECT_GT(std::abs(analysis.Value().centroid.z()), 0.1);
+  const int bottom = analysis.Value().NearestFace(Vec3(0, -1, 0));
+  EXPECT_GT(analysis.Value().faces[bottom].margin, 0.3) << "the resting face must be unambiguous";
+}
+
+TEST(ScenarioSet, TwelveDirectionsLaunchAtTheSameSpeedAlongTheTruthDirection) {
+  const auto runs = Load("sliding/box_slide_directions.json");
+  ASSERT_EQ(runs.size(), 12u);
+  for (int k = 0; k < 12; ++k) {
+    const harness::Run& run = runs[k];
+    EXPECT_EQ(run.id, "box_slide_directions[direction=" + std::to_string(30 * k) + "deg]");
+    const auto& truth = std::get<SlidingStopTruth>(run.scenario.truths[0].kind);
+    const double angle = 30.0 * k * std::numbers::pi / 180.0;
+    EXPECT_LT((truth.direction - Vec3(std::cos(angle), 0, std::sin(angle))).norm(), 1e-12);
+    EXPECT_LT((run.scenario.bodies[1].linearVelocity - truth.v0 * truth.direction).norm(), 1e-12);
+  }
+}
+
+TEST(ScenarioSet, InclineSweepPlacesTheBoxOnTheTurnedSlope) {
+  for (const char* file : {"sliding/box_incline.json", "sliding/tall_box_tipping.json"}) {
+    for (const harness::Run& run : Load(file)) {
+      const BodySpec& slope = run.scenario.bodies[0];
+      const BodySpec& box = run.scenario.bodies[1];
+      const double angle = std::visit(
+          [](const auto& t) -> double {
+            if constexpr (requires { t.angle; }) return t.angle;
+            return -1.0;
+          },
+          run.scenario.truths[0].kind);
+      // Slope and box turned by the truth's angle, the box's bottom face on
+      // the slope's top face (the slope is 1 m thick, centred at the origin).
+      EXPECT_NEAR(slope.orientation.angularDistance(box.orientation), 0.0, 1e-12) << run.id;
+      EXPECT_NEAR(Eigen::AngleAxisd(slope.orientation).angle(), angle, 1e-12) << run.id;
+      const Vec3 normal = slope.orientation * Vec3::UnitY();
+      const double halfHeight = std::get<BoxShape>(box.shape).halfExtents.y();
+      EXPECT_NEAR(box.position.dot(normal), 0.5 + halfHeight, 1e-12) << run.id;
+      EXPECT_NEAR((box.position - box.position.dot(normal) * normal).norm(), 0.0, 1e-12) << run.id;
+    }
+  }
+}
+
+TEST(ScenarioSet, SweepsStraddleTheSlidingAndTippingThresholds) {
+  int slides = 0, holds = 0;
+  for (const harness::Run& run : Load("sliding/box_incline.json")) {
+    const auto& t = std::get<InclineSlideTruth>(run.scenario.truths[0].kind);
+    (InclineAcceleration(t.angle, t.mu, t.g) > 0.0 ? slides : holds)++;
+  }
+  EXPECT_EQ(slides, 2);
+  EXPECT_EQ(holds, 3);
+  std::vector<InclineOutcome> outcomes;
+  for (const harness::Run& run : Load("sliding/tall_box_tipping.json")) {
+    const auto& t = std::get<InclineTipTruth>(run.scenario.truths[0].kind);
+    outcomes.push_back(InclineBoxOutcome(t.angle, t.mu, t.width, t.height));
+  }
+  EXPECT_EQ(outcomes, (std::vector<InclineOutcome>{InclineOutcome::Stays, InclineOutcome::Stays,
+                                                   InclineOutcome::Tips, InclineOutcome::Tips}));
+}
+
+TEST(ScenarioSet, SpinTruthsDescribeTheirBox) {
+  const auto runs = Load("tumbling/box_intermediate_axis.json");
+  ASSERT_EQ(runs.size(), 1u);
+  const Scenario& s = runs[0].scenario;
+  EXPECT_EQ(s.world.gravity, Vec3::Zero());
+  const auto& flip = std::get<FlipPeriodTruth>(s.truths[1].kind);
+  EXPECT_EQ(IntermediateAxis(flip.inertia), 1);
+  auto interval = IntermediateAxisFlipInterval(flip.inertia, flip.omega);
+  ASSERT_TRUE(interval);
+  // The run must hold at least three flips for two measured intervals.
+  EXPECT_GT(runs[0].steps * runs[0].timeStep, 3.0 * interval.Value());
+  const TorqueFreeTruth spin =
+      std::get<TorqueFreeTruth>(Load("tumbling/box_torque_free.json")[0].scenario.truths[0].kind);
+  EXPECT_EQ(spin.omega, Vec3(0.5, 0.5, 3.0));
+}
+
+TEST(ScenarioSet, BounceSeriesSweepsRestitutionIntoBodyAndTruth) {
+  const auto runs = Load("bouncing/sphere_bounce_series.json");
+  ASSERT_EQ(runs.size(), 3u);
+  const double values[] = {0.5, 0.7, 0.9};
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(runs[i].scenario.bodies[1].restitution, values[i]);
+    const auto& truth = std::get<BounceHeightsTruth>(runs[i].scenario.truths[0].kind);
+    EXPECT_EQ(truth.e, values[i]);
+    EXPECT_EQ(truth.count, 4);
+  }
+}
+
+// --- Bad values of new fields, each refused with the field's pointer.
+
+json SlideDoc() {
+  return json::parse(R"({"name": "t", "world": {"timeStep": 0.01, "duration": {"steps": 10}},
+    "bodies": [{"name": "ground", "shape": {"kind": "box", "halfExtents": [5, 0.5, 5]}, "motion": "static", "position": [0, -0.5, 0]},
+               {"name": "box", "shape": {"kind": "box", "halfExtents": [0.5, 0.25, 0.125]}, "motion": "dynamic", "position": [0, 0.25, 0],
+                "angularVelocity": [0.01, 3, 0.01], "density": 1000},
+               {"name": "hull", "shape": {"kind": "hull", "points": [[0, 0, 0], [3, 0, 0], [4, 1, 0], [0, 0, 1], [3, 0, 1], [4, 1, 1]]},
+                "motion": "dynamic", "position": [0, 0, 3], "density": 1000}],
+    "truths": [{"kind": "sliding_stop", "body": "box", "v0": 1, "mu": 0.5, "g": 9.81}]})");
+}
+
+std::string Refusal(const json& doc) {
+  auto runs = ParseScenarioText(doc.dump(), "t.json");
+  EXPECT_FALSE(runs) << doc.dump() << " was accepted";
+  return runs ? std::string() : runs.GetError().message;
+}
+
+void ExpectRefused(const json& truth, const std::string& expected) {
+  json doc = SlideDoc();
+  doc["truths"][0] = truth;
+  const std::string message = Refusal(doc);
+  EXPECT_NE(message.find(expected), std::string::npos) << message;
+}
+
+TEST(ScenarioSet, BadSlidingDirectionsAreRefused) {
+  json truth = SlideDoc()["truths"][0];
+  truth["direction"] = {0, 1, 0};
+  ExpectRefused(truth, "t.json: /truths/0/direction: must be perpendicular to gravity");
+  truth["direction"] = {0, 0, 0};
+  ExpectRefused(truth, "/truths/0/direction: direction has zero length");
+  truth["direction"] = {1, 0};
+  ExpectRefused(truth, "/truths/0/direction: needs at least 3 items");
+  truth["direction"] = {1, 0, 0};
+  truth["maxLateral"] = -0.1;
+  ExpectRefused(truth, "/truths/0/maxLateral: must be >= 0");
+}
+
+TEST(ScenarioSet, BadStackLayersAreRefused) {
+  json truth = {{"kind", "stack_rest"}, {"layers", {{"box"}, {"crate"}}}, {"floor", 0}, {"layerHeight", 0.5}};
+  ExpectRefused(truth, "/truths/0/layers/1/0: no body named \"crate\"");
+  truth["layers"] = {{"box"}, {"box"}};
+  ExpectRefused(truth, "/truths/0/layers/1/0: body \"box\" is listed twice");
+  truth["layers"] = {{"ground"}};
+  ExpectRefused(truth, "/truths/0/layers/0/0: body \"ground\" is static");
+  truth["layers"] = {{"box"}};
+  truth["layerHeight"] = 0;
+  ExpectRefused(truth, "/truths/0/layerHeight: must be > 0");
+  truth["layerHeight"] = 0.5;
+  truth["layers"] = json::array();
+  ExpectRefused(truth, "/truths/0/layers: needs at least 1 items");
+}
+
+TEST(ScenarioSet, HullRestNeedsAStableFaceOfAHullBody) {
+  json truth = {{"kind", "hull_rest"}, {"body", "box"}, {"faceNormal", {0, -1, 0}}, {"floor", 0}};
+  ExpectRefused(truth, "/truths/0/body: hull_rest needs a hull body");
+  truth["body"] = "hull";
+  truth["faceNormal"] = {1, -0.5, 0};
+  ExpectRefused(truth, "/truths/0/faceNormal: names no face of the hull");
+  truth["faceNormal"] = {1, -1, 0};  // the slanted face of the obtuse prism (hull_rest_test)
+  ExpectRefused(truth, "/truths/0/faceNormal: names an unstable face");
+  truth["faceNormal"] = {0, 0, 0};
+  ExpectRefused(truth, "/truths/0/faceNormal: normal has zero length");
+  truth["faceNormal"] = {0, -1, 0};
+  truth["maxFaceAngle"] = -1;
+  ExpectRefused(truth, "/truths/0/maxFaceAngle: must be >= 0");
+  truth.erase("maxFaceAngle");
+  json doc = SlideDoc();
+  doc["truths"][0] = truth;
+  auto runs = ParseScenarioText(doc.dump(), "t.json");
+  ASSERT_TRUE(runs) << runs.GetError().message;
+  EXPECT_NEAR(std::get<HullRestTruth>(runs.Value()[0].scenario.truths[0].kind).height, 1.0 / 3.0, 1e-12);
+}
+
+TEST(ScenarioSet, BadInclineFieldsAreRefused) {
+  json slide = {{"kind", "incline_slide"}, {"body", "box"}, {"angle", 1.6}, {"mu", 0.5}, {"g", 9.81}};
+  ExpectRefused(slide, "/truths/0/angle: must be <= 1.5");
+  slide["angle"] = 0.3;
+  slide["mu"] = -0.5;
+  ExpectRefused(slide, "/truths/0/mu: must be >= 0");
+  json tip = {
+      {"kind", "incline_tip"}, {"body", "box"}, {"angle", 0.3}, {"mu", 0.8}, {"width", 0}, {"height", 1}};
+  ExpectRefused(tip, "/truths/0/width: must be > 0");
+  tip["width"] = 0.2;
+  tip["tiltThreshold"] = 0;
+  ExpectRefused(tip, "/truths/0/tiltThreshold: must be > 0");
+}
+
+TEST(ScenarioSet, SpinTruthsMustMatchTheirBox) {
+  // The box's moments are in the proportions 0.078125 : 0.265625 : 0.3125.
+  json truth = {{"kind", "torque_free"}, {"body", "box"}, {"inertia", {1, 2, 3}}, {"omega", {0.01, 3, 0.01}}};
+  ExpectRefused(truth, "/truths/0/inertia: is not in the proportions of the box's principal moments");
+  truth["inertia"] = {0.078125, 0.265625, -0.3125};
+  ExpectRefused(truth, "/truths/0/inertia/2: must be > 0");
+  truth["inertia"] = {0.78125, 2.65625, 3.125};
+  truth["omega"] = {0.01, 3, 0.02};
+  ExpectRefused(truth, "/truths/0/omega: differs from the body's angularVelocity");
+  truth["omega"] = {0.01, 3, 0.01};
+  truth["body"] = "hull";
+  ExpectRefused(truth, "/truths/0/body: a spin truth needs a dynamic box body");
+  truth["body"] = "box";
+  truth["kind"] = "flip_period";
+  json doc = SlideDoc();
+  doc["truths"][0] = truth;
+  EXPECT_TRUE(ParseScenarioText(doc.dump(), "t.json"));
+  doc["bodies"][1]["angularVelocity"] = {3, 0.01, 0.01};
+  doc["truths"][0]["omega"] = {3, 0.01, 0.01};
+  const std::string message = Refusal(doc);
+  EXPECT_NE(message.find("/truths/0/omega: omega is not within 25 degrees of the intermediate axis 1"),
+            std::string::npos)
+      << message;
+}
+
+TEST(ScenarioSet, GateDefaultsToOnAndMustBeABoolean) {
+  json doc = SlideDoc();
+  auto runs = ParseScenarioText(doc.dump(), "t.json");
+  ASSERT_TRUE(runs);
+  EXPECT_TRUE(runs.Value()[0].scenario.truths[0].gate);
+  doc["truths"][0]["gate"] = false;
+  runs = ParseScenarioText(doc.dump(), "t.json");
+  ASSERT_TRUE(runs);
+  EXPECT_FALSE(runs.Value()[0].scenario.truths[0].gate);
+  doc["truths"][0]["gate"] = "no";
+  const std::string message = Refusal(doc);
+  EXPECT_NE(message.find("/truths/0/gate: must be of type boolean, not string"), std::string::npos)
+      << message;
+}
+
+TEST(ScenarioSet, BadPerTargetSweepsAreRefused) {
+  json doc = SlideDoc();
+  doc["sweeps"] = {{{"name", "mu"},
+                    {"targets", {"/truths/0/mu", "/truths/0/v0"}},
+                    {"perTarget", true},
+                    {"values", {{0.3, 1}, {0.5}}}}};
+  std::string message = Refusal(doc);
+  EXPECT_NE(message.find("/sweeps/0/values/1: a perTarget value must be an array of 2 entries"),
+            std::string::npos)
+      << message;
+  doc["sweeps"][0]["values"] = {{0.3, 1}, {0.5, 2}};
+  doc["sweeps"][0]["labels"] = {"low"};
+  message = Refusal(doc);
+  EXPECT_NE(message.find("/sweeps/0/labels: needs one label per value (2)"), std::string::npos) << message;
+  doc["sweeps"][0]["labels"] = {"low", "high"};
+  auto runs = ParseScenarioText(doc.dump(), "t.json");
+  ASSERT_TRUE(runs) << runs.GetError().message;
+  ASSERT_EQ(runs.Value().size(), 2u);
+  EXPECT_EQ(runs.Value()[1].id, "t[mu=high]");
+  const auto& truth = std::get<SlidingStopTruth>(runs.Value()[1].scenario.truths[0].kind);
+  EXPECT_EQ(truth.mu, 0.5);
+  EXPECT_EQ(truth.v0, 2.0);
+  doc["sweeps"][0]["values"] = {{0.3, 1}, {-0.5, 2}};
+  message = Refusal(doc);
+  EXPECT_NE(message.find("t.json (mu=high): /truths/0/mu: must be > 0"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace talus::harness

@@ -1,0 +1,273 @@
+// The evaluators of the new truth kinds on synthetic trajectories: one that
+// follows the truth exactly passes with (near) zero error, one with the
+// defect the truth is there to catch fails.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "talus/harness/hull_rest.h"
+#include "talus/harness/scenario_loader.h"
+#include "talus/harness/torque_free.h"
+#include "talus/harness/truth_check.h"
+#include "talus/harness/truths.h"
+
+namespace talus::harness {
+namespace {
+
+harness::Run LoadRun(const std::string& file, size_t index = 0) {
+  auto runs = LoadScenarioFile(std::string(TALUS_SCENARIO_DIR) + "/" + file);
+  EXPECT_TRUE(runs) << runs.GetError().message;
+  return runs.Value().at(index);
+}
+
+// Initial states of the run's bodies: positions as centres of mass (boxes).
+std::vector<BodyState> StartStates(const harness::Run& run) {
+  std::vector<BodyState> states;
+  for (const BodySpec& body : run.scenario.bodies) {
+    BodyState state;
+    state.centerOfMass = body.position;
+    state.origin = body.position;
+    state.orientation = body.orientation;
+    state.linearVelocity = body.linearVelocity;
+    state.angularVelocity = body.angularVelocity;
+    states.push_back(state);
+  }
+  return states;
+}
+
+Sample MakeSample(const harness::Run& run, int step, std::vector<BodyState> bodies) {
+  Sample sample;
+  sample.step = step;
+  sample.time = step * run.timeStep;
+  sample.bodies = std::move(bodies);
+  return sample;
+}
+
+Trajectory Begin(const harness::Run& run) {
+  Trajectory trajectory;
+  trajectory.timeStep = run.timeStep;
+  trajectory.samples.push_back(MakeSample(run, 0, StartStates(run)));
+  return trajectory;
+}
+
+bool AllPass(const std::vector<MetricResult>& metrics) {
+  for (const MetricResult& metric : metrics) {
+    if (!metric.pass) return false;
+  }
+  return !metrics.empty();
+}
+
+const MetricResult& Find(const std::vector<MetricResult>& metrics, const std::string& name) {
+  for (const MetricResult& metric : metrics) {
+    if (metric.name == name) return metric;
+  }
+  ADD_FAILURE() << "no metric " << name;
+  return metrics.front();
+}
+
+TEST(TruthEvaluators, StackAtItsRestHeightsPassesAndACreepingBoxFails) {
+  const harness::Run run = LoadRun("stacking/box_column_2.json");
+  const Truth& truth = run.scenario.truths[0];
+  Trajectory trajectory = Begin(run);
+  trajectory.samples.push_back(MakeSample(run, run.steps / 2, StartStates(run)));
+  trajectory.samples.push_back(MakeSample(run, run.steps, StartStates(run)));
+  auto metrics = EvaluateTruth(run, truth, trajectory);
+  ASSERT_EQ(metrics.size(), 3u);  // two heights and the drift
+  EXPECT_TRUE(AllPass(metrics));
+  EXPECT_EQ(metrics[1].name, "stack_rest.height.1.box1");
+  EXPECT_DOUBLE_EQ(metrics[1].truth, 0.75);
+  // The top box slides 2 cm sideways in the second half: heights fine, drift not.
+  trajectory.samples.back().bodies[2].centerOfMass.x() += 0.02;
+  metrics = EvaluateTruth(run, truth, trajectory);
+  EXPECT_TRUE(metrics[1].pass);
+  EXPECT_FALSE(Find(metrics, "stack_rest.drift").pass);
+  EXPECT_NEAR(Find(metrics, "stack_rest.drift").measured, 0.02, 1e-15);
+}
+
+TEST(TruthEvaluators, HullOnItsFaceAtTheCentroidHeightPassesAndOnItsSideFails) {
+  const harness::Run run = LoadRun("stacking/hull_rest.json");
+  const Truth& truth = run.scenario.truths[0];
+  const auto& kind = std::get<HullRestTruth>(truth.kind);
+  Trajectory trajectory = Begin(run);
+  std::vector<BodyState> rest = StartStates(run);
+  rest[1].orientation = Quat::Identity();
+  rest[1].centerOfMass = Vec3(0.4, kind.height, 0.1);
+  trajectory.samples.push_back(MakeSample(run, run.steps, rest));
+  auto metrics = EvaluateTruth(run, truth, trajectory);
+  ASSERT_EQ(metrics.size(), 2u);
+  EXPECT_TRUE(AllPass(metrics));
+  EXPECT_NEAR(metrics[1].error, 0.0, 1e-15);
+  trajectory.samples.back().bodies[1].orientation =
+      Quat(Eigen::AngleAxisd(0.5 * std::numbers::pi, Vec3::UnitZ()));
+  metrics = EvaluateTruth(run, truth, trajectory);
+  EXPECT_FALSE(Find(metrics, "hull_rest.face_angle").pass);
+  EXPECT_NEAR(Find(metrics, "hull_rest.face_angle").measured, 0.5 * std::numbers::pi, 1e-12);
+}
+
+TEST(TruthEvaluators, InclineSlideIsJudgedAgainstTheIntegratorSum) {
+  const harness::Run run = LoadRun("sliding/box_incline.json", 4);  // 35 degrees: slides
+  EXPECT_EQ(run.id, "box_incline[angle=35deg]");
+  const Truth& truth = run.scenario.truths[0];
+  const auto& kind = std::get<InclineSlideTruth>(truth.kind);
+  Trajectory trajectory = Begin(run);
+  std::vector<BodyState> end = StartStates(run);
+  const Vec3 downhill = run.scenario.bodies[0].orientation * Vec3(-1, 0, 0);
+  const double slid = InclineDistanceSymplecticEuler(kind.angle, kind.mu, kind.g, run.timeStep, run.steps);
+  end[1].centerOfMass += slid * downhill;
+  trajectory.samples.push_back(MakeSample(run, run.steps, end));
+  auto metrics = EvaluateTruth(run, truth, trajectory);
+  ASSERT_EQ(metrics.size(), 1u);
+  EXPECT_TRUE(metrics[0].pass);
+  EXPECT_NEAR(metrics[0].error, 0.0, 1e-12);
+  // The continuous answer is a h t / 2 short of the integrator's.
+  EXPECT_NEAR(
+      metrics[0].truthIntegrator - metrics[0].truth,
+      0.5 * InclineAcceleration(kind.angle, kind.mu, kind.g) * run.timeStep * run.steps * run.timeStep,
+      1e-12);
+  // A block that did not move fails.
+  trajectory.samples.back() = MakeSample(run, run.steps, StartStates(run));
+  EXPECT_FALSE(EvaluateTruth(run, truth, trajectory)[0].pass);
+}
+
+TEST(TruthEvaluators, TippingIsAThresholdOnTheLargestTilt) {
+  for (size_t index : {0u, 2u}) {  // 6 degrees stays, 18 degrees tips
+    const harness::Run run = LoadRun("sliding/tall_box_tipping.json", index);
+    const Truth& truth = run.scenario.truths[0];
+    const bool tips = index == 2;
+    for (const double tilt : {0.01, 1.2}) {
+      Trajectory trajectory = Begin(run);
+      std::vector<BodyState> turned = StartStates(run);
+      turned[1].orientation = Quat(Eigen::AngleAxisd(tilt, Vec3::UnitZ())) * turned[1].orientation;
+      trajectory.samples.push_back(MakeSample(run, run.steps / 2, turned));
+      trajectory.samples.push_back(MakeSample(run, run.steps, StartStates(run)));
+      const auto metrics = EvaluateTruth(run, truth, trajectory);
+      ASSERT_EQ(metrics.size(), 1u);
+      EXPECT_NEAR(metrics[0].measured, tilt, 1e-12);  // the largest, not the last
+      EXPECT_EQ(metrics[0].pass, tips == (tilt > 0.5)) << run.id << " tilt " << tilt;
+      EXPECT_EQ(metrics[0].name, tips ? "incline_tip.tilt.tips" : "incline_tip.tilt.stays");
+    }
+  }
+}
+
+// States of a box turning at constant world angular velocity w about the
+// vertical, as an engine without the gyroscopic term would produce.
+TEST(TruthEvaluators, TorqueFreeCatchesAMomentumThatTurnsWithTheBody) {
+  const harness::Run run = LoadRun("tumbling/box_torque_free.json");
+  const Truth& truth = run.scenario.truths[0];
+  const auto& kind = std::get<TorqueFreeTruth>(truth.kind);
+  const Mat3 inertia = kind.inertia.asDiagonal();
+  auto state = [&](const Quat& q, const Vec3& w) {
+    BodyState s;
+    s.orientation = q;
+    s.angularVelocity = w;
+    s.worldInertia = q.toRotationMatrix() * inertia * q.toRotationMatrix().transpose();
+    return s;
+  };
+  Trajectory exact;
+  exact.timeStep = run.timeStep;
+  Trajectory frozen = exact;
+  const Vec3 momentum = inertia * kind.omega;
+  for (int k = 0; k <= 10; ++k) {
+    const Quat q(Eigen::AngleAxisd(0.3 * k, Vec3(1, 2, 3).normalized()));
+    // Exact: w = I_world^-1 L keeps L; frozen: w never changes.
+    const Mat3 worldInertia = q.toRotationMatrix() * inertia * q.toRotationMatrix().transpose();
+    exact.samples.push_back(MakeSample(run, k, {state(q, worldInertia.inverse() * momentum)}));
+    frozen.samples.push_back(MakeSample(run, k, {state(q, kind.omega)}));
+  }
+  auto metrics = EvaluateTruth(run, truth, exact);
+  ASSERT_EQ(metrics.size(), 2u);
+  EXPECT_LT(metrics[0].measured, 1e-12);
+  EXPECT_TRUE(metrics[0].pass);
+  // The exact motion keeps L but, sampled at arbitrary orientations, not E:
+  // only the momentum metric is meaningful for these synthetic states.
+  metrics = EvaluateTruth(run, truth, frozen);
+  EXPECT_FALSE(metrics[0].pass);
+  EXPECT_GT(metrics[0].measured, 0.05);
+}
+
+TEST(TruthEvaluators, FlipPeriodFromTheBodyFrameSpinMatchesTheTruth) {
+  const harness::Run run = LoadRun("tumbling/box_intermediate_axis.json");
+  const Truth& truth = run.scenario.truths[1];
+  const auto& kind = std::get<FlipPeriodTruth>(truth.kind);
+  // An exact engine: body-frame w from Euler's equations (RK4, 64 substeps
+  // per step), reported in a frame turned about x so that world and body
+  // differ: the evaluator must turn w back.
+  Trajectory trajectory;
+  trajectory.timeStep = run.timeStep;
+  Vec3 w = kind.omega;
+  const Quat q(Eigen::AngleAxisd(1.0, Vec3::UnitX()));
+  for (int step = 0; step <= run.steps; ++step) {
+    BodyState state;
+    state.orientation = q;
+    state.angularVelocity = q * w;
+    trajectory.samples.push_back(MakeSample(run, step, {state}));
+    for (int i = 0; i < 64; ++i) w = EulerEquationsRk4Step(kind.inertia, w, run.timeStep / 64);
+  }
+  const auto metrics = EvaluateTruth(run, truth, trajectory);
+  ASSERT_EQ(metrics.size(), 1u);
+  // Linear interpolation between 60 Hz samples: crossings to ~1e-4 s.
+  EXPECT_NEAR(metrics[0].measured, metrics[0].truth, 1e-3);
+  EXPECT_TRUE(metrics[0].pass);
+  // Frozen spin: never flips, nothing to measure, fails.
+  for (Sample& sample : trajectory.samples) sample.bodies[0].angularVelocity = q * kind.omega;
+  const auto frozen = EvaluateTruth(run, truth, trajectory);
+  EXPECT_TRUE(std::isnan(frozen[0].measured));
+  EXPECT_FALSE(frozen[0].pass);
+}
+
+TEST(TruthEvaluators, TruthsOutsideTheGateAreJudgedButNotChecked) {
+  const harness::Run run = LoadRun("tumbling/box_torque_free.json");
+  Truth truth = run.scenario.truths[0];
+  EXPECT_FALSE(truth.gate);  // the file says "gate": false
+  Trajectory trajectory;
+  trajectory.timeStep = run.timeStep;
+  BodyState state;
+  state.angularVelocity = Vec3(1, 0, 0);  // far from the truth's spin: fails
+  state.worldInertia = Mat3::Identity();
+  trajectory.samples.push_back(MakeSample(run, 0, {state}));
+  state.angularVelocity = Vec3(0, 1, 0);
+  trajectory.samples.push_back(MakeSample(run, 1, {state}));
+  for (const bool gate : {false, true}) {
+    truth.gate = gate;
+    for (const MetricResult& metric : EvaluateTruth(run, truth, trajectory)) {
+      EXPECT_EQ(metric.checked, gate) << metric.name;
+      EXPECT_FALSE(metric.pass) << metric.name;
+    }
+  }
+}
+
+TEST(TruthEvaluators, SlidingStopMeasuresStopTimeAndLateralDeviation) {
+  const harness::Run run = LoadRun("sliding/box_slide_directions.json", 1);  // 30 degrees
+  const Truth& truth = run.scenario.truths[0];
+  const auto& kind = std::get<SlidingStopTruth>(truth.kind);
+  // The clamped symplectic Euler slide along the truth direction.
+  auto slide = [&](const Vec3& bend) {
+    Trajectory trajectory = Begin(run);
+    std::vector<BodyState> states = StartStates(run);
+    double v = kind.v0, x = 0.0;
+    for (int step = 1; step <= run.steps; ++step) {
+      v = std::max(0.0, v - kind.mu * kind.g * run.timeStep);
+      x += v * run.timeStep;
+      states[1].centerOfMass = run.scenario.bodies[1].position + x * kind.direction + x * x * bend;
+      states[1].linearVelocity = v * kind.direction;
+      trajectory.samples.push_back(MakeSample(run, step, states));
+    }
+    return EvaluateTruth(run, truth, trajectory);
+  };
+  const auto straight = slide(Vec3::Zero());
+  ASSERT_EQ(straight.size(), 3u);
+  EXPECT_TRUE(AllPass(straight));
+  EXPECT_NEAR(Find(straight, "sliding_stop.distance").error, 0.0, 1e-12);
+  EXPECT_NEAR(Find(straight, "sliding_stop.time").error, 0.0, 1e-12);
+  EXPECT_LT(Find(straight, "sliding_stop.lateral").measured, 1e-12);
+  // A path bent sideways (as a pyramid friction cone bends it) fails on lateral.
+  const Vec3 sideways = kind.direction.cross(Vec3::UnitY()) * 0.1;
+  const auto bent = slide(sideways);
+  EXPECT_FALSE(Find(bent, "sliding_stop.lateral").pass);
+  EXPECT_GT(Find(bent, "sliding_stop.lateral").measured, 0.05);
+}
+
+}  // namespace
+}  // namespace talus::harness
