@@ -1,0 +1,45 @@
+// StepStatistics: what one World::Step did and what it skipped. The engine
+// promises to spend nothing on what a scene does not use; these counters are
+// how the testbed (and the tests) check that promise. Times are wall-clock
+// and vary run to run; every count is deterministic.
+#pragma once
+
+#include <cstdint>
+
+#include "talus/broad_phase.h"
+#include "talus/narrow_phase.h"
+
+namespace talus {
+
+/// Wall-clock seconds spent in each stage of one step.
+struct StageTimes {
+  double integrateVelocities = 0.0;  ///< forces, gravity, gyroscopic term
+  double collide = 0.0;              ///< broad phase and narrow phase
+  double prepareContacts = 0.0;      ///< warm-start matching and constraint rows
+  double solveVelocities = 0.0;      ///< sequential impulses
+  double solvePositions = 0.0;       ///< split-impulse pseudo-velocities
+  double integratePositions = 0.0;   ///< positions and orientations
+  double sleep = 0.0;                ///< islands and sleep timers
+  double total = 0.0;                ///< the whole step
+};
+
+struct StepStatistics {
+  StageTimes seconds = {};
+  std::int32_t bodies = 0;                ///< live bodies
+  std::int32_t awakeBodies = 0;           ///< dynamic bodies integrated this step
+  std::int32_t sleepingBodies = 0;        ///< dynamic bodies skipped because asleep
+  std::int32_t candidatePairs = 0;        ///< pairs the broad phase passed on
+  std::int32_t staticPairsSkipped = 0;    ///< pairs of two non-dynamic bodies never tested
+  std::int32_t sleepingPairsSkipped = 0;  ///< pairs kept from last step because both sides sleep
+  std::int32_t manifolds = 0;             ///< touching pairs handed to the solver
+  std::int32_t contactPoints = 0;         ///< normal rows solved
+  std::int32_t frictionRows = 0;          ///< tangent rows solved (two per point with mu > 0)
+  std::int32_t frictionRowsSkipped = 0;   ///< tangent rows not built because mu = 0
+  std::int32_t restitutionSkipped = 0;    ///< points whose restitution work was skipped (e = 0)
+  std::int32_t warmStartedPoints = 0;     ///< points that found last step's impulses by feature id
+  std::int32_t islands = 0;               ///< islands of awake dynamic bodies
+  BroadPhaseStats broadPhase = {};        ///< the broad phase's own counters
+  NarrowPhaseStats narrowPhase = {};      ///< the narrow phase's own counters
+};
+
+}  // namespace talus

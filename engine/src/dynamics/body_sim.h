@@ -1,0 +1,56 @@
+// BodySim: the hot per-body state the integrator and the solver read, one
+// small struct per body in a dense array indexed by body index.
+//
+// Invariants: `orientation` is a unit quaternion; `invInertiaWorld` equals
+// R invInertiaLocal R^T for the current orientation (refreshed by
+// UpdateWorldInertia after every orientation change); static, kinematic and
+// sleeping bodies have invMass == 0 and zero inverse inertia as far as the
+// solver is concerned (see SolverMass), so a contact never moves them. The
+// centre of mass `center` is the integrated point; the body frame origin is
+// derived from it (center - R localCenter).
+//
+// Cold bookkeeping (generation, friction, restitution, sleep timers, shape)
+// lives apart, in the World's records, so the solver's cache lines carry
+// only what it uses.
+#pragma once
+
+#include "talus/body.h"
+#include "talus/math.h"
+
+namespace talus {
+
+struct BodySim {
+  Vec3 center = Vec3::Zero();  ///< centre of mass, world space, metres
+  Quat orientation = Quat::Identity();
+  Vec3 linearVelocity = Vec3::Zero();   ///< m/s
+  Vec3 angularVelocity = Vec3::Zero();  ///< rad/s, world space
+  Vec3 force = Vec3::Zero();            ///< N, accumulated for the next step
+  Vec3 torque = Vec3::Zero();           ///< N m, accumulated for the next step
+  Vec3 localCenter = Vec3::Zero();      ///< centre of mass in the body frame
+  Mat3 inertiaLocal = Mat3::Zero();     ///< kg m^2, body axes (for the gyroscopic term)
+  Mat3 invInertiaLocal = Mat3::Zero();  ///< 1/(kg m^2), body axes
+  Mat3 invInertiaWorld = Mat3::Zero();  ///< 1/(kg m^2), world axes
+  double invMass = 0.0;                 ///< 1/kg; 0 for static and kinematic bodies
+  BodyType type = BodyType::Static;
+  bool awake = true;  ///< false while asleep: not integrated, immovable in contacts
+  /// Pseudo-velocities of split impulses, reset every step (m/s, rad/s).
+  Vec3 pseudoLinear = Vec3::Zero();
+  Vec3 pseudoAngular = Vec3::Zero();
+
+  /// Whether the integrator moves this body this step.
+  [[nodiscard]] bool IsMoving() const {
+    return type != BodyType::Static && (type == BodyType::Kinematic || awake);
+  }
+  /// Whether contacts may push this body (a dynamic body that is awake).
+  [[nodiscard]] bool IsSolverDynamic() const { return type == BodyType::Dynamic && awake; }
+  /// Origin of the body frame, world space.
+  [[nodiscard]] Vec3 Origin() const { return center - orientation * localCenter; }
+
+  /// Recomputes invInertiaWorld from the orientation.
+  void UpdateWorldInertia() {
+    const Mat3 r = orientation.toRotationMatrix();
+    invInertiaWorld = r * invInertiaLocal * r.transpose();
+  }
+};
+
+}  // namespace talus

@@ -1,0 +1,61 @@
+// Contact: the persistent record of one touching pair between steps.
+//
+// A Contact holds the pair's manifold from the narrow phase plus what must
+// survive to the next step: the accumulated normal and friction impulses of
+// each point, keyed by the point's feature id, and the pair's mixed
+// friction and restitution. The solver's per-step rows (dynamics/
+// contact_solver.h) are rebuilt from Contacts every step; only impulses flow
+// back. Keeping the two apart keeps the rows small and dense and lets the
+// warm start survive any change of manifold point order.
+//
+// Invariants: bodyA < bodyB is not required, but a pair appears once; the
+// normal points from B towards A; contact lists handed between steps are
+// sorted by PairKey so matching is a merge walk with a deterministic result.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "collision/contact_manifold.h"
+#include "talus/math.h"
+#include "talus/world_settings.h"
+
+namespace talus {
+
+struct Contact {
+  int bodyA = -1;  ///< body index of A (the normal points towards A)
+  int bodyB = -1;  ///< body index of B
+  ContactManifold manifold{};
+  /// Accumulated normal impulse per manifold point, N s, >= 0.
+  std::array<double, kMaxManifoldPoints> normalImpulse{};
+  /// Accumulated friction impulse per point as a world vector in the contact
+  /// plane, N s. Stored as a vector, not per tangent row, so the warm start
+  /// survives a change of tangent basis between steps.
+  std::array<Vec3, kMaxManifoldPoints> frictionImpulse{};
+  double friction = 0.0;     ///< the pair's mixed Coulomb coefficient
+  double restitution = 0.0;  ///< the pair's mixed restitution
+
+  /// The order key of the pair: A's index in the high half, B's in the low.
+  [[nodiscard]] std::uint64_t PairKey() const {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(bodyA)) << 32) |
+           static_cast<std::uint32_t>(bodyB);
+  }
+};
+
+/// The pair's friction from each body's coefficient (both >= 0).
+double MixFriction(double a, double b, FrictionCombine rule);
+/// The pair's restitution from each body's coefficient (both in [0, 1]).
+double MixRestitution(double a, double b, RestitutionCombine rule);
+
+/// A fresh contact for a manifold, impulses zero.
+Contact MakeContact(int bodyA, int bodyB, const ContactManifold& manifold, double friction,
+                    double restitution);
+
+/// Warm starting: for every contact in `current` whose pair is also in
+/// `previous`, copies the accumulated impulses of each point whose feature
+/// id matches an old point's. Both lists must be sorted by PairKey. Returns
+/// the number of points that found their old impulses.
+int CarryImpulses(std::span<const Contact> previous, std::span<Contact> current);
+
+}  // namespace talus

@@ -1,0 +1,101 @@
+// ContactSolver: Sequential Impulses (projected Gauss-Seidel) on contact
+// and friction constraints, section 3 of the write-up after Catto (GDC
+// 2005-2009).
+//
+// Notation for one contact point p of the pair (A, B), normal n from B to A,
+// rA = p - cA, rB = p - cB, relative velocity at p
+//   dv = (vA + wA x rA) - (vB + wB x rB).
+//
+// Non-penetration. C = depth along n must not grow: Cdot = n . dv >= target.
+//   Jacobian  J = [ n, rA x n, -n, -rB x n ]
+//   Effective mass  m_n = 1 / (1/mA + 1/mB + (rA x n) . IA^-1 (rA x n)
+//                                           + (rB x n) . IB^-1 (rB x n))
+//   Impulse  dlambda = -m_n (n . dv - target); accumulated lambda clamped to
+//   [0, inf) (contacts push, never pull), the body velocities changed by the
+//   clamped difference along +n for A and -n for B.
+//   target = beta/h max(depth - slop, 0) (Baumgarte bias, as written) for a
+//   penetrating point; depth/h (< 0: the gap may close this step) for a
+//   point not yet touching; max'ed with -e n.dv0 (restitution) when the
+//   closing speed -n.dv0 exceeds the restitution threshold and the point
+//   touches by the end of the step (depth - h n.dv0 > 0).
+//
+// Friction. Cdot = t_k . dv = 0 for two tangents t1, t2 orthogonal to n
+//   (t1 along the sliding velocity when there is one, so the sliding
+//   direction gets the whole Coulomb bound).
+//   Jacobian  J = [ t, rA x t, -t, -rB x t ],  m_t likewise with t for n.
+//   Accumulated impulse clamped to [-mu lambda_n, mu lambda_n] with the
+//   point's current lambda_n, re-read every time after the normal row moved.
+//
+// Split impulses (option). The Baumgarte term moves to pseudo-velocities:
+//   the same normal row on (pv, pw) with target beta/h max(depth - slop, 0),
+//   solved after the velocities and added only to the position update, so
+//   position correction cannot add kinetic energy.
+//
+// Data: Prepare() builds one ContactRows header per touching pair and one
+// PointRow per point in two dense vectors that keep their capacity between
+// steps; the iterations walk those arrays and never allocate. Pairs where
+// neither body can move under contact (static, kinematic, asleep) build no
+// rows; mu == 0 builds no friction rows, e == 0 no restitution work.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "dynamics/body_sim.h"
+#include "dynamics/contact.h"
+#include "talus/step_statistics.h"
+#include "talus/world_settings.h"
+
+namespace talus {
+
+class ContactSolver {
+ public:
+  /// Builds the rows of `contacts` for a step of `h` seconds from the bodies'
+  /// current velocities, loading the accumulated impulses (zero, or last
+  /// step's when warm starting). Adds its counts to `stats`.
+  void Prepare(std::span<const BodySim> bodies, std::span<const Contact> contacts,
+               const WorldSettings& settings, double h, StepStatistics& stats);
+  /// Applies the loaded impulses to the bodies (warm start).
+  void WarmStart(std::span<BodySim> bodies) const;
+  /// Runs `iterations` Gauss-Seidel sweeps over all rows.
+  void SolveVelocities(std::span<BodySim> bodies, int iterations);
+  /// Runs `iterations` sweeps of the split-impulse pseudo-velocity rows.
+  void SolvePositions(std::span<BodySim> bodies, int iterations);
+  /// Writes the accumulated impulses back for next step's warm start.
+  void StoreImpulses(std::span<Contact> contacts) const;
+
+  /// Number of point rows built by the last Prepare.
+  [[nodiscard]] int PointCount() const { return static_cast<int>(m_points.size()); }
+
+ private:
+  struct PointRow {
+    Vec3 rA = Vec3::Zero();   ///< metres, from A's centre of mass
+    Vec3 rB = Vec3::Zero();   ///< metres, from B's centre of mass
+    double normalMass = 0.0;  ///< kg
+    double tangentMass[2] = {0.0, 0.0};
+    double target = 0.0;          ///< m/s, least normal separation speed
+    double positionTarget = 0.0;  ///< m/s, split-impulse pseudo target
+    double normalImpulse = 0.0;   ///< N s, accumulated
+    double tangentImpulse[2] = {0.0, 0.0};
+    double pseudoImpulse = 0.0;
+  };
+  struct PairRows {
+    int contact = -1;  ///< index into the contacts handed to Prepare
+    int bodyA = -1, bodyB = -1;
+    int firstPoint = 0, pointCount = 0;
+    Vec3 normal = Vec3::Zero();
+    Vec3 tangent[2] = {Vec3::Zero(), Vec3::Zero()};
+    double friction = 0.0;
+    bool hasFriction = false;
+    double invMassA = 0.0, invMassB = 0.0;
+    Mat3 invInertiaA = Mat3::Zero();  ///< world axes; zero for bodies contacts cannot move
+    Mat3 invInertiaB = Mat3::Zero();
+  };
+
+  void SolvePair(std::span<BodySim> bodies, const PairRows& pair);
+
+  std::vector<PairRows> m_pairs;
+  std::vector<PointRow> m_points;
+};
+
+}  // namespace talus

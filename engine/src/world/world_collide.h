@@ -1,0 +1,33 @@
+// The World's collision stages: from body states to this step's persistent
+// contacts (section 2 of the write-up: broad phase, then narrow phase).
+//
+// UpdateBroadPhase hands the broad phase one bounding sphere per body slot
+// (dead and shapeless slots inactive; static and kinematic bodies marked
+// static, so pairs of two bodies that cannot be pushed are never found). It
+// runs before anything else in the step and is the one stage that can
+// refuse (a body beyond the broad phase's coordinate range), so a refusal
+// leaves the world unchanged.
+//
+// FindContacts moves last step's contacts to `previousContacts` (for warm
+// starting) and fills `contacts` with one Contact per touching pair, in the
+// broad phase's (a, b) order, which is pair-key order. Pairs whose bodies
+// are all asleep (or asleep against static or kinematic) skip the narrow
+// phase and keep last step's contact, so a sleeping island stays connected
+// and costs nothing.
+#pragma once
+
+#include "talus/result.h"
+#include "talus/step_statistics.h"
+#include "world/world_data.h"
+
+namespace talus {
+
+/// Feeds the broad phase this step's bounding spheres; an Error (nothing
+/// changed) when a body left the broad phase's valid range.
+Result<int> UpdateBroadPhase(WorldData& d);
+
+/// Rebuilds `d.contacts` from the broad phase's pairs and the narrow phase;
+/// adds its counts to `stats`.
+void FindContacts(WorldData& d, StepStatistics& stats);
+
+}  // namespace talus

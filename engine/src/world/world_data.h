@@ -1,0 +1,75 @@
+// WorldData: everything a World owns, laid out for the step.
+//
+// Bodies are structure-of-arrays by concern, all indexed by body index:
+// `sims` (hot: what the integrator and solver read), `sleep` (rest timers)
+// and `records` (cold: generation, materials, the user's mass data). A
+// destroyed body leaves its slot in place with `alive` false and a bumped
+// generation; the slot goes on `freeSlots` and is reused last-in first-out,
+// so the same sequence of calls always gives the same indices. A dead slot
+// is a static body with no contacts, so every stage skips it for free.
+//
+// `shapes` (cold, by body index) is each body's collision geometry or none.
+// The broad phase gets one proxy per slot (inactive for dead or shapeless
+// slots). `satCaches` keeps, per tested pair, the SAT's last axis, sorted by
+// pair key like the contacts and carried over by the same merge walk.
+//
+// `contacts` holds this step's touching pairs sorted by pair key, with the
+// accumulated impulses the solver wrote back; the next step matches against
+// it for warm starting.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "collision/broad_phase.h"
+#include "collision/sat.h"
+
+#include "dynamics/body_sim.h"
+#include "dynamics/contact.h"
+#include "dynamics/contact_solver.h"
+#include "dynamics/sleep.h"
+#include "talus/body.h"
+#include "talus/shape.h"
+#include "talus/world_settings.h"
+
+namespace talus {
+
+/// Cold per-body data.
+struct BodyRecord {
+  std::uint32_t generation = 0;
+  bool alive = false;
+  double friction = 0.0;
+  double restitution = 0.0;
+  double mass = 0.0;                 ///< kg as given (0 unless dynamic)
+  Mat3 localInertia = Mat3::Zero();  ///< kg m^2 as given (0 unless dynamic)
+};
+
+/// The SAT's temporal-coherence cache of one tested pair.
+struct PairSatCache {
+  std::uint64_t pairKey = 0;
+  SatCache cache;
+};
+
+struct WorldData {
+  WorldSettings settings;
+  std::vector<BodySim> sims;
+  std::vector<SleepState> sleep;
+  std::vector<BodyRecord> records;
+  std::vector<std::int32_t> freeSlots;
+  std::vector<std::optional<Shape>> shapes;
+  int liveBodies = 0;
+
+  BroadPhase broadPhase;
+  std::vector<BroadPhaseProxy> proxies;
+  std::vector<BroadPhasePair> pairs;
+  std::vector<PairSatCache> satCaches;
+  std::vector<PairSatCache> previousSatCaches;
+
+  std::vector<Contact> contacts;          ///< this step's, sorted by pair key
+  std::vector<Contact> previousContacts;  ///< last step's, for warm starting
+  ContactSolver solver;
+  SleepManager sleepManager;
+};
+
+}  // namespace talus

@@ -1,0 +1,113 @@
+// World::Step: THE step. It reads top to bottom as the pipeline of section 3
+// of the original write-up, each stage a function of its own:
+//
+//   0. UpdateBroadPhase     bounding spheres in (the only stage that may
+//                           refuse, so it runs before anything changes)
+//   1. IntegrateVelocities  gravity, forces, torques (+ gyroscopic term)
+//   2. FindContacts         candidate pairs, manifolds, persistent contacts
+//   3. PrepareContacts      warm-start matching, constraint rows
+//   4. SolveVelocities      sequential impulses (+ split-impulse positions)
+//   5. IntegratePositions   x += h v, q = exp(h w / 2) q
+//   6. UpdateSleep          islands at rest fall asleep
+//
+// Each stage is timed into StepStatistics. Nothing in here decides physics;
+// the stages live in engine/src/dynamics and engine/src/collision.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "dynamics/integrator.h"
+#include "talus/world.h"
+#include "world/world_collide.h"
+#include "world/world_data.h"
+
+namespace talus {
+namespace {
+
+// Wall-clock seconds since construction or the last Lap().
+class StageClock {
+ public:
+  double Lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - m_last).count();
+    m_last = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point m_last = std::chrono::steady_clock::now();
+};
+
+void CountBodies(const WorldData& d, StepStatistics& stats) {
+  stats.bodies = d.liveBodies;
+  for (const BodySim& sim : d.sims) {
+    if (sim.type == BodyType::Dynamic && !sim.awake) ++stats.sleepingBodies;
+  }
+}
+
+// Warm starting pairs this step's contacts with last step's by feature id;
+// then the solver's rows are built from the contacts.
+void PrepareContacts(WorldData& d, double h, StepStatistics& stats) {
+  if (d.settings.warmStarting) stats.warmStartedPoints = CarryImpulses(d.previousContacts, d.contacts);
+  d.solver.Prepare(d.sims, d.contacts, d.settings, h, stats);
+}
+
+void SolveVelocities(WorldData& d) {
+  if (d.settings.warmStarting) d.solver.WarmStart(d.sims);
+  d.solver.SolveVelocities(d.sims, d.settings.velocityIterations);
+}
+
+void SolvePositions(WorldData& d) {
+  if (d.settings.splitImpulses) d.solver.SolvePositions(d.sims, d.settings.positionIterations);
+  d.solver.StoreImpulses(d.contacts);
+}
+
+void UpdateSleep(WorldData& d, double h, StepStatistics& stats) {
+  if (!d.settings.sleeping) return;
+  stats.islands = d.sleepManager.Update(d.sims, d.sleep, d.contacts, d.settings, h);
+}
+
+}  // namespace
+
+Result<StepStatistics> World::Step(double dt) {
+  if (!std::isfinite(dt) || dt <= 0.0) {
+    return Error{"World::Step: dt = " + std::to_string(dt) + " s must be finite and > 0"};
+  }
+  WorldData& d = *m_data;
+  StepStatistics stats;
+  StageClock clock;
+  if (const Result<int> proxies = UpdateBroadPhase(d); !proxies) {
+    return Error{"World::Step refused: " + proxies.GetError().message};
+  }
+  CountBodies(d, stats);
+  const double broadPhaseUpdate = clock.Lap();
+
+  stats.awakeBodies = IntegrateVelocities(d.sims, d.settings.gravity, d.settings.gyroscopic, dt);
+  stats.seconds.integrateVelocities = clock.Lap();
+
+  FindContacts(d, stats);
+  stats.seconds.collide = broadPhaseUpdate + clock.Lap();
+
+  PrepareContacts(d, dt, stats);
+  stats.seconds.prepareContacts = clock.Lap();
+
+  SolveVelocities(d);
+  stats.seconds.solveVelocities = clock.Lap();
+
+  SolvePositions(d);
+  stats.seconds.solvePositions = clock.Lap();
+
+  IntegratePositions(d.sims, dt, d.settings.splitImpulses);
+  stats.seconds.integratePositions = clock.Lap();
+
+  UpdateSleep(d, dt, stats);
+  stats.seconds.sleep = clock.Lap();
+
+  const StageTimes& t = stats.seconds;
+  stats.seconds.total = t.integrateVelocities + t.collide + t.prepareContacts + t.solveVelocities +
+                        t.solvePositions + t.integratePositions + t.sleep;
+  return stats;
+}
+
+}  // namespace talus

@@ -1,0 +1,93 @@
+// The runner: runs scenarios x backends (x sweep values, already expanded
+// into Runs by the loader) and records, per run and backend, a trajectory,
+// the metrics the scenario asks for and the wall time per step.
+//
+// Work is split into independent jobs, one per (run, backend), executed by
+// a pool of threads; results come back in job order (runs in file order,
+// backends in the order asked for) whatever the threads' timing, so the
+// output is deterministic. Backends that are not known to be thread-safe
+// (everything but the "talus" family: ODE keeps library-wide state and
+// per-thread collision data, Bullet has process-wide globals such as
+// gContactAddedCallback and its profiler) are serialised: all jobs of one
+// family (the name up to its first '-') run in order on one dedicated
+// thread, concurrently with the other families and the thread-safe jobs.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "talus/harness/backend.h"
+#include "talus/harness/scenario.h"
+#include "talus/harness/trajectory.h"
+#include "talus/harness/truth_check.h"
+#include "talus/result.h"
+
+namespace talus::harness {
+
+/// A thinned time series for plots: at most RunnerOptions::plotPoints points.
+struct PlotSeries {
+  std::vector<double> time;                  ///< seconds
+  std::vector<std::vector<double>> heights;  ///< per scenario body: centre of mass along the up axis, m
+  std::vector<double> energy;                ///< J: kinetic + potential of the dynamic bodies
+};
+
+/// Everything one (run, backend) job produced.
+struct RunResult {
+  std::string scenario;                   ///< scenario name
+  std::string file;                       ///< scenario file as given
+  std::string runId;                      ///< e.g. "box_slide[mu=0.3,v0=1]"
+  std::string backend;                    ///< registry name
+  std::vector<SweepValue> sweepValues;    ///< the run's sweep values
+  double timeStep = 0.0;                  ///< seconds
+  int iterations = 0;                     ///< as asked (0 = engine default; the settings say what it was)
+  int steps = 0;                          ///< steps taken
+  std::vector<std::string> bodyNames;     ///< scenario order
+  std::vector<Setting> settings;          ///< the backend's, in its order
+  std::string error;                      ///< non-empty when the backend refused the run (no metrics then)
+  std::vector<MetricResult> metrics;      ///< truths first (file order), then drift, penetration, contacts
+  double wallSecondsPerStepMedian = 0.0;  ///< seconds; 0 in deterministic mode
+  double wallSecondsPerStepMean = 0.0;    ///< seconds; 0 in deterministic mode
+  PlotSeries series;                      ///< for the HTML report
+};
+
+struct RunnerOptions {
+  /// Backends to run, in output order; each must be registered.
+  std::vector<std::string> backends;
+  /// Threads in all, >= 1; 1 runs everything on the calling thread.
+  int jobs = 1;
+  /// Zero every wall time, so two runs give byte-identical results.
+  bool deterministic = false;
+  /// Most samples a trajectory keeps (the stride grows for long runs), >= 1.
+  int maxSamples = 2000;
+  /// Most points of each plot series, >= 2.
+  int plotPoints = 200;
+  /// Called (serialised) after each job with a line such as
+  /// "[3/24] box_slide[mu=0.3,v0=1] bullet 0.12 s"; may be empty.
+  std::function<void(const std::string&)> progress;
+};
+
+/// Scenario files from `paths`: files as given, folders searched
+/// recursively for *.json except schema.json, each folder's files sorted.
+/// Every run of every file, in that order; the first bad file is an Error.
+Result<std::vector<Run>> LoadScenarios(const std::vector<std::filesystem::path>& paths);
+
+/// Runs every run with every backend of `options`. An unknown backend name
+/// or bad options is an Error before anything runs; a backend refusing one
+/// run is recorded in that RunResult's `error`.
+Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std::vector<Run>& runs,
+                                      const RunnerOptions& options);
+
+/// Runs one run with one backend (what each job does): the trajectory, its
+/// metrics and timings (samples thinned to options.maxSamples).
+RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::string& backend,
+                 const RunnerOptions& options);
+
+/// Steps a built backend through `steps` steps, recording the samples for
+/// which `record(step)` holds (step 0 and the last always) and, when
+/// `stepSeconds` is not null, the wall time of every step.
+Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
+                  const std::function<bool(int)>& record, std::vector<double>* stepSeconds);
+
+}  // namespace talus::harness

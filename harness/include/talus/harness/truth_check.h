@@ -1,0 +1,53 @@
+// Checking a run against its ground truths: one MetricResult per measured
+// number (a free fall gives a height, a bounce series one apex per bounce).
+//
+// EvaluateTruth dispatches with std::visit over TruthKind to one evaluator
+// per kind (harness/src/truth_checks/<kind>.cpp, declared in
+// truth_checks/evaluators.h); adding a kind is one new file plus one line
+// in the dispatch (harness/src/truth_check.cpp). A converged reference has
+// no closed form: the runner compares against a finer run of the same
+// backend (runner.h), so EvaluateTruth returns nothing for it.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "talus/harness/scenario.h"
+#include "talus/harness/trajectory.h"
+
+namespace talus::harness {
+
+/// One measured number against its truth.
+struct MetricResult {
+  std::string name;       ///< stable identifier, e.g. "free_fall.height", "bounce_heights.apex2"
+  std::string unit;       ///< "m", "m/s", "rad", "" (unitless)...
+  double measured = 0.0;  ///< what the engine did (NaN when it could not be measured, e.g. no apex)
+  double truth = 0.0;     ///< the continuous-time answer
+  /// The exact answer of symplectic Euler at the run's step (truths.h);
+  /// NaN when the kind defines none.
+  double truthIntegrator = std::numeric_limits<double>::quiet_NaN();
+  /// measured - reference, where the reference is truthIntegrator when it
+  /// is defined (it removes the integrator error every engine shares at this
+  /// step and leaves the solver's) and truth otherwise; NaN when measured is.
+  double error = 0.0;
+  Tolerance tolerance;   ///< from the scenario file
+  bool checked = false;  ///< the file gave a tolerance (absolute or relative > 0)
+  bool pass = false;     ///< |error| <= absolute + relative |truth| (judged even when not checked)
+};
+
+/// A metric with its name and unit set and every number still unset.
+MetricResult MakeMetric(std::string name, std::string unit);
+
+/// Fills error, checked and pass of `metric` from measured, truth and `tolerance`.
+void Judge(MetricResult& metric, const Tolerance& tolerance);
+
+/// The metrics of `truth` measured on `trajectory` (a run of `run`); empty
+/// for a converged reference. The trajectory must hold at least one sample.
+std::vector<MetricResult> EvaluateTruth(const Run& run, const Truth& truth, const Trajectory& trajectory);
+
+/// The unit "up" direction of a run: -gravity normalised, or +y when there
+/// is no gravity. Heights in truths are measured along it.
+Vec3 UpAxis(const Run& run);
+
+}  // namespace talus::harness

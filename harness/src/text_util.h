@@ -1,0 +1,23 @@
+// Small text helpers shared by the runner, the results file and the report.
+// Concat exists because GCC 12 mis-warns (-Wrestrict, a false positive in
+// libstdc++'s inlined memcpy at -O3) on chains of std::string operator+
+// that start from a literal; appending each piece avoids the pattern.
+#pragma once
+
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+namespace talus::harness {
+
+/// The pieces joined in order.
+inline std::string Concat(std::initializer_list<std::string_view> pieces) {
+  std::string text;
+  for (std::string_view piece : pieces) text.append(piece);
+  return text;
+}
+
+/// `value` with up to `digits` significant digits, shortest form ("%.*g").
+std::string FormatNumber(double value, int digits = 6);
+
+}  // namespace talus::harness

@@ -1,0 +1,64 @@
+// Judging metrics and dispatching a truth to its kind's evaluator.
+#include "talus/harness/truth_check.h"
+
+#include <cassert>
+#include <cmath>
+#include <type_traits>
+#include <utility>
+
+#include "truth_checks/evaluators.h"
+
+namespace talus::harness {
+
+MetricResult MakeMetric(std::string name, std::string unit) {
+  MetricResult metric;
+  metric.name = std::move(name);
+  metric.unit = std::move(unit);
+  return metric;
+}
+
+void Judge(MetricResult& metric, const Tolerance& tolerance) {
+  metric.tolerance = tolerance;
+  metric.checked = tolerance.absolute > 0.0 || tolerance.relative > 0.0;
+  const double reference = std::isnan(metric.truthIntegrator) ? metric.truth : metric.truthIntegrator;
+  metric.error = metric.measured - reference;
+  // A NaN measurement (nothing to measure) fails; NaN compares false.
+  metric.pass = std::abs(metric.error) <= tolerance.absolute + tolerance.relative * std::abs(metric.truth);
+}
+
+Vec3 UpAxis(const Run& run) {
+  const Vec3& gravity = run.scenario.world.gravity;
+  const double norm = gravity.norm();
+  return norm > 0.0 ? Vec3(-gravity / norm) : Vec3::UnitY();
+}
+
+std::vector<MetricResult> EvaluateTruth(const Run& run, const Truth& truth, const Trajectory& trajectory) {
+  assert(!trajectory.samples.empty());
+  return std::visit(
+      [&](const auto& kind) -> std::vector<MetricResult> {
+        using Kind = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<Kind, FreeFallTruth>) {
+          return EvaluateFreeFall(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, SlidingStopTruth>) {
+          return EvaluateSlidingStop(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, RestHeightTruth>) {
+          return EvaluateRestHeight(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, BounceHeightsTruth>) {
+          return EvaluateBounceHeights(run, truth, kind, trajectory);
+        } else {
+          static_assert(std::is_same_v<Kind, ConvergedReferenceTruth>, "a truth kind has no evaluator");
+          return {};  // the runner compares against a finer run
+        }
+      },
+      truth.kind);
+}
+
+int SampleStride(int steps, int maxSamples) {
+  assert(maxSamples >= 1);
+  if (steps <= maxSamples) return 1;
+  return (steps + maxSamples - 1) / maxSamples;
+}
+
+bool IsSampled(int step, int steps, int stride) { return step % stride == 0 || step == steps; }
+
+}  // namespace talus::harness

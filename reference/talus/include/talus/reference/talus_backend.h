@@ -1,0 +1,30 @@
+// The Talus engine behind the harness's Backend interface, in three
+// variants that separate the write-up's choices from the improvements:
+//
+//   "talus"          the engine's defaults: Gauss-map-pruned SAT with the
+//                    SAT cache, clipped manifolds reduced to 4 points, warm
+//                    starting, Baumgarte stabilisation.
+//   "talus-writeup"  the seed write-up's choices: full SAT (every face and
+//                    edge pair), the write-up's manifolds, no SAT cache, no
+//                    warm starting, Baumgarte stabilisation.
+//   "talus-split"    the defaults plus split impulses (position correction
+//                    that adds no kinetic energy).
+//
+// Common to all: double precision; one World::Step(h) per Step(); mass,
+// centre of mass and inertia from talus::reference::ComputeBodyMass (the
+// same numbers the peers get), so the body frame is the scenario's frame
+// and the centre of mass sits at its centroid, with no re-centring;
+// sleeping off (the peers never sleep, and a sleeping body would hide
+// jitter); gyroscopic term off (like the peers and the write-up); combine
+// rules from the scenario (restitution "sqrt" has no engine rule and is
+// refused); iterations from the run (0 = the engine's default, 10).
+#pragma once
+
+#include "talus/harness/backend.h"
+
+namespace talus::reference {
+
+/// Registers "talus", "talus-writeup" and "talus-split".
+void RegisterTalusBackends(harness::BackendRegistry& registry);
+
+}  // namespace talus::reference

@@ -1,0 +1,287 @@
+// The Talus backend: builds a talus::World from a Run and reads it back.
+//
+// Mapping: every scenario body becomes one World body, created in scenario
+// order, whose frame is the scenario body frame (position, orientation);
+// the shape is written in that frame (boxes and spheres centred on it, hulls
+// from BuildHull on the file's points); the centre of mass and the inertia
+// about it come from ComputeBodyMass, given as localCenterOfMass and
+// localInertia (body axes), so the engine and the peers agree on mass data
+// to the last bit. Contacts are read from the world's contact list (World::
+// Data(), engine-internal but stable within this repository): one point per
+// manifold point, with the manifold's normal (B to A) and the point's depth.
+#include "talus/reference/talus_backend.h"
+
+#include <cassert>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "talus/body.h"
+#include "talus/hull_builder.h"
+#include "talus/reference/body_mass.h"
+#include "talus/shape.h"
+#include "talus/world.h"
+#include "world/world_data.h"
+
+namespace talus::reference {
+namespace {
+
+using harness::BodySpec;
+using harness::CombineRule;
+using harness::Run;
+
+std::string Format(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+
+/// Which engine options a variant uses.
+enum class Variant { Defaults, WriteUp, SplitImpulses };
+
+const char* VariantName(Variant variant) {
+  switch (variant) {
+    case Variant::Defaults:
+      return "talus";
+    case Variant::WriteUp:
+      return "talus-writeup";
+    case Variant::SplitImpulses:
+      return "talus-split";
+  }
+  return "talus";
+}
+
+Result<FrictionCombine> ToFrictionCombine(CombineRule rule) {
+  switch (rule) {
+    case CombineRule::Sqrt:
+      return FrictionCombine::GeometricMean;
+    case CombineRule::Min:
+      return FrictionCombine::Min;
+    case CombineRule::Max:
+      return FrictionCombine::Max;
+    case CombineRule::Multiply:
+      return FrictionCombine::Product;
+    case CombineRule::Average:
+      return FrictionCombine::Average;
+  }
+  return Error{"unknown friction combine rule"};
+}
+
+Result<RestitutionCombine> ToRestitutionCombine(CombineRule rule) {
+  switch (rule) {
+    case CombineRule::Max:
+      return RestitutionCombine::Max;
+    case CombineRule::Min:
+      return RestitutionCombine::Min;
+    case CombineRule::Multiply:
+      return RestitutionCombine::Product;
+    case CombineRule::Average:
+      return RestitutionCombine::Average;
+    case CombineRule::Sqrt:
+      break;
+  }
+  return Error{std::string("restitution combine \"") + harness::CombineRuleName(rule) +
+               "\" has no Talus rule (max, min, multiply, average)"};
+}
+
+Result<Shape> MakeShape(const BodySpec& spec) {
+  if (const auto* box = std::get_if<harness::BoxShape>(&spec.shape))
+    return Shape::CreateBox(box->halfExtents);
+  if (const auto* sphere = std::get_if<harness::SphereShape>(&spec.shape)) {
+    return Shape::CreateSphere(sphere->radius);
+  }
+  const auto& points = std::get<harness::HullShape>(spec.shape).points;
+  auto hull = BuildHull(points);
+  if (!hull) return hull.GetError();
+  return Shape::CreateHull(std::make_shared<const Hull>(std::move(hull).Value()));
+}
+
+class TalusBackend final : public harness::Backend {
+ public:
+  static Result<std::unique_ptr<harness::Backend>> Create(const Run& run, Variant variant);
+
+  [[nodiscard]] std::string Name() const override { return VariantName(m_variant); }
+  void Step() override;
+  [[nodiscard]] int BodyCount() const override { return static_cast<int>(m_bodies.size()); }
+  [[nodiscard]] harness::BodyState GetBodyState(int index) const override;
+  [[nodiscard]] std::vector<harness::ContactPoint> GetContacts() const override;
+  [[nodiscard]] std::vector<harness::Setting> Settings() const override { return m_settings; }
+
+ private:
+  TalusBackend(World world, Variant variant) : m_world(std::move(world)), m_variant(variant) {}
+  void AddSettings(const Run& run);
+
+  World m_world;
+  Variant m_variant;
+  double m_timeStep = 0.0;
+  std::vector<BodyId> m_bodies;              // by scenario index
+  std::vector<int> m_scenarioIndexOfSlot;    // world body index -> scenario index
+  std::vector<BodyMass> m_masses;            // by scenario index
+  std::vector<harness::Setting> m_settings;  // fixed at creation
+};
+
+WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine friction,
+                           RestitutionCombine restitution) {
+  WorldSettings settings;
+  settings.gravity = run.scenario.world.gravity;
+  if (run.iterations > 0) {
+    settings.velocityIterations = run.iterations;
+    settings.positionIterations = run.iterations;
+  }
+  settings.frictionCombine = friction;
+  settings.restitutionCombine = restitution;
+  settings.sleeping = false;
+  settings.gyroscopic = false;
+  if (variant == Variant::WriteUp) {
+    settings.narrowPhase.satMode = SatMode::Full;
+    settings.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
+    settings.narrowPhase.useSatCache = false;
+    settings.warmStarting = false;
+    settings.splitImpulses = false;
+  } else if (variant == Variant::SplitImpulses) {
+    settings.splitImpulses = true;
+  }
+  return settings;
+}
+
+Result<std::unique_ptr<harness::Backend>> TalusBackend::Create(const Run& run, Variant variant) {
+  const std::string prefix = std::string(VariantName(variant)) + ": ";
+  auto friction = ToFrictionCombine(run.scenario.world.frictionCombine);
+  if (!friction) return Error{prefix + friction.GetError().message};
+  auto restitution = ToRestitutionCombine(run.scenario.world.restitutionCombine);
+  if (!restitution) return Error{prefix + restitution.GetError().message};
+  auto world = World::Create(MakeSettings(run, variant, friction.Value(), restitution.Value()));
+  if (!world) return Error{prefix + world.GetError().message};
+
+  std::unique_ptr<TalusBackend> backend(new TalusBackend(std::move(world).Value(), variant));
+  backend->m_timeStep = run.timeStep;
+  for (std::size_t i = 0; i < run.scenario.bodies.size(); ++i) {
+    const BodySpec& spec = run.scenario.bodies[i];
+    const std::string where = prefix + "body \"" + spec.name + "\": ";
+    auto mass = ComputeBodyMass(spec);
+    if (!mass) return Error{where + mass.GetError().message};
+    auto shape = MakeShape(spec);
+    if (!shape) return Error{where + shape.GetError().message};
+    BodyDef def;
+    def.type = spec.motion == harness::Motion::Dynamic ? BodyType::Dynamic : BodyType::Static;
+    def.position = spec.position;
+    def.orientation = spec.orientation;
+    def.shape = std::move(shape).Value();
+    def.friction = spec.friction;
+    def.restitution = spec.restitution;
+    def.allowSleep = false;
+    if (def.type == BodyType::Dynamic) {
+      def.linearVelocity = spec.linearVelocity;
+      def.angularVelocity = spec.angularVelocity;
+      def.density = 0.0;  // mass data below, shared with the peers
+      def.mass = mass.Value().mass;
+      def.localInertia = mass.Value().inertia;
+      def.localCenterOfMass = mass.Value().centroid;
+    }
+    auto id = backend->m_world.CreateBody(def);
+    if (!id) return Error{where + id.GetError().message};
+    const auto slot = static_cast<std::size_t>(id.Value().index);
+    if (backend->m_scenarioIndexOfSlot.size() <= slot) backend->m_scenarioIndexOfSlot.resize(slot + 1, -1);
+    backend->m_scenarioIndexOfSlot[slot] = static_cast<int>(i);
+    backend->m_bodies.push_back(id.Value());
+    backend->m_masses.push_back(mass.Value());
+  }
+  backend->AddSettings(run);
+  return std::unique_ptr<harness::Backend>(std::move(backend));
+}
+
+void TalusBackend::Step() {
+  // The run's time step was validated by the loader ((0, 1] seconds), so a
+  // refusal here is a programmer error; the statistics are not needed.
+  [[maybe_unused]] const auto stats = m_world.Step(m_timeStep);
+  assert(stats);
+}
+
+harness::BodyState TalusBackend::GetBodyState(int index) const {
+  const auto state = m_world.GetBodyState(m_bodies.at(static_cast<std::size_t>(index)));
+  assert(state);
+  const talus::BodyState& body = state.Value();
+  harness::BodyState out;
+  out.centerOfMass = body.centerOfMass;
+  out.origin = body.position;
+  out.orientation = body.orientation;
+  out.linearVelocity = body.linearVelocity;
+  out.angularVelocity = body.angularVelocity;
+  out.mass = body.mass;
+  const Mat3 rotation = body.orientation.toRotationMatrix();
+  out.worldInertia = rotation * body.localInertia * rotation.transpose();
+  return out;
+}
+
+std::vector<harness::ContactPoint> TalusBackend::GetContacts() const {
+  std::vector<harness::ContactPoint> contacts;
+  for (const Contact& contact : m_world.Data().contacts) {
+    const int bodyA = m_scenarioIndexOfSlot.at(static_cast<std::size_t>(contact.bodyA));
+    const int bodyB = m_scenarioIndexOfSlot.at(static_cast<std::size_t>(contact.bodyB));
+    for (int p = 0; p < contact.manifold.pointCount; ++p) {
+      const auto& point = contact.manifold.points[static_cast<std::size_t>(p)];
+      contacts.push_back({bodyA, bodyB, point.position, contact.manifold.normal, point.depth});
+    }
+  }
+  return contacts;
+}
+
+const char* OnOff(bool on) { return on ? "on" : "off"; }
+
+void TalusBackend::AddSettings(const Run& run) {
+  const WorldSettings& s = m_world.Settings();
+  const char* sat = s.narrowPhase.satMode == SatMode::Full ? "full (every face and edge pair)"
+                                                           : "Gauss-map pruned edge pairs";
+  const char* manifold = s.narrowPhase.manifoldMode == ManifoldMode::WriteUp
+                             ? "write-up (vertices near the contact plane, one depth)"
+                             : "clipped incident face, reduced to 4 points";
+  const char* broadPhase = s.broadPhase == BroadPhaseKind::UniformGrid ? "uniform grid"
+                           : s.broadPhase == BroadPhaseKind::AabbTree  ? "AABB tree"
+                                                                       : "brute force";
+  m_settings = {
+      {"engine", "Talus (double)"},
+      {"variant", VariantName(m_variant)},
+      {"time step (s)", Format(run.timeStep)},
+      {"stepping", "World::Step(h), one step per Step()"},
+      {"integrator", "symplectic Euler (v += h a; x += h v)"},
+      {"solver", "sequential impulses"},
+      {"velocity iterations",
+       std::to_string(s.velocityIterations) + (run.iterations > 0 ? "" : " (engine default)")},
+      {"warm starting", OnOff(s.warmStarting)},
+      {"position correction", s.splitImpulses ? "split impulses" : "Baumgarte"},
+      {"position iterations", s.splitImpulses ? std::to_string(s.positionIterations) : "unused"},
+      {"baumgarte factor", Format(s.baumgarte)},
+      {"slop (m)", Format(s.slop)},
+      {"restitution threshold (m/s)", Format(s.restitutionThreshold)},
+      {"friction combine", harness::CombineRuleName(run.scenario.world.frictionCombine)},
+      {"restitution combine", harness::CombineRuleName(run.scenario.world.restitutionCombine)},
+      {"broad phase", broadPhase},
+      {"SAT", sat},
+      {"SAT cache", OnOff(s.narrowPhase.useSatCache)},
+      {"manifolds", manifold},
+      {"speculative margin (m)", Format(s.narrowPhase.speculativeMargin)},
+      {"gyroscopic term", OnOff(s.gyroscopic)},
+      {"damping", "none"},
+      {"sleeping", OnOff(s.sleeping)},
+      {"hull shapes", "talus::BuildHull on the scenario points, in the body frame"},
+      {"mass properties",
+       "from talus::reference::ComputeBodyMass (exact), body frame, centre of mass at the centroid"},
+  };
+}
+
+}  // namespace
+
+void RegisterTalusBackends(harness::BackendRegistry& registry) {
+  registry.Register("talus", "Talus (double): engine defaults (pruned SAT, clipped manifolds, warm starting)",
+                    [](const Run& run) { return TalusBackend::Create(run, Variant::Defaults); });
+  registry.Register("talus-writeup",
+                    "Talus (double): the write-up's choices (full SAT, write-up manifolds, no warm starting)",
+                    [](const Run& run) { return TalusBackend::Create(run, Variant::WriteUp); });
+  registry.Register("talus-split", "Talus (double): engine defaults plus split impulses",
+                    [](const Run& run) { return TalusBackend::Create(run, Variant::SplitImpulses); });
+}
+
+}  // namespace talus::reference
