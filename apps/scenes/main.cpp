@@ -17,6 +17,7 @@
 #include "talus/harness/bench_scenes.h"
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/ode_backend.h"
+#include "talus/reference/talus_backend.h"
 
 namespace {
 
@@ -50,6 +51,7 @@ struct Job {
 
 int main(int argc, char** argv) {
   talus::harness::BackendRegistry registry;
+  talus::reference::RegisterTalusBackends(registry);
   talus::reference::RegisterBulletBackends(registry);
   talus::reference::RegisterOdeBackends(registry);
 
