@@ -1,0 +1,31 @@
+// Formatting benchmark reports (talus::harness::BenchReport) as the
+// machine-readable lines SCENES.md asks for: CSV (one header line, then one
+// line per run, fixed columns) or JSON lines (one object per run, only the
+// figures that apply to the scene). A skipped run is a line too, with its
+// reason, so nothing is left out silently.
+#pragma once
+
+#include <string>
+
+#include "talus/harness/bench_run.h"
+
+namespace talus::scenes {
+
+/// Output format of talus-scenes.
+enum class ReportFormat { Csv, JsonLines };
+
+/// The CSV header line (no newline): engine, scene, parameter, bodies,
+/// threads, steps, ms_per_step_median, ms_per_step_mean, max_contacts,
+/// drift_m, max_penetration_m, kinetic_energy_j, escaped, skipped.
+std::string CsvHeader();
+
+/// One report as a CSV line (no newline). Figures a scene does not have are
+/// empty fields; the skip reason is quoted. Numbers carry 6 significant
+/// digits; a non-finite figure prints as nan or inf.
+std::string FormatCsv(const harness::BenchReport& report);
+
+/// One report as a compact JSON object (no newline). A non-finite figure is
+/// written as null (JSON has no NaN).
+std::string FormatJson(const harness::BenchReport& report);
+
+}  // namespace talus::scenes
