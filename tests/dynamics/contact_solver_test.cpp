@@ -83,7 +83,7 @@ TEST(ContactSolver, StopDistanceHoldsWithoutWarmStartingAndWithSplitImpulses) {
   cold.warmStarting = false;
   EXPECT_NEAR(StopDistance(5.0, 0.5, cold, kSlideH), expected, 0.02 * expected);
   WorldSettings split = Settings();
-  split.splitImpulses = true;
+  split.positionCorrection = PositionCorrection::SplitImpulses;
   EXPECT_NEAR(StopDistance(5.0, 0.5, split, kSlideH), expected, 0.02 * expected);
 }
 
@@ -202,7 +202,7 @@ void RunClosedRoom(const WorldSettings& settings, int steps, std::vector<double>
 
 TEST(ContactSolver, FrictionlessInelasticClosedSystemNeverGainsEnergy) {
   WorldSettings settings = Settings();
-  settings.splitImpulses = true;
+  settings.positionCorrection = PositionCorrection::SplitImpulses;
   for (const bool warm : {false, true}) {
     settings.warmStarting = warm;
     std::vector<double> energies;
@@ -221,7 +221,7 @@ TEST(ContactSolver, SplitImpulsesPushOutWithoutLaunching) {
   // pseudo-velocities and leave its real velocity near zero.
   const auto peakUpwardSpeed = [](bool split) {
     WorldSettings settings = Settings();
-    settings.splitImpulses = split;
+    settings.positionCorrection = split ? PositionCorrection::SplitImpulses : PositionCorrection::Baumgarte;
     ContactScene scene(settings);
     scene.AddPlane({});
     const int box = scene.AddBox({0, 0.45, 0}, Vec3::Constant(0.5), 1.0);
