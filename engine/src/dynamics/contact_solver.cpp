@@ -55,6 +55,7 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
                             const WorldSettings& settings, double h, StepStatistics& stats) {
   m_pairs.clear();
   m_points.clear();
+  m_newPairs.clear();
   const double invH = 1.0 / h;
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const Contact& contact = contacts[c];
@@ -74,6 +75,7 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
     pair.normal = contact.manifold.normal;
     pair.friction = contact.friction;
     pair.hasFriction = contact.friction > 0.0;
+    pair.persisted = contact.persisted && settings.warmStarting;
     pair.invMassA = movesA ? a.invMass : 0.0;
     pair.invMassB = movesB ? b.invMass : 0.0;
     pair.invInertiaA = movesA ? a.invInertiaWorld : Mat3::Zero();
@@ -148,6 +150,7 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
     } else {
       stats.frictionRowsSkipped += 2 * pair.pointCount;
     }
+    if (!pair.persisted) m_newPairs.push_back(static_cast<int>(m_pairs.size()));
     m_pairs.push_back(pair);
   }
 }
@@ -305,22 +308,33 @@ void ContactSolver::SolveFriction(std::span<BodySim> bodies, const PairRows& pai
 // balanced. The friction bound still follows the normal impulse as it
 // changes: every friction pass reads the current values.
 //
-// Past `minIterations` the sweeps go on while the last one still changed
-// some row's velocity by more than `tolerance`, up to `maxIterations`: a
-// warm-started stack stops at the minimum, while a stack whose contacts are
-// new (no impulses to start from; the load must diffuse through the chain,
-// one contact per sweep) gets the sweeps it needs instead of sagging.
+// Past `minIterations`, sweeps over the rows of new pairs only go on while
+// the last one still changed some row's velocity by more than `tolerance`,
+// up to `maxIterations` sweeps in all. A new pair has no accumulated impulse
+// to start from: under a stack whose contacts are all new, the load must
+// diffuse through the chain one contact per sweep, and ten sweeps leave a
+// 10-box column sagging 1.5 cm and rocking. Persisting pairs are warm
+// started and keep the fixed count (sweeping everything to convergence cost
+// 6x the solver time on a 1240-cube pyramid that never converges to 1e-3
+// m/s in ten sweeps), so the extra work follows the number of new contacts.
 int ContactSolver::SolveVelocities(std::span<BodySim> bodies, int minIterations, int maxIterations,
                                    double tolerance) {
   int sweeps = 0;
-  while (sweeps < std::max(minIterations, maxIterations)) {
-    m_largestChange = 0.0;
+  for (; sweeps < minIterations; ++sweeps) {
     for (const PairRows& pair : m_pairs) SolveNormals(bodies, pair);
     for (const PairRows& pair : m_pairs) {
       if (pair.hasFriction) SolveFriction(bodies, pair);
     }
-    ++sweeps;
-    if (sweeps >= minIterations && m_largestChange <= tolerance) break;
+  }
+  if (m_newPairs.empty()) return sweeps;
+  for (; sweeps < maxIterations; ++sweeps) {
+    m_largestChange = 0.0;
+    for (const int p : m_newPairs) SolveNormals(bodies, m_pairs[static_cast<std::size_t>(p)]);
+    for (const int p : m_newPairs) {
+      const PairRows& pair = m_pairs[static_cast<std::size_t>(p)];
+      if (pair.hasFriction) SolveFriction(bodies, pair);
+    }
+    if (m_largestChange <= tolerance) return sweeps + 1;
   }
   return sweeps;
 }

@@ -73,9 +73,10 @@ class ContactSolver {
                const WorldSettings& settings, double h, StepStatistics& stats);
   /// Applies the loaded impulses to the bodies (warm start).
   void WarmStart(std::span<BodySim> bodies) const;
-  /// Runs at least `minIterations` Gauss-Seidel sweeps over all rows, then
-  /// more while the last sweep changed some row's velocity by more than
-  /// `tolerance` (m/s), up to `maxIterations` in all. Returns the sweeps run.
+  /// Runs `minIterations` Gauss-Seidel sweeps over all rows, then sweeps
+  /// over the rows of new pairs only while the last one changed some row's
+  /// velocity by more than `tolerance` (m/s), up to `maxIterations` sweeps
+  /// in all. Returns the sweeps run (full or new-pair).
   int SolveVelocities(std::span<BodySim> bodies, int minIterations, int maxIterations, double tolerance);
   /// Runs `iterations` sweeps of the split-impulse pseudo-velocity rows.
   void SolveSplitImpulses(std::span<BodySim> bodies, int iterations);
@@ -116,7 +117,8 @@ class ContactSolver {
     double invMassA = 0.0, invMassB = 0.0;
     Mat3 invInertiaA = Mat3::Zero();  ///< world axes; zero for bodies contacts cannot move
     Mat3 invInertiaB = Mat3::Zero();
-    bool block = false;  ///< normal rows solved together through blockInverse
+    bool block = false;      ///< normal rows solved together through blockInverse
+    bool persisted = false;  ///< the pair touched last step (see Contact::persisted)
     Eigen::Matrix4d blockInverse = Eigen::Matrix4d::Zero();
   };
 
@@ -129,6 +131,7 @@ class ContactSolver {
 
   std::vector<PairRows> m_pairs;
   std::vector<PointRow> m_points;
+  std::vector<int> m_newPairs;   ///< indices into m_pairs of pairs that did not persist
   double m_largestChange = 0.0;  ///< m/s, the largest row velocity change of this sweep
 };
 
