@@ -59,16 +59,15 @@ struct WorldSettings {
   /// impulse solver, [1, 1000]. Default 10, the write-up's fixed count.
   int velocityIterations = 10;
   /// Most velocity iterations, [1, 1000] (a value below velocityIterations
-  /// means velocityIterations, the write-up's fixed count). Past
-  /// velocityIterations, sweeps over the rows of new pairs only (pairs that
-  /// were not touching last step, so have no impulses to warm start from)
-  /// go on while the last one changed some row's velocity by more than
-  /// velocityTolerance. Default 200: a 10-box column whose contacts are all
+  /// means velocityIterations, the write-up's fixed count). In a step with
+  /// new pairs (not touching last step, so no impulses to warm start from),
+  /// sweeps past velocityIterations go on while the last one changed a row
+  /// of a new pair by more than velocityTolerance. Default 200: a 10-box column whose contacts are all
   /// new needs ~150 sweeps in its first step not to sag by more than 1 mm;
   /// later steps are warm started and stop at velocityIterations.
   int maxVelocityIterations = 200;
   /// Convergence test of the extra sweeps, m/s, >= 0: the largest change a
-  /// sweep made to any row's relative velocity. Default 1e-3 (0.6 % of the
+  /// sweep made to a row of a new pair (its relative velocity). Default 1e-3 (0.6 % of the
   /// velocity gravity adds in one 60 Hz step; 17 um of position per step).
   double velocityTolerance = 1e-3;
   /// Solve the normal rows of a pair with 2 to 4 points as one block (the

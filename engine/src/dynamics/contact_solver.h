@@ -73,10 +73,10 @@ class ContactSolver {
                const WorldSettings& settings, double h, StepStatistics& stats);
   /// Applies the loaded impulses to the bodies (warm start).
   void WarmStart(std::span<BodySim> bodies) const;
-  /// Runs `minIterations` Gauss-Seidel sweeps over all rows, then sweeps
-  /// over the rows of new pairs only while the last one changed some row's
-  /// velocity by more than `tolerance` (m/s), up to `maxIterations` sweeps
-  /// in all. Returns the sweeps run (full or new-pair).
+  /// Runs `minIterations` Gauss-Seidel sweeps over all rows, then, if some
+  /// pair is new (not persisted), more while the last one changed a row of
+  /// a new pair by more than `tolerance` (m/s), up to `maxIterations` sweeps
+  /// in all. Returns the sweeps run.
   int SolveVelocities(std::span<BodySim> bodies, int minIterations, int maxIterations, double tolerance);
   /// Runs `iterations` sweeps of the split-impulse pseudo-velocity rows.
   void SolveSplitImpulses(std::span<BodySim> bodies, int iterations);
@@ -125,8 +125,8 @@ class ContactSolver {
   void SolveNormals(std::span<BodySim> bodies, const PairRows& pair);
   bool SolveNormalBlock(std::span<BodySim> bodies, const PairRows& pair);
   void PrepareBlock(PairRows& pair) const;
-  /// Records a row's impulse change as a velocity change (impulse / mass).
-  void NoteChange(double impulse, double mass);
+  /// Records the velocity change (impulse / mass) of a row of a new pair.
+  void NoteChange(const PairRows& pair, double impulse, double mass);
   void SolveFriction(std::span<BodySim> bodies, const PairRows& pair);
 
   std::vector<PairRows> m_pairs;
