@@ -21,6 +21,16 @@
 //
 // Order. Each iteration sweeps all normal rows, then all friction rows.
 //
+// Block solve (option, default on). A pair's 2-4 normal rows are solved
+//   together: dlambda = K+ (target - J v), K = J M^-1 J^T (4x4, rank 3 for
+//   coplanar points, so its pseudo-inverse, from an eigen decomposition in
+//   Prepare), accepted when every accumulated impulse stays >= 0, else row
+//   by row. Box2D v2.4's two-point block solver extended to four points.
+//
+// Extra sweeps. In a step with new pairs (no impulses to warm start from)
+//   the sweeps go on past the minimum until the new pairs' rows change by
+//   less than a tolerance, up to a maximum.
+//
 // Friction. Cdot = t_k . dv = 0 for two tangents t1, t2 orthogonal to n
 //   (t1 along the sliding velocity when there is one, so the sliding
 //   direction gets the whole Coulomb bound).
@@ -33,7 +43,7 @@
 //   move it to pseudo-velocities: the same normal row on (pv, pw) with
 //   target beta/h max(depth - slop, 0), solved after the velocities and
 //   added only to the position update, so position correction cannot add
-//   kinetic energy. Non-linear Gauss-Seidel (the default; Catto's Box2D
+//   kinetic energy. Non-linear Gauss-Seidel (an option; Catto's Box2D
 //   v2.4 b2ContactSolver::SolvePositionConstraints, Jolt's position
 //   solve) leaves the velocity target of a touching point at 0 and, after
 //   the positions are integrated, sweeps the points again on positions:
