@@ -52,11 +52,18 @@ void BM_StepStacksOptions(benchmark::State& state) {
   WorldSettings settings;
   settings.sleeping = false;
   settings.warmStarting = state.range(0) != 0;
-  settings.splitImpulses = state.range(1) != 0;
+  settings.positionCorrection = static_cast<PositionCorrection>(state.range(1));
   World world = MakeStacks(4, 5, settings);
   for (auto _ : state) benchmark::DoNotOptimize(world.Step(1.0 / 60.0));
 }
-BENCHMARK(BM_StepStacksOptions)->Args({1, 0})->Args({0, 0})->Args({1, 1})->Unit(benchmark::kMicrosecond);
+// Arguments: warm starting (0/1), PositionCorrection (0 Baumgarte, 1 split
+// impulses, 2 non-linear Gauss-Seidel).
+BENCHMARK(BM_StepStacksOptions)
+    ->Args({1, 0})
+    ->Args({0, 0})
+    ->Args({1, 1})
+    ->Args({1, 2})
+    ->Unit(benchmark::kMicrosecond);
 
 // Sleeping: the same stacks after they fell asleep cost only the broad phase.
 void BM_StepSleepingStacks(benchmark::State& state) {

@@ -84,10 +84,16 @@ class ContactScene {
     if (m_settings.warmStarting) m_stats.warmStartedPoints = CarryImpulses(m_previous, m_contacts);
     m_solver.Prepare(m_bodies, m_contacts, m_settings, h, m_stats);
     if (m_settings.warmStarting) m_solver.WarmStart(m_bodies);
-    m_solver.SolveVelocities(m_bodies, m_settings.velocityIterations);
-    if (m_settings.splitImpulses) m_solver.SolvePositions(m_bodies, m_settings.positionIterations);
+    m_solver.SolveVelocities(m_bodies, m_settings.velocityIterations, m_settings.maxVelocityIterations,
+                             m_settings.velocityTolerance);
+    const bool split = m_settings.positionCorrection == PositionCorrection::SplitImpulses;
+    if (split) m_solver.SolveSplitImpulses(m_bodies, m_settings.positionIterations);
     m_solver.StoreImpulses(m_contacts);
-    IntegratePositions(m_bodies, h, m_settings.splitImpulses);
+    IntegratePositions(m_bodies, h, split);
+    if (m_settings.positionCorrection == PositionCorrection::NonlinearGaussSeidel) {
+      m_solver.SolveNonlinearPositions(m_bodies, m_settings.positionIterations, m_settings.baumgarte,
+                                       m_settings.positionSlop);
+    }
   }
 
   /// Kinetic plus potential energy of all boxes, J.

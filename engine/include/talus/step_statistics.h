@@ -38,6 +38,8 @@ struct StepStatistics {
   std::int32_t restitutionSkipped = 0;    ///< points whose restitution work was skipped (e = 0)
   std::int32_t warmStartedPoints = 0;     ///< points that found last step's impulses by feature id
   std::int32_t islands = 0;               ///< islands of awake dynamic bodies
+  std::int32_t velocitySweeps = 0;        ///< Gauss-Seidel velocity sweeps run (see maxVelocityIterations)
+  std::int32_t positionSweeps = 0;        ///< position sweeps run (split impulses or non-linear Gauss-Seidel)
   BroadPhaseStats broadPhase = {};        ///< the broad phase's own counters
   NarrowPhaseStats narrowPhase = {};      ///< the narrow phase's own counters
 };

@@ -69,6 +69,7 @@ int CarryImpulses(std::span<const Contact> previous, std::span<Contact> current)
     if (old == previous.size()) break;
     const Contact& before = previous[old];
     if (before.PairKey() != key) continue;
+    fresh.persisted = true;
     std::array<bool, kMaxManifoldPoints> used{};
     std::array<bool, kMaxManifoldPoints> found{};
     const auto take = [&](std::size_t i, std::size_t j) {

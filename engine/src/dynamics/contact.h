@@ -35,6 +35,9 @@ struct Contact {
   std::array<Vec3, kMaxManifoldPoints> frictionImpulse{};
   double friction = 0.0;     ///< the pair's mixed Coulomb coefficient
   double restitution = 0.0;  ///< the pair's mixed restitution
+  /// Whether the pair was touching last step too (set by CarryImpulses); a
+  /// new pair has no impulses to start from and gets extra solver sweeps.
+  bool persisted = false;
 
   /// The order key of the pair: A's index in the high half, B's in the low.
   [[nodiscard]] std::uint64_t PairKey() const {
@@ -62,8 +65,9 @@ inline constexpr double kWarmStartMatchDistance = 0.01;
 /// `previous`, copies the accumulated impulses of each point from the old
 /// point with the same feature id or, failing that, the nearest unclaimed
 /// old point within kWarmStartMatchDistance. Each old point is used once.
-/// Both lists must be sorted by PairKey. Returns the number of points that
-/// found their old impulses.
+/// Both lists must be sorted by PairKey. Marks every contact whose pair is
+/// in `previous` as persisted. Returns the number of points that found
+/// their old impulses.
 int CarryImpulses(std::span<const Contact> previous, std::span<Contact> current);
 
 }  // namespace talus

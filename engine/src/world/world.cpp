@@ -87,6 +87,16 @@ std::string ValidateSettings(const WorldSettings& s) {
     return "WorldSettings.velocityIterations = " + std::to_string(s.velocityIterations) +
            " is outside [1, 1000]";
   }
+  if (s.maxVelocityIterations < 1 || s.maxVelocityIterations > 1000) {
+    return "WorldSettings.maxVelocityIterations = " + std::to_string(s.maxVelocityIterations) +
+           " is outside [1, 1000]";
+  }
+  if (s.positionCorrection != PositionCorrection::Baumgarte &&
+      s.positionCorrection != PositionCorrection::SplitImpulses &&
+      s.positionCorrection != PositionCorrection::NonlinearGaussSeidel) {
+    return "WorldSettings.positionCorrection = " + std::to_string(static_cast<int>(s.positionCorrection)) +
+           " is not a PositionCorrection";
+  }
   if (s.positionIterations < 1 || s.positionIterations > 1000) {
     return "WorldSettings.positionIterations = " + std::to_string(s.positionIterations) +
            " is outside [1, 1000]";
@@ -98,6 +108,8 @@ std::string ValidateSettings(const WorldSettings& s) {
   constexpr double kHuge = 1e300;
   for (const std::string& error :
        {CheckRange("baumgarte", s.baumgarte, 0.0, 1.0), CheckRange("slop", s.slop, 0.0, 1.0),
+        CheckRange("positionSlop", s.positionSlop, 0.0, 1.0),
+        CheckRange("velocityTolerance", s.velocityTolerance, 0.0, kHuge),
         CheckRange("restitutionThreshold", s.restitutionThreshold, 0.0, kHuge),
         CheckRange("sleepLinearVelocity", s.sleepLinearVelocity, 0.0, kHuge),
         CheckRange("sleepAngularVelocity", s.sleepAngularVelocity, 0.0, kHuge),

@@ -53,14 +53,27 @@ void PrepareContacts(WorldData& d, double h, StepStatistics& stats) {
   d.solver.Prepare(d.sims, d.contacts, d.settings, h, stats);
 }
 
-void SolveVelocities(WorldData& d) {
-  if (d.settings.warmStarting) d.solver.WarmStart(d.sims);
-  d.solver.SolveVelocities(d.sims, d.settings.velocityIterations);
+void SolveVelocities(WorldData& d, StepStatistics& stats) {
+  const WorldSettings& s = d.settings;
+  if (s.warmStarting) d.solver.WarmStart(d.sims);
+  stats.velocitySweeps =
+      d.solver.SolveVelocities(d.sims, s.velocityIterations, s.maxVelocityIterations, s.velocityTolerance);
 }
 
-void SolvePositions(WorldData& d) {
-  if (d.settings.splitImpulses) d.solver.SolvePositions(d.sims, d.settings.positionIterations);
+void SolvePositions(WorldData& d, StepStatistics& stats) {
+  if (d.settings.positionCorrection == PositionCorrection::SplitImpulses) {
+    d.solver.SolveSplitImpulses(d.sims, d.settings.positionIterations);
+    stats.positionSweeps = d.settings.positionIterations;
+  }
   d.solver.StoreImpulses(d.contacts);
+}
+
+// Non-linear Gauss-Seidel works on the poses the position update produced.
+void CorrectPositions(WorldData& d, StepStatistics& stats) {
+  const WorldSettings& s = d.settings;
+  if (s.positionCorrection != PositionCorrection::NonlinearGaussSeidel) return;
+  stats.positionSweeps =
+      d.solver.SolveNonlinearPositions(d.sims, s.positionIterations, s.baumgarte, s.positionSlop);
 }
 
 void UpdateSleep(WorldData& d, double h, StepStatistics& stats) {
@@ -92,13 +105,14 @@ Result<StepStatistics> World::Step(double dt) {
   PrepareContacts(d, dt, stats);
   stats.seconds.prepareContacts = clock.Lap();
 
-  SolveVelocities(d);
+  SolveVelocities(d, stats);
   stats.seconds.solveVelocities = clock.Lap();
 
-  SolvePositions(d);
+  SolvePositions(d, stats);
   stats.seconds.solvePositions = clock.Lap();
 
-  IntegratePositions(d.sims, dt, d.settings.splitImpulses);
+  IntegratePositions(d.sims, dt, d.settings.positionCorrection == PositionCorrection::SplitImpulses);
+  CorrectPositions(d, stats);
   stats.seconds.integratePositions = clock.Lap();
 
   UpdateSleep(d, dt, stats);
