@@ -121,6 +121,15 @@ class TalusBackend final : public harness::Backend {
   std::vector<harness::Setting> m_settings;  // fixed at creation
 };
 
+const char* PositionCorrectionName(PositionCorrection correction) {
+  switch (correction) {
+    case PositionCorrection::Baumgarte: return "Baumgarte";
+    case PositionCorrection::SplitImpulses: return "split impulses";
+    case PositionCorrection::NonlinearGaussSeidel: return "non-linear Gauss-Seidel";
+  }
+  return "unknown";
+}
+
 WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine friction,
                            RestitutionCombine restitution) {
   WorldSettings settings;
@@ -138,9 +147,13 @@ WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine fric
     settings.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
     settings.narrowPhase.useSatCache = false;
     settings.warmStarting = false;
-    settings.splitImpulses = false;
+    // The write-up's solver: plain row-by-row Gauss-Seidel, a fixed number
+    // of sweeps (a cap below the iteration count means no extra sweeps).
+    settings.blockSolver = false;
+    settings.maxVelocityIterations = 1;
+    settings.positionCorrection = PositionCorrection::Baumgarte;
   } else if (variant == Variant::SplitImpulses) {
-    settings.splitImpulses = true;
+    settings.positionCorrection = PositionCorrection::SplitImpulses;
   }
   return settings;
 }
@@ -246,8 +259,16 @@ void TalusBackend::AddSettings(const Run& run) {
       {"velocity iterations",
        std::to_string(s.velocityIterations) + (run.iterations > 0 ? "" : " (engine default)")},
       {"warm starting", OnOff(s.warmStarting)},
-      {"position correction", s.splitImpulses ? "split impulses" : "Baumgarte"},
-      {"position iterations", s.splitImpulses ? std::to_string(s.positionIterations) : "unused"},
+      {"block solver (a pair's normal rows together)", OnOff(s.blockSolver)},
+      {"extra velocity sweeps for new contacts",
+       s.maxVelocityIterations > s.velocityIterations
+           ? "up to " + std::to_string(s.maxVelocityIterations) + " sweeps, until changes < " +
+                 Format(s.velocityTolerance) + " m/s"
+           : "none"},
+      {"position correction", PositionCorrectionName(s.positionCorrection)},
+      {"position iterations", s.positionCorrection == PositionCorrection::Baumgarte
+                                  ? "unused"
+                                  : std::to_string(s.positionIterations)},
       {"baumgarte factor", Format(s.baumgarte)},
       {"slop (m)", Format(s.slop)},
       {"restitution threshold (m/s)", Format(s.restitutionThreshold)},
