@@ -144,10 +144,8 @@ testing::AssertionResult BuildsValidHull(const std::vector<Vec3>& points, const 
 TEST(HullBuilderFuzz, MinkowskiDifferencesOfBoxesAndHullsAlwaysBuildValidHulls) {
   for (int trial = 0; trial < 600; ++trial) {
     const auto seed = static_cast<std::uint64_t>(70000 + trial);
-    // Both shapes within 5 m of the origin, as in the SAT validation. (With
-    // both near 1e3 m the differences carry 1e-13 m of rounding noise, 100x
-    // the tolerance derived from them: see docs/geometry-quickhull.md, open
-    // cases in tests/data/hulls_open/.)
+    // Both shapes within 5 m of the origin, as in the SAT validation (far
+    // from the origin: MinkowskiDifferencesFarFromTheOrigin... below).
     const Vec3 center = Vec3::Zero();
     EXPECT_TRUE(
         BuildsValidHull(MinkowskiDifferenceSet(seed, center), "minkowski seed " + std::to_string(seed)));
@@ -170,9 +168,8 @@ TEST(HullBuilderFuzz, MinkowskiDifferenceVolumesMatchQhull) {
 }
 
 // Jitter from 0 (exactly coplanar up to rounding) to about the tolerance
-// (~1e-15 m here), at the origin and at 1e4 m. Jitter of 10x-1e6x the
-// tolerance still fails (merged faces drift off their planes; open cases in
-// tests/data/hulls_open/), so it is not part of this batch.
+// (~1e-15 m here), at the origin and at 1e4 m. Larger jitter: see
+// NoisyCoplanarClustersAlwaysBuildValidHulls.
 TEST(HullBuilderFuzz, NearCoplanarClustersAlwaysBuildValidHulls) {
   static constexpr double kJitters[] = {0.0, 1e-16, 1e-15};
   for (int trial = 0; trial < 300; ++trial) {

@@ -15,6 +15,12 @@
 // faces to the new face they are farthest in front of, dropping those now
 // inside. Every decision uses one distance tolerance derived from the
 // input's extent, and the same tolerance is what Hull::FromPolygons checks.
+//
+// Merges move planes, so points kept near a face (and vertices a merge
+// removed) are rechecked against the final planes and processed again when
+// they ended up in front; when that does not settle, or a merged face is
+// not planar within the tolerance, the build is repeated with a wider
+// tolerance (qhull's remedy too: it widens its reported precision).
 #include <algorithm>
 #include <array>
 #include <cassert>

@@ -17,7 +17,10 @@
 // normal about its centroid, offset through the centroid) is up to date; a
 // point is on at most one face's conflict list, and every point on face f's
 // list is more than the build tolerance in front of f's plane, with
-// `farthestPoint` the one farthest in front.
+// `farthestPoint` the one farthest in front. A point is also on at most one
+// face's near list (within a band around the plane, or a vertex a merge
+// removed); near points are only candidates for the builder's final
+// recheck, and a point is never on a conflict and a near list at once.
 //
 // Face merging (MergeAcross) follows the idea of Lloyd's QuickHull3D and
 // Gregorius' "Implementing Quickhull" (GDC 2014): absorb the neighbour across
