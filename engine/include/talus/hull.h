@@ -69,7 +69,9 @@ class Hull {
   [[nodiscard]] int EdgeCount() const { return HalfEdgeCount() / 2; }
   [[nodiscard]] int FaceCount() const { return static_cast<int>(m_faces.size()); }
 
-  /// Distance tolerance (metres) the hull was validated with.
+  /// Distance tolerance (metres) the hull was validated with. For a hull
+  /// from BuildHull it is also the build tolerance, which may have been
+  /// widened above the requested or derived one for noisy input.
   [[nodiscard]] double Tolerance() const { return m_tolerance; }
 
   /// The vertex indices of `face` in counter-clockwise order.

@@ -20,7 +20,10 @@ struct HullBuildSettings {
 
   /// Distance tolerance in metres below which a point counts as on a plane;
   /// 0 (default) derives it from the input's extent with
-  /// Hull::DefaultTolerance, which is what nearly every caller wants.
+  /// Hull::DefaultTolerance, which is what nearly every caller wants. This
+  /// is the starting tolerance: when the input is noisy at a larger scale
+  /// the builder widens it (see BuildHull) and the hull's Tolerance()
+  /// reports the one it was built and validated with.
   double tolerance = 0.0;
 };
 
@@ -35,6 +38,17 @@ struct HullBuildSettings {
 /// (fewer than 4 distinct points, all collinear or coplanar within the
 /// tolerance) or when a coordinate is NaN or infinite; the message names the
 /// problem and, for bad values, the point index.
+///
+/// Noisy input: points that are coplanar only up to noise well above the
+/// tolerance (near-flat clusters; differences of coordinates far from the
+/// origin, which carry rounding noise of eps x the original magnitudes that
+/// the builder cannot see) may not settle into faces that are planar within
+/// the tolerance with every point behind them. The build is then repeated
+/// with the tolerance widened 4x (at least 4x the measured planarity error),
+/// up to 16 times. The returned hull's Tolerance() is the tolerance it was
+/// built and validated with: every face vertex lies within it of the face's
+/// plane, every input point is at most that far in front of any face, and
+/// neighbouring faces differ by more than it.
 Result<Hull> BuildHull(std::span<const Vec3> points, const HullBuildSettings& settings = {});
 
 }  // namespace talus

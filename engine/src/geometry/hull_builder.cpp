@@ -15,6 +15,12 @@
 // faces to the new face they are farthest in front of, dropping those now
 // inside. Every decision uses one distance tolerance derived from the
 // input's extent, and the same tolerance is what Hull::FromPolygons checks.
+//
+// Merges move planes, so points kept near a face (and vertices a merge
+// removed) are rechecked against the final planes and processed again when
+// they ended up in front; when that does not settle, or a merged face is
+// not planar within the tolerance, the build is repeated with a wider
+// tolerance (qhull's remedy too: it widens its reported precision).
 #include <algorithm>
 #include <array>
 #include <cassert>
@@ -122,6 +128,27 @@ Result<std::array<int, 4>> FindInitialSimplex(std::span<const Vec3> points, doub
   return std::array<int, 4>{i0, i1, i2, i3};
 }
 
+// Near band (in tolerances): points assigned less than this far below their
+// best face are kept on its near list for the final recheck. Merged planes
+// move by at most a few tolerances, so a point deeper than 8 can never end
+// up in front; a wider band only costs memory on flat inputs.
+constexpr double kNearBand = 8.0;
+
+// Rounds of "process the queue, recheck near points" before a build is
+// declared unsettled (each round normally turns far fewer points; two are
+// the rule, the rest is a guard against cycling).
+constexpr int kMaxRecheckRounds = 8;
+
+// Tolerance widening for noisy input (see BuildHull): factor per attempt and
+// number of attempts (4^16 ~ 4e9, from a derived 1e-15 m to ~4e-6 m).
+constexpr double kWidening = 4.0;
+constexpr int kMaxWidenings = 16;
+
+// A point may become the eye this many times (a merge can remove a vertex
+// that a later recheck finds in front again); a point that keeps coming
+// back marks the build as unsettled, and BuildHull widens the tolerance.
+constexpr unsigned char kMaxEyeVisits = 3;
+
 // Working state of one build: the mesh plus scratch buffers reused by every
 // iteration, so the loop allocates nothing once they have grown.
 class Builder {
@@ -129,12 +156,16 @@ class Builder {
   Builder(std::span<const Vec3> points, double tolerance, int maxVertices)
       : m_mesh(points, tolerance), m_tolerance(tolerance), m_maxVertices(maxVertices) {}
 
-  void Run(const std::array<int, 4>& simplex);
+  // Builds the hull; false when the near-point recheck did not settle.
+  bool Run(const std::array<int, 4>& simplex);
+  [[nodiscard]] double PlanarityError() const;
   [[nodiscard]] Result<Hull> Bake() const;
 
  private:
   void BuildTetrahedron(const std::array<int, 4>& simplex);
   void AssignToBestFace(std::span<const QhConflict> candidates, std::span<const int> faces, int skip);
+  int RecheckNearPoints();
+  bool ProcessQueue();
   void ComputeHorizon(int face, int eye);
   void AddPoint(int face, int eye);
   void Enqueue(int face);
@@ -150,8 +181,10 @@ class Builder {
   std::vector<int> m_horizon;
   std::vector<std::array<int, 3>> m_stack;  // (face, stop edge, current edge)
   std::vector<int> m_newFaces;
+  std::vector<int> m_neighbours;  // RecheckNearPoints' face and its neighbours
   std::vector<QhConflict> m_orphans;
-  std::vector<int> m_stamp;  // per point, for counting removed vertices
+  std::vector<unsigned char> m_eyeVisits;  // per point: times it was the eye
+  std::vector<int> m_stamp;                // per point, for counting removed vertices
   int m_stampValue = 0;
 };
 
@@ -182,13 +215,17 @@ void Builder::BuildTetrahedron(const std::array<int, 4>& s) {
   m_newFaces = {base, fBad, fCbd, fAcd};
 }
 
-// Gives each candidate point to the face it is farthest in front of, or
-// drops it when it is within the tolerance of (or behind) all of them.
+// Gives each candidate point to the face it is farthest in front of. A point
+// more than the tolerance in front goes on that face's conflict list; one
+// within the near band (kNearBand tolerances) below to one tolerance above
+// goes on its near list, to be rechecked after merges have moved the planes;
+// a point deeper inside can never come out again and is dropped.
 void Builder::AssignToBestFace(std::span<const QhConflict> candidates, std::span<const int> faces, int skip) {
+  const double nearFloor = -kNearBand * m_tolerance;
   for (const QhConflict& p : candidates) {
     if (p.index == skip) continue;
     int bestFace = -1;
-    double bestDistance = m_tolerance;
+    double bestDistance = nearFloor;
     for (int f : faces) {
       if (m_mesh.Face(f).state != QhFaceState::kAlive) continue;
       const double d = m_mesh.Distance(f, p.point);
@@ -197,8 +234,68 @@ void Builder::AssignToBestFace(std::span<const QhConflict> candidates, std::span
         bestFace = f;
       }
     }
-    if (bestFace >= 0) m_mesh.AddConflict(bestFace, p, bestDistance);
+    if (bestFace < 0) continue;
+    if (bestDistance > m_tolerance) {
+      m_mesh.AddConflict(bestFace, p, bestDistance);
+    } else {
+      m_mesh.AddNear(bestFace, p);
+    }
   }
+}
+
+// Merges move face planes by up to a few tolerances, so a point that was
+// within the tolerance of a face when it was assigned may end up in front of
+// the final face or of a neighbour. This sweep rechecks every near point
+// against its face and that face's neighbours and turns those now more than
+// the tolerance in front into conflict points again (qhull handles its
+// "coplanar points" the same way). Returns how many were turned.
+int Builder::RecheckNearPoints() {
+  int turned = 0;
+  for (int f = 0; f < m_mesh.FacePoolSize(); ++f) {
+    if (m_mesh.Face(f).state != QhFaceState::kAlive || m_mesh.Face(f).nearPoints.empty()) continue;
+    m_neighbours.clear();
+    m_neighbours.push_back(f);
+    const int start = m_mesh.Face(f).edge;
+    int e = start;
+    do {
+      m_neighbours.push_back(m_mesh.Edge(m_mesh.Edge(e).twin).face);
+      e = m_mesh.Edge(e).next;
+    } while (e != start);
+    std::vector<QhConflict>& nearPoints = m_mesh.Face(f).nearPoints;
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < nearPoints.size(); ++i) {
+      const QhConflict p = nearPoints[i];
+      int bestFace = -1;
+      double bestDistance = m_tolerance;
+      for (int g : m_neighbours) {
+        const double d = m_mesh.Distance(g, p.point);
+        if (d > bestDistance) {
+          bestDistance = d;
+          bestFace = g;
+        }
+      }
+      if (bestFace < 0) {
+        nearPoints[kept++] = p;
+      } else {
+        m_mesh.AddConflict(bestFace, p, bestDistance);
+        Enqueue(bestFace);
+        ++turned;
+      }
+    }
+    m_mesh.Face(f).nearPoints.resize(kept);
+  }
+  return turned;
+}
+
+// The largest distance of a face's vertex from that face's plane, over the
+// whole hull: merges bounded by the tolerance keep it below the tolerance on
+// clean input; noisy input can push it above (see BuildHull).
+double Builder::PlanarityError() const {
+  double worst = 0.0;
+  for (int f = 0; f < m_mesh.FacePoolSize(); ++f) {
+    if (m_mesh.Face(f).state == QhFaceState::kAlive) worst = std::max(worst, m_mesh.PlanarityError(f));
+  }
+  return worst;
 }
 
 void Builder::Enqueue(int face) {
@@ -208,7 +305,7 @@ void Builder::Enqueue(int face) {
   m_queue.push_back(face);
 }
 
-void Builder::Run(const std::array<int, 4>& simplex) {
+bool Builder::Run(const std::array<int, 4>& simplex) {
   BuildTetrahedron(simplex);
   const auto pointCount = static_cast<int>(m_mesh.Points().size());
   std::vector<QhConflict> all(static_cast<std::size_t>(pointCount));
@@ -219,6 +316,20 @@ void Builder::Run(const std::array<int, 4>& simplex) {
   for (int f : m_newFaces) Enqueue(f);
   if (m_maxVertices > 0) m_stamp.assign(static_cast<std::size_t>(pointCount), 0);
 
+  // Process the queue; then recheck the near points against the final
+  // planes, and go on while that turns some of them into outside points.
+  m_eyeVisits.assign(static_cast<std::size_t>(pointCount), 0);
+  for (int round = 0; round < kMaxRecheckRounds; ++round) {
+    if (!ProcessQueue()) return false;
+    if (m_maxVertices > 0 && m_vertexCount >= m_maxVertices) return true;
+    if (RecheckNearPoints() == 0) return true;
+  }
+  return false;
+}
+
+// Adds eye points until no face has conflicts; false when a point keeps
+// coming back as the eye (the build does not settle at this tolerance).
+bool Builder::ProcessQueue() {
   while (m_queueHead < m_queue.size()) {
     const int face = m_queue[m_queueHead++];
     // Keep the queue compact: drop the consumed prefix now and then.
@@ -230,8 +341,10 @@ void Builder::Run(const std::array<int, 4>& simplex) {
     f.queued = false;
     if (f.state != QhFaceState::kAlive || f.conflicts.empty()) continue;
     if (m_maxVertices > 0 && m_vertexCount >= m_maxVertices) break;
+    if (++m_eyeVisits[static_cast<std::size_t>(f.farthestPoint)] > kMaxEyeVisits) return false;
     AddPoint(face, f.farthestPoint);
   }
+  return true;
 }
 
 // Depth-first walk over the faces the eye sees, starting at `face` and
@@ -389,12 +502,27 @@ Result<Hull> BuildHull(std::span<const Vec3> points, const HullBuildSettings& se
     return Error{"too many points for a hull: " + std::to_string(points.size())};
   }
   if (auto error = CheckFinite(points)) return *error;
-  const double tolerance = settings.tolerance > 0.0 ? settings.tolerance : Hull::DefaultTolerance(points);
-  auto simplex = FindInitialSimplex(points, tolerance);
-  if (!simplex) return simplex.GetError();
-  Builder builder(points, tolerance, settings.maxVertices);
-  builder.Run(simplex.Value());
-  return builder.Bake();
+  double tolerance = settings.tolerance > 0.0 ? settings.tolerance : Hull::DefaultTolerance(points);
+  // Noisy input (points nearly coplanar at a scale well above the
+  // tolerance, or differences of far-from-origin coordinates that carry
+  // rounding noise the derived tolerance cannot know about) can leave a
+  // merged face with a vertex off its plane or a point in front that no
+  // recheck settles. Then the whole build is repeated with the tolerance
+  // widened to kWidening x the larger of the tolerance and the measured
+  // planarity error, for building and validation alike; the hull's
+  // Tolerance() reports the one it was built and validated with.
+  for (int attempt = 0;; ++attempt) {
+    auto simplex = FindInitialSimplex(points, tolerance);
+    if (!simplex) return simplex.GetError();
+    Builder builder(points, tolerance, settings.maxVertices);
+    const bool settled = builder.Run(simplex.Value());
+    const double planarity = builder.PlanarityError();
+    if ((settled && planarity <= tolerance) || attempt == kMaxWidenings) {
+      auto hull = builder.Bake();
+      if (hull || attempt == kMaxWidenings) return hull;
+    }
+    tolerance = kWidening * std::max(tolerance, planarity);
+  }
 }
 
 }  // namespace talus

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 
 namespace talus {
 namespace {
@@ -18,6 +19,7 @@ constexpr std::size_t kKeptConflictCapacity = 256;
 
 void ReleaseLargeList(QhFace& face) {
   if (face.conflicts.capacity() > kKeptConflictCapacity) std::vector<QhConflict>().swap(face.conflicts);
+  if (face.nearPoints.capacity() > kKeptConflictCapacity) std::vector<QhConflict>().swap(face.nearPoints);
 }
 
 }  // namespace
@@ -78,6 +80,7 @@ int QuickhullMesh::AddTriangle(int a, int b, int c) {
   face.edge = e0;
   face.state = QhFaceState::kAlive;
   face.conflicts.clear();
+  face.nearPoints.clear();
   face.farthestPoint = -1;
   face.farthestDistance = 0.0;
   UpdatePlane(f);
@@ -127,7 +130,7 @@ void QuickhullMesh::DeleteFaceAndEdges(int f) {
     FreeEdge(e);
     e = next;
   } while (e != start);
-  assert(Face(f).conflicts.empty());
+  assert(Face(f).conflicts.empty() && Face(f).nearPoints.empty());
   ReleaseLargeList(Face(f));
   Face(f).state = QhFaceState::kDeleted;
   Face(f).edge = -1;
@@ -146,9 +149,22 @@ void QuickhullMesh::AddConflict(int f, const QhConflict& conflict, double distan
 void QuickhullMesh::TakeConflicts(int f, std::vector<QhConflict>& out) {
   QhFace& face = Face(f);
   out.insert(out.end(), face.conflicts.begin(), face.conflicts.end());
+  out.insert(out.end(), face.nearPoints.begin(), face.nearPoints.end());
   face.conflicts.clear();
+  face.nearPoints.clear();
   face.farthestPoint = -1;
   face.farthestDistance = 0.0;
+}
+
+double QuickhullMesh::PlanarityError(int f) const {
+  double worst = 0.0;
+  const int start = Face(f).edge;
+  int e = start;
+  do {
+    worst = std::max(worst, std::abs(Distance(f, Edge(e).origin)));
+    e = Edge(e).next;
+  } while (e != start);
+  return worst;
 }
 
 bool QuickhullMesh::ShouldMerge(int f, int e) const {
@@ -187,6 +203,9 @@ int QuickhullMesh::MergeAcross(int f, int e, std::vector<QhConflict>& orphans) {
   int removed = -1;  // a run of k edges removes its k - 1 inner vertices
   for (int h = start;;) {
     const int next = Edge(h).next;
+    // A vertex inside the run leaves the hull; it may end up slightly in
+    // front of the merged plane, so it is kept for the near-point recheck.
+    if (h != start) AddNear(f, {Point(Edge(h).origin), Edge(h).origin});
     FreeEdge(Edge(h).twin);
     FreeEdge(h);
     ++removed;
@@ -227,6 +246,8 @@ int QuickhullMesh::RepairJunction(int f, int in, std::vector<QhConflict>& orphan
   const int tout = Edge(out).twin;
   const int h = Edge(tin).face;
   assert(Edge(tout).next == tin);
+  const int v = Edge(out).origin;
+  AddNear(f, {Point(v), v});  // v leaves the hull: recheck it later
   if (Face(h).vertexCount == 3) {
     // h would shrink to two edges: absorb it. Its third edge x (u -> w)
     // hands its twin to f's shortened edge.

@@ -17,7 +17,10 @@
 // normal about its centroid, offset through the centroid) is up to date; a
 // point is on at most one face's conflict list, and every point on face f's
 // list is more than the build tolerance in front of f's plane, with
-// `farthestPoint` the one farthest in front.
+// `farthestPoint` the one farthest in front. A point is also on at most one
+// face's near list (within a band around the plane, or a vertex a merge
+// removed); near points are only candidates for the builder's final
+// recheck, and a point is never on a conflict and a near list at once.
 //
 // Face merging (MergeAcross) follows the idea of Lloyd's QuickHull3D and
 // Gregorius' "Implementing Quickhull" (GDC 2014): absorb the neighbour across
@@ -66,7 +69,10 @@ struct QhFace {
   double offset = 0.0;  ///< plane: normal . x = offset
   Vec3 centroid = Vec3::Zero();
   std::vector<QhConflict> conflicts;  ///< outside points given to this face
-  int farthestPoint = -1;             ///< input index of the farthest conflict, -1 if none
+  /// Points within the near band of this face's plane (not outside): they
+  /// are rechecked once merging has moved the planes (see hull_builder.cpp).
+  std::vector<QhConflict> nearPoints;
+  int farthestPoint = -1;  ///< input index of the farthest conflict, -1 if none
   double farthestDistance = 0.0;
   QhFaceState state = QhFaceState::kDeleted;
   bool queued = false;  ///< already waiting in the builder's face queue
@@ -116,8 +122,14 @@ class QuickhullMesh {
   /// height above the plane (must be > tolerance).
   void AddConflict(int f, const QhConflict& conflict, double distance);
 
-  /// Moves all of `f`'s conflict points to the end of `out` and empties the
-  /// list.
+  /// Appends a point near (within the band, not outside) face `f`'s plane.
+  void AddNear(int f, const QhConflict& point) { Face(f).nearPoints.push_back(point); }
+
+  /// Largest distance (metres) of one of `f`'s vertices from its plane.
+  [[nodiscard]] double PlanarityError(int f) const;
+
+  /// Moves all of `f`'s conflict and near points to the end of `out` and
+  /// empties both lists.
   void TakeConflicts(int f, std::vector<QhConflict>& out);
 
   /// True when face `f` and the face across half-edge `e` (on f) should be
