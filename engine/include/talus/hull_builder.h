@@ -5,6 +5,7 @@
 #include <span>
 
 #include "talus/hull.h"
+#include "talus/hull_build_trace.h"
 #include "talus/math.h"
 #include "talus/result.h"
 
@@ -22,6 +23,10 @@ struct HullBuildSettings {
   /// 0 (default) derives it from the input's extent with
   /// Hull::DefaultTolerance, which is what nearly every caller wants.
   double tolerance = 0.0;
+
+  /// When not null, BuildHull clears `*trace` and records every iteration
+  /// into it (talus/hull_build_trace.h), for figures; default null (no cost).
+  HullBuildTrace* trace = nullptr;
 };
 
 /// The convex hull of `points` by Quickhull: start from a tetrahedron of

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/hull_build_trace.h"
 #include "geometry/quickhull_mesh.h"
 #include "talus/hull_builder.h"
 
@@ -130,6 +131,7 @@ class Builder {
       : m_mesh(points, tolerance), m_tolerance(tolerance), m_maxVertices(maxVertices) {}
 
   void Run(const std::array<int, 4>& simplex);
+  void SetTrace(HullBuildTrace* trace) { m_trace = trace; }
   [[nodiscard]] Result<Hull> Bake() const;
 
  private:
@@ -143,6 +145,7 @@ class Builder {
   double m_tolerance;
   int m_maxVertices;
   int m_vertexCount = 0;
+  HullBuildTrace* m_trace = nullptr;  // optional record of every iteration
 
   std::vector<int> m_queue;  // faces waiting to be processed, first in first out
   std::size_t m_queueHead = 0;
@@ -273,6 +276,7 @@ void Builder::ComputeHorizon(int face, int eye) {
 
 void Builder::AddPoint(int face, int eye) {
   ComputeHorizon(face, eye);
+  if (m_trace != nullptr) RecordHullBuildStep(*m_trace, m_mesh, eye, m_horizon);
 
   if (m_maxVertices > 0) {
     // Vertices of visible faces that are not on the horizon leave the hull.
@@ -393,6 +397,8 @@ Result<Hull> BuildHull(std::span<const Vec3> points, const HullBuildSettings& se
   auto simplex = FindInitialSimplex(points, tolerance);
   if (!simplex) return simplex.GetError();
   Builder builder(points, tolerance, settings.maxVertices);
+  if (settings.trace != nullptr) settings.trace->steps.clear();
+  builder.SetTrace(settings.trace);
   builder.Run(simplex.Value());
   return builder.Bake();
 }
