@@ -23,7 +23,7 @@ Run FreeFall15() {
 }
 
 TEST(Replay, OnlySelectedRunsRecordAReplay) {
-  const Run run = FreeFall15();
+  const harness::Run run = FreeFall15();
   RunnerOptions options;
   options.backends = {"talus"};
   options.deterministic = true;
@@ -36,7 +36,7 @@ TEST(Replay, OnlySelectedRunsRecordAReplay) {
 }
 
 TEST(Replay, FramesAreThinnedAndKeepTheFirstAndLastSample) {
-  const Run run = FreeFall15();
+  const harness::Run run = FreeFall15();
   RunnerOptions options;
   options.backends = {"talus"};
   options.replay = {"all"};
@@ -56,7 +56,7 @@ TEST(Replay, FramesAreThinnedAndKeepTheFirstAndLastSample) {
 // pairs than have touching spheres, and none of the cubes (0.3 m apart)
 // touch, so the funnel ends at zero while SAT tests are run.
 TEST(Replay, TalusCountersShowTheBroadPhaseFunnelForFifteenFallingCubes) {
-  const Run run = FreeFall15();
+  const harness::Run run = FreeFall15();
   RunnerOptions options;
   options.backends = {"talus"};
   options.replay = {"all"};
@@ -79,7 +79,7 @@ TEST(Replay, TalusCountersShowTheBroadPhaseFunnelForFifteenFallingCubes) {
 }
 
 TEST(Replay, JsonRoundTripIsExactAndDeterministic) {
-  const Run run = FreeFall15();
+  const harness::Run run = FreeFall15();
   RunnerOptions options;
   options.backends = {"talus"};
   options.replay = {"all"};
