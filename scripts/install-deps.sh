@@ -16,9 +16,10 @@ packages=(
   libgtest-dev libgmock-dev         # tests
   libbenchmark-dev                  # micro benchmarks
   clang-format                      # style check
+  chromium                          # headless browser: the report's render test (ctest label browser)
 )
 
-# The report inlines Chart.js, pinned by harness/report/package-lock.json;
+# The report inlines Chart.js and three.js, pinned by harness/report/package-lock.json;
 # `npm ci` installs exactly that into harness/report/node_modules, quietly,
 # and only when it is missing or older than the lock. Only the HTML report
 # needs it, so a failure is a warning.

@@ -25,6 +25,11 @@ int main(int argc, char** argv) {
   runCommand->add_option("-j,--jobs", run.jobs, "threads (0 = every core)")->check(CLI::NonNegativeNumber);
   runCommand->add_flag("--deterministic", run.deterministic, "zero wall times so reruns are byte-identical");
   runCommand->add_flag("-q,--quiet", run.quiet, "no progress on stderr");
+  runCommand
+      ->add_option("--replay", run.replay,
+                   "record poses, contacts and step counters of these runs for the 3D replay "
+                   "(run ids, scenario names or all; comma-separated)")
+      ->delimiter(',');
 
   ReportOptions report;
   CLI::App* reportCommand = app.add_subcommand("report", "write summary.md, results.csv and report.html");
@@ -32,6 +37,8 @@ int main(int argc, char** argv) {
   reportCommand->add_option("-o,--out", report.out, "report folder (default: beside the results)");
   reportCommand->add_option("--chart-js", report.chartJs,
                             "charting library to inline (default: Chart.js from npm)");
+  reportCommand->add_option("--three-js", report.threeJs,
+                            "3D library to inline (default: three.js from npm)");
 
   CheckOptions check;
   CLI::App* checkCommand =

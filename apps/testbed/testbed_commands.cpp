@@ -50,7 +50,8 @@ std::vector<fs::path> ScenarioPaths(const std::vector<std::string>& given) {
 std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
                                       const std::vector<std::string>& backends, int jobs, bool deterministic,
                                       bool quiet, const std::vector<double>& timeSteps = {},
-                                      const std::vector<int>& iterations = {}) {
+                                      const std::vector<int>& iterations = {},
+                                      const std::vector<std::string>& replay = {}) {
   auto loaded = harness::LoadScenarios(ScenarioPaths(scenarios));
   if (!loaded) {
     std::cerr << "talus-testbed: " << loaded.GetError().message << "\n";
@@ -65,6 +66,7 @@ std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
   options.backends = backends;
   options.jobs = Jobs(jobs);
   options.deterministic = deterministic;
+  options.replay = replay;
   if (!quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   auto results = harness::RunAll(Registry(), runs.Value(), options);
   if (!results) {
@@ -98,7 +100,7 @@ std::vector<std::string> DefaultBackends() {
 int RunCommand(const RunOptions& options) {
   const std::vector<std::string> backends = options.backends.empty() ? DefaultBackends() : options.backends;
   auto file = LoadAndRun(options.scenarios, backends, options.jobs, options.deterministic, options.quiet,
-                         options.timeSteps, options.iterations);
+                         options.timeSteps, options.iterations, options.replay);
   if (!file) return kExitBadInput;
   std::error_code error;
   fs::create_directories(options.out, error);
@@ -126,7 +128,10 @@ int ReportCommand(const ReportOptions& options) {
       options.out.empty() ? fs::path(options.results).parent_path() : fs::path(options.out);
   const fs::path chartJs =
       options.chartJs.empty() ? fs::path(TALUS_DEFAULT_CHART_JS) : fs::path(options.chartJs);
-  auto written = harness::WriteReport(file.Value(), folder.empty() ? fs::path(".") : folder, chartJs);
+  const fs::path threeJs =
+      options.threeJs.empty() ? fs::path(TALUS_DEFAULT_THREE_JS) : fs::path(options.threeJs);
+  auto written =
+      harness::WriteReport(file.Value(), folder.empty() ? fs::path(".") : folder, chartJs, threeJs);
   if (!written) {
     std::cerr << "talus-testbed: " << written.GetError().message << "\n";
     return kExitBadInput;

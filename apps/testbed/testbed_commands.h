@@ -27,6 +27,7 @@ struct RunOptions {
   int jobs = 0;                        ///< 0 = every core
   bool deterministic = false;          ///< zero wall times
   bool quiet = false;                  ///< no progress lines
+  std::vector<std::string> replay;     ///< runs to record for the 3D replay: ids, scenario names or "all"
 };
 int RunCommand(const RunOptions& options);
 
@@ -34,6 +35,7 @@ struct ReportOptions {
   std::string results;  ///< results.json of a run
   std::string out;      ///< report folder; empty = the results file's folder
   std::string chartJs;  ///< charting library; empty = the npm copy under harness/report
+  std::string threeJs;  ///< three.js (3D views); empty = the npm copy under harness/report
 };
 int ReportCommand(const ReportOptions& options);
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "report_html_replay.h"
 #include "talus/harness/report.h"
 #include "text_util.h"
 
@@ -204,7 +205,8 @@ Result<std::monostate> WriteText(const std::filesystem::path& path, const std::s
 
 }  // namespace
 
-std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary) {
+std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary,
+                       std::string_view threeLibrary) {
   std::ostringstream out;
   out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       << "<title>Talus testbed report</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n";
@@ -213,12 +215,14 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary) {
   out << "<script type=\"application/json\" id=\"plot-data\">" << ScriptSafe(PlotData(file).dump())
       << "</script>\n";
   out << "<script>\n" << ScriptSafe(std::string(chartLibrary)) << "\n</script>\n";
+  out << ReplaySections(file, threeLibrary);
   out << "<script>" << kScript << "</script>\n</body>\n</html>\n";
   return out.str();
 }
 
 Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesystem::path& folder,
-                                   const std::filesystem::path& chartLibraryPath) {
+                                   const std::filesystem::path& chartLibraryPath,
+                                   const std::filesystem::path& threeLibraryPath) {
   std::ifstream library(chartLibraryPath, std::ios::binary);
   if (!library) {
     return Error{Concat({chartLibraryPath.string(),
@@ -227,6 +231,16 @@ Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesyste
   }
   std::ostringstream js;
   js << library.rdbuf();
+  std::ostringstream three;
+  if (!threeLibraryPath.empty()) {
+    std::ifstream threeFile(threeLibraryPath, std::ios::binary);
+    if (!threeFile) {
+      return Error{Concat({threeLibraryPath.string(),
+                           ": three.js not found (run scripts/install-deps.sh, which runs npm ci in "
+                           "harness/report)"})};
+    }
+    three << threeFile.rdbuf();
+  }
   std::error_code error;
   std::filesystem::create_directories(folder, error);
   if (error) return Error{Concat({folder.string(), ": ", error.message()})};
@@ -234,7 +248,7 @@ Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesyste
       {"summary.md", SummaryMarkdown(file)},
       {"results.csv", ResultsCsv(file)},
       {"results.json", ResultsToJson(file)},
-      {"report.html", ReportHtml(file, js.str())},
+      {"report.html", ReportHtml(file, js.str(), three.str())},
   };
   for (const auto& [name, text] : files) {
     auto written = WriteText(folder / name, text);

@@ -56,6 +56,8 @@ Json ResultToJson(const RunResult& r) {
   series["energy"] = Json::array();
   for (double e : r.series.energy) series["energy"].push_back(Number(e));
   j["series"] = series;
+  // Only runs recorded for replay carry one, so other files are unchanged.
+  if (!r.replay.frames.empty()) j["replay"] = ReplayToJson(r.replay);
   return j;
 }
 
@@ -173,6 +175,11 @@ RunResult ResultFromJson(const Json& j, const std::string& where) {
     Json wrapper;
     wrapper["h"] = heights[i];
     r.series.heights.push_back(GetNumbers(wrapper, "h", Concat({at, "/heights/", std::to_string(i)})));
+  }
+  if (j.contains("replay")) {
+    auto replay = ReplayFromJson(j["replay"], Place(where, "replay"));
+    if (!replay) throw ParseFailure{replay.GetError().message};
+    r.replay = std::move(replay).Value();
   }
   return r;
 }

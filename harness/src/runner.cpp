@@ -144,7 +144,7 @@ Result<std::vector<Run>> ExpandStepping(const std::vector<Run>& runs, const std:
 }
 
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
-                  const std::function<bool(int)>& record, std::vector<double>* stepSeconds) {
+                  const std::function<bool(int)>& record, std::vector<double>* stepSeconds, bool detail) {
   Trajectory trajectory;
   trajectory.timeStep = timeStep;
   const auto sample = [&](int step) {
@@ -157,7 +157,9 @@ Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
       for (const ContactPoint& contact : backend.GetContacts()) {
         ++s.contactCount;
         s.maxPenetration = std::max(s.maxPenetration, contact.depth);
+        if (detail) s.contacts.push_back(contact);
       }
+      if (detail) s.counters = backend.StepCounters();
     }
     trajectory.samples.push_back(std::move(s));
   };
@@ -197,9 +199,18 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
   result.settings = backend.Settings();
   const int stride = SampleStride(run.steps, options.maxSamples);
   std::vector<double> stepSeconds;
+  const bool replay = IsReplaySelected(run, options.replay);
   const Trajectory trajectory = Record(
       backend, run, run.steps, run.timeStep, [&](int step) { return IsSampled(step, run.steps, stride); },
-      &stepSeconds);
+      &stepSeconds, replay);
+  if (replay) {
+    auto made = MakeReplay(run, trajectory, options.replayFrames);
+    if (!made) {
+      result.error = Concat({"replay: ", made.GetError().message});
+      return result;
+    }
+    result.replay = std::move(made).Value();
+  }
 
   for (const Truth& truth : run.scenario.truths) {
     if (const auto* converged = std::get_if<ConvergedReferenceTruth>(&truth.kind)) {
@@ -258,6 +269,7 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
   if (options.jobs < 1) return Error{Concat({"jobs must be >= 1, got ", std::to_string(options.jobs)})};
   if (options.maxSamples < 1) return Error{"maxSamples must be >= 1"};
   if (options.plotPoints < 2) return Error{"plotPoints must be >= 2"};
+  if (options.replayFrames < 2) return Error{"replayFrames must be >= 2"};
 
   // Jobs in output order; each writes only its own slot.
   struct Job {

@@ -5,6 +5,7 @@
 #include <span>
 
 #include "talus/hull.h"
+#include "talus/hull_build_trace.h"
 #include "talus/math.h"
 #include "talus/result.h"
 
@@ -25,6 +26,10 @@ struct HullBuildSettings {
   /// the builder widens it (see BuildHull) and the hull's Tolerance()
   /// reports the one it was built and validated with.
   double tolerance = 0.0;
+
+  /// When not null, BuildHull clears `*trace` and records every iteration
+  /// into it (talus/hull_build_trace.h), for figures; default null (no cost).
+  HullBuildTrace* trace = nullptr;
 };
 
 /// The convex hull of `points` by Quickhull: start from a tetrahedron of

@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/hull_build_trace.h"
 #include "geometry/quickhull_mesh.h"
 #include "talus/hull_builder.h"
 
@@ -159,6 +160,7 @@ class Builder {
   // Builds the hull; false when the near-point recheck did not settle.
   bool Run(const std::array<int, 4>& simplex);
   [[nodiscard]] double PlanarityError() const;
+  void SetTrace(HullBuildTrace* trace) { m_trace = trace; }
   [[nodiscard]] Result<Hull> Bake() const;
 
  private:
@@ -174,6 +176,7 @@ class Builder {
   double m_tolerance;
   int m_maxVertices;
   int m_vertexCount = 0;
+  HullBuildTrace* m_trace = nullptr;  // optional record of every iteration
 
   std::vector<int> m_queue;  // faces waiting to be processed, first in first out
   std::size_t m_queueHead = 0;
@@ -386,6 +389,7 @@ void Builder::ComputeHorizon(int face, int eye) {
 
 void Builder::AddPoint(int face, int eye) {
   ComputeHorizon(face, eye);
+  if (m_trace != nullptr) RecordHullBuildStep(*m_trace, m_mesh, eye, m_horizon);
 
   if (m_maxVertices > 0) {
     // Vertices of visible faces that are not on the horizon leave the hull.
@@ -515,6 +519,9 @@ Result<Hull> BuildHull(std::span<const Vec3> points, const HullBuildSettings& se
     auto simplex = FindInitialSimplex(points, tolerance);
     if (!simplex) return simplex.GetError();
     Builder builder(points, tolerance, settings.maxVertices);
+    // A widened retry records afresh: the trace shows the build that counted.
+    if (settings.trace != nullptr) settings.trace->steps.clear();
+    builder.SetTrace(settings.trace);
     const bool settled = builder.Run(simplex.Value());
     const double planarity = builder.PlanarityError();
     if ((settled && planarity <= tolerance) || attempt == kMaxWidenings) {

@@ -50,6 +50,12 @@ struct Setting {
   std::string value;
 };
 
+/// One per-step count an engine reports about its own work ("sphere pairs", 12).
+struct StepCounter {
+  std::string name;
+  double value = 0.0;
+};
+
 class Backend {
  public:
   virtual ~Backend() = default;
@@ -65,6 +71,10 @@ class Backend {
   [[nodiscard]] virtual std::vector<ContactPoint> GetContacts() const = 0;
   /// Every setting this world was built with, in a fixed order.
   [[nodiscard]] virtual std::vector<Setting> Settings() const = 0;
+  /// Counts of what the last Step did (bodies, candidate pairs, SAT tests,
+  /// contact points...), in a fixed order, for the report's broad-phase
+  /// figure; empty (the default) when the engine reports none.
+  [[nodiscard]] virtual std::vector<StepCounter> StepCounters() const { return {}; }
 };
 
 /// Builds a world for a run.

@@ -7,7 +7,10 @@
 //   report.html   the tables plus plots (heights and energy over time per
 //                 run, time per step per engine), self-contained: the
 //                 charting library (Chart.js, from harness/report's npm
-//                 lock) is inlined, so it opens from disk with no network
+//                 lock) is inlined, so it opens from disk with no network;
+//                 with three.js inlined too, the 3D replay of runs recorded
+//                 with --replay, the Quickhull trace and the broad-phase
+//                 funnel (docs/testbed-report.md)
 // All text is deterministic for deterministic results.
 #pragma once
 
@@ -32,13 +35,17 @@ std::string SummaryMarkdown(const ResultsFile& file);
 /// results.csv's text (RFC 4180 quoting, header row first).
 std::string ResultsCsv(const ResultsFile& file);
 
-/// report.html's text; `chartLibrary` is the charting library's JavaScript,
-/// inlined into a <script> element.
-std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary);
+/// report.html's text; `chartLibrary` is the charting library's JavaScript
+/// and `threeLibrary` three.js's (empty: the 3D views say it is missing),
+/// each inlined into a <script> element.
+std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary,
+                       std::string_view threeLibrary = {});
 
 /// Writes the four files into `folder` (created if missing), reading the
-/// charting library from `chartLibraryPath`; errors name the file.
+/// charting library from `chartLibraryPath` and three.js from
+/// `threeLibraryPath` (empty: none); errors name the file.
 Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesystem::path& folder,
-                                   const std::filesystem::path& chartLibraryPath);
+                                   const std::filesystem::path& chartLibraryPath,
+                                   const std::filesystem::path& threeLibraryPath = {});
 
 }  // namespace talus::harness

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "talus/harness/backend.h"
+#include "talus/harness/replay.h"
 #include "talus/harness/scenario.h"
 #include "talus/harness/trajectory.h"
 #include "talus/harness/truth_check.h"
@@ -50,6 +51,7 @@ struct RunResult {
   double wallSecondsPerStepMedian = 0.0;  ///< seconds; 0 in deterministic mode
   double wallSecondsPerStepMean = 0.0;    ///< seconds; 0 in deterministic mode
   PlotSeries series;                      ///< for the HTML report
+  Replay replay;  ///< for the 3D replay; empty unless selected (RunnerOptions::replay)
 };
 
 struct RunnerOptions {
@@ -63,6 +65,12 @@ struct RunnerOptions {
   int maxSamples = 2000;
   /// Most points of each plot series, >= 2.
   int plotPoints = 200;
+  /// Runs whose replay (poses, contacts, step counters) is recorded: run
+  /// ids, scenario names, or "all"; empty (default) records none.
+  std::vector<std::string> replay;
+  /// Most frames of a replay, >= 2. 120 frames of a 20-body scene with its
+  /// contacts are about 100 kB of JSON per backend.
+  int replayFrames = 120;
   /// Called (serialised) after each job with a line such as
   /// "[3/24] box_slide[mu=0.3,v0=1] bullet 0.12 s"; may be empty.
   std::function<void(const std::string&)> progress;
@@ -95,8 +103,10 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
 
 /// Steps a built backend through `steps` steps, recording the samples for
 /// which `record(step)` holds (step 0 and the last always) and, when
-/// `stepSeconds` is not null, the wall time of every step.
+/// `stepSeconds` is not null, the wall time of every step. With `detail`,
+/// each sample also keeps its contacts and the backend's step counters.
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
-                  const std::function<bool(int)>& record, std::vector<double>* stepSeconds);
+                  const std::function<bool(int)>& record, std::vector<double>* stepSeconds,
+                  bool detail = false);
 
 }  // namespace talus::harness

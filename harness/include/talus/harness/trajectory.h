@@ -23,6 +23,10 @@ struct Sample {
   WorldMeasures measures;         ///< energies and momenta of the dynamic bodies
   int contactCount = 0;           ///< contact points the backend reported after this step
   double maxPenetration = 0.0;    ///< metres: the largest contact depth (0 when none overlap)
+  /// The contacts themselves and the backend's step counters: only when the
+  /// trajectory was recorded with detail (for replays), else empty.
+  std::vector<ContactPoint> contacts;
+  std::vector<StepCounter> counters;
 };
 
 /// A run's record.

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The report in a real browser: runs a small replayed scenario through two
+# engines, writes report.html, loads it in headless Chromium (software
+# WebGL through SwiftShader) and reads back the status the page's scripts
+# wrote into #report-status (harness/report/src/status.js). Fails, never
+# skips, when Chromium is missing or does not start.
+# Usage: browser_report_test.sh TALUS_TESTBED SCENARIO WORK_DIR
+set -euo pipefail
+testbed="$1"
+scenario="$2"
+work="$3"
+
+browser=""
+for name in chromium chromium-browser google-chrome; do
+  if command -v "$name" >/dev/null 2>&1; then browser="$(command -v "$name")"; break; fi
+done
+if [ -z "$browser" ]; then
+  echo "FAIL: no Chromium found (install Debian's chromium: scripts/install-deps.sh)" >&2
+  exit 1
+fi
+
+rm -rf "$work"
+mkdir -p "$work/profile"
+"$testbed" run "$scenario" -b talus,bullet --replay all --deterministic -j 1 -q -o "$work" >/dev/null
+"$testbed" report "$work/results.json" -o "$work" >/dev/null
+
+if ! dom="$(timeout 120 "$browser" --headless --no-sandbox --disable-gpu --use-angle=swiftshader \
+      --enable-unsafe-swiftshader --disable-background-networking --disable-component-update \
+      --disable-sync --no-first-run --user-data-dir="$work/profile" --virtual-time-budget=10000 \
+      --dump-dom "file://$work/report.html" 2>"$work/chromium.log")"; then
+  echo "FAIL: Chromium ($browser) did not start or did not finish; its log:" >&2
+  tail -20 "$work/chromium.log" >&2
+  exit 1
+fi
+printf '%s\n' "$dom" >"$work/dom.html"
+
+status="$(printf '%s' "$dom" | sed -n 's:.*<pre id="report-status"[^>]*>\(.*\)</pre>.*:\1:p' | head -1)"
+echo "page status: $status"
+fail=0
+check() {  # check DESCRIPTION EXTENDED-REGEX
+  if printf '%s' "$status" | grep -Eq "$2"; then echo "ok: $1"; else echo "FAIL: $1" >&2; fail=1; fi
+}
+check "the page's scripts finished (status written on load)" '"errors"'
+check "no script errors" '"errors":\[\]'
+check "Chart.js charts created" '"charts":([1-9][0-9]*)'
+check "a WebGL context" '"webgl":true'
+check "one replay view per engine" '"replayViews":2'
+check "replay meshes in the scenes" '"replayMeshes":[1-9]'
+check "every replay viewport has drawn pixels" '"replayLitPixels":\[[1-9][0-9]*,[1-9][0-9]*\]'
+check "Quickhull trace meshes" '"hullTraceMeshes":[1-9]'
+check "the Quickhull view has drawn pixels" '"hullTraceLitPixels":[1-9]'
+check "a broad-phase funnel chart (talus)" '"funnelCharts":1'
+exit $fail
