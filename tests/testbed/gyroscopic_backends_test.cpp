@@ -116,7 +116,7 @@ TEST_P(GyroscopicSetting, OffLetsAngularMomentumTurnWithTheBody) {
 // turn-overs pass through a fast tumble where an implicit step errs most.
 // Talus and Bullet (the same body-frame Newton step) lose up to 10.5%
 // mid-flip yet keep the 6.93 s interval; ODE's loses 3.8%, and it then
-// flips every 1.65 s. The flip count carries the test; the bound catches a
+// flips every 1.65 to 1.95 s. The flip count carries the test; the bound catches a
 // step that gains or sheds momentum wholesale.
 double IntermediateAxisMomentumBound(const std::string& backend) {
   return backend.starts_with("ode") ? 0.05 : 0.12;
