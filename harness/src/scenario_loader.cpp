@@ -108,6 +108,7 @@ Result<WorldSettings> MapWorld(const json& world, std::string_view file) {
   if (world.contains("frictionCombine")) settings.frictionCombine = ReadCombineRule(world["frictionCombine"]);
   if (world.contains("restitutionCombine"))
     settings.restitutionCombine = ReadCombineRule(world["restitutionCombine"]);
+  settings.gyroscopic = world.value("gyroscopic", true);
   return settings;
 }
 

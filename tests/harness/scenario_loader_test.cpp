@@ -44,6 +44,7 @@ TEST(ScenarioLoader, BoxRestMapsEveryField) {
   EXPECT_EQ(s.world.gravity, Vec3(0, -9.81, 0));  // default
   EXPECT_EQ(s.world.frictionCombine, CombineRule::Sqrt);
   EXPECT_EQ(s.world.restitutionCombine, CombineRule::Max);
+  EXPECT_TRUE(s.world.gyroscopic);  // default
   ASSERT_EQ(s.truths.size(), 1u);
   EXPECT_EQ(s.truths[0].body, 1);
   EXPECT_EQ(std::get<RestHeightTruth>(s.truths[0].kind).height, 0.5);
@@ -89,6 +90,27 @@ TEST(ScenarioLoader, UnknownFieldIsRefusedWithItsPointer) {
 TEST(ScenarioLoader, WrongTypeNamesFieldAndTypes) {
   const std::string message = LoadError("wrong_type.json");
   EXPECT_NE(message.find("/world/timeStep: must be of type number, not string"), std::string::npos)
+      << message;
+}
+
+TEST(ScenarioLoader, GyroscopicFlagIsRead) {
+  auto runs = LoadScenarioFile(kScenarioDir + "/tumbling/box_intermediate_axis.json");
+  ASSERT_TRUE(runs) << runs.GetError().message;
+  EXPECT_TRUE(runs.Value()[0].scenario.world.gyroscopic);  // written explicitly
+  auto off = ParseScenarioText(
+      R"({"name": "x", "world": {"timeStep": 0.01, "duration": {"steps": 1}, "gyroscopic": false},
+          "bodies": [{"name": "b", "shape": {"kind": "sphere", "radius": 1}, "motion": "static",
+                      "position": [0, 0, 0]}]})",
+      "off.json");
+  ASSERT_TRUE(off) << off.GetError().message;
+  EXPECT_FALSE(off.Value()[0].scenario.world.gyroscopic);
+}
+
+TEST(ScenarioLoader, GyroscopicFlagOfWrongTypeIsRefusedWithItsPointer) {
+  const std::string message = LoadError("gyroscopic_wrong_type.json");
+  EXPECT_NE(
+      message.find("gyroscopic_wrong_type.json: /world/gyroscopic: must be of type boolean, not string"),
+      std::string::npos)
       << message;
 }
 

@@ -58,7 +58,10 @@ TEST(BackendRegistry, ListsThePeersAndRefusesUnknownNames) {
 TEST_P(BackendTruths, FreeFallFollowsSymplecticEulerExactly) {
   const auto runs = LoadRuns("tumbling/box_free_fall.json");
   ASSERT_EQ(runs.size(), 1u);
-  const harness::Run& run = runs[0];
+  // The gyroscopic term off, so that w must stay exactly constant below
+  // (the box spins about a world axis that is not principal).
+  harness::Run run = runs[0];
+  run.scenario.world.gyroscopic = false;
   auto backend = Build(GetParam(), run);
   ASSERT_TRUE(backend);
   const double y0 = backend->GetBodyState(0).centerOfMass.y();
@@ -162,7 +165,7 @@ TEST_P(BackendTruths, SettingsRecordSolverStepAndCombineRules) {
   EXPECT_EQ(settings["time step (s)"], "0.016666666666666666");
   EXPECT_EQ(settings["friction combine"].substr(0, 4), "sqrt");
   EXPECT_EQ(settings["restitution combine"], "max");
-  EXPECT_EQ(settings["gyroscopic term"].substr(0, 3), "off");
+  EXPECT_EQ(settings["gyroscopic term"].substr(0, 3), "on ");  // the scenario default
 }
 
 INSTANTIATE_TEST_SUITE_P(Peers, BackendTruths, ::testing::Values("bullet", "ode-step", "ode-quickstep"),

@@ -164,8 +164,13 @@ Result<std::unique_ptr<harness::Backend>> BulletBackend::Create(const Run& run) 
     construction.m_angularDamping = 0.0;
     body->body = std::make_unique<btRigidBody>(construction);
     btRigidBody& rigid = *body->body;
-    // No gyroscopic term: the write-up's integrator keeps w constant without torque.
-    rigid.setFlags(rigid.getFlags() & ~BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
+    // The gyroscopic term as the scenario says, in Bullet's implicit body-frame
+    // form only (the explicit and implicit-world variants always cleared).
+    int flags =
+        rigid.getFlags() & ~(BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT | BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD |
+                             BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
+    if (run.scenario.world.gyroscopic) flags |= BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY;
+    rigid.setFlags(flags);
     rigid.setCollisionFlags(rigid.getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
     rigid.setUserPointer(&body->material);
     rigid.setUserIndex(static_cast<int>(i));
@@ -210,7 +215,9 @@ void BulletBackend::AddSettings(const Run& run) {
       {"collision margin (m)",
        Format(kBulletCollisionMargin) + " (boxes exact, hulls inflated by it, spheres: radius)"},
       {"contact breaking threshold (m)", Format(gContactBreakingThreshold)},
-      {"gyroscopic term", "off (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY cleared)"},
+      {"gyroscopic term", run.scenario.world.gyroscopic
+                              ? "on (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY)"
+                              : "off (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY cleared)"},
       {"damping", "linear 0, angular 0"},
       {"sleeping", "off (DISABLE_DEACTIVATION)"},
       {"max rotation per step (rad)", Format(0.25 * SIMD_PI) + " (Bullet clamps faster spins)"},

@@ -156,8 +156,9 @@ Result<bool> OdeBackend::AddBody(const BodySpec& spec, const BodyMass& mass, int
     dBodySetLinearVel(body->body, spec.linearVelocity.x(), spec.linearVelocity.y(), spec.linearVelocity.z());
     dBodySetAngularVel(body->body, spec.angularVelocity.x(), spec.angularVelocity.y(),
                        spec.angularVelocity.z());
-    // No gyroscopic term, no damping, never disabled: the write-up's integrator.
-    dBodySetGyroscopicMode(body->body, 0);
+    // The gyroscopic term as the scenario says (ODE's is implicit); no
+    // damping, never disabled.
+    dBodySetGyroscopicMode(body->body, m_worldSettings.gyroscopic ? 1 : 0);
     dBodySetAutoDisableFlag(body->body, 0);
     dBodySetDamping(body->body, 0, 0);
     dGeomSetBody(body->geom, body->body);
@@ -301,7 +302,8 @@ void OdeBackend::AddSettings(const Run& run) {
       {"restitution combine", harness::CombineRuleName(run.scenario.world.restitutionCombine)},
       {"bounce velocity threshold (m/s)", Format(kOdeBounceVelocity)},
       {"space", "dSimpleSpace (fixed pair order)"},
-      {"gyroscopic term", "off (dBodySetGyroscopicMode 0)"},
+      {"gyroscopic term", run.scenario.world.gyroscopic ? "on (dBodySetGyroscopicMode 1, implicit)"
+                                                        : "off (dBodySetGyroscopicMode 0)"},
       {"damping", "linear 0, angular 0"},
       {"auto disable", "off"},
       {"hull shapes", "dConvex from the qhull triangulation, centred on the centroid"},

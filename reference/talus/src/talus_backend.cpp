@@ -143,7 +143,7 @@ WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine fric
   settings.frictionCombine = friction;
   settings.restitutionCombine = restitution;
   settings.sleeping = false;
-  settings.gyroscopic = false;
+  settings.gyroscopic = run.scenario.world.gyroscopic;
   if (variant == Variant::WriteUp) {
     settings.narrowPhase.satMode = SatMode::Full;
     settings.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
@@ -298,7 +298,7 @@ void TalusBackend::AddSettings(const Run& run) {
       {"SAT cache", OnOff(s.narrowPhase.useSatCache)},
       {"manifolds", manifold},
       {"speculative margin (m)", Format(s.narrowPhase.speculativeMargin)},
-      {"gyroscopic term", OnOff(s.gyroscopic)},
+      {"gyroscopic term", std::string(OnOff(s.gyroscopic)) + " (WorldSettings::gyroscopic, implicit)"},
       {"damping", "none"},
       {"sleeping", OnOff(s.sleeping)},
       {"hull shapes", "talus::BuildHull on the scenario points, in the body frame"},

@@ -40,6 +40,11 @@ struct WorldSettings {
   int steps = 1;                         ///< number of steps to run (file: seconds or steps), >= 1
   CombineRule frictionCombine = CombineRule::Sqrt;
   CombineRule restitutionCombine = CombineRule::Max;
+  /// Integrate the gyroscopic term w x (I w), each engine in its implicit
+  /// form (Talus WorldSettings::gyroscopic, Bullet
+  /// BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY, ODE dBodySetGyroscopicMode).
+  /// Default true: without it a torque-free body keeps w (not L) constant.
+  bool gyroscopic = true;
 };
 
 /// A box centred on the body origin.
