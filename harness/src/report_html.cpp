@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "talus/harness/report.h"
+#include "talus/harness/sweep.h"
 #include "text_util.h"
 
 namespace talus::harness {
@@ -213,7 +214,9 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary) {
   out << "<script type=\"application/json\" id=\"plot-data\">" << ScriptSafe(PlotData(file).dump())
       << "</script>\n";
   out << "<script>\n" << ScriptSafe(std::string(chartLibrary)) << "\n</script>\n";
-  out << "<script>" << kScript << "</script>\n</body>\n</html>\n";
+  out << "<script>" << kScript << "</script>\n";
+  out << SweepHtmlSection(file);
+  out << "</body>\n</html>\n";
   return out.str();
 }
 
