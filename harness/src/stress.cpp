@@ -156,10 +156,11 @@ const std::vector<StressAxisInfo>& StressAxes() {
       {StressAxis::EnergyDrift,
        "energy-drift",
        "steps",
-       "a torque-free spinning box keeps its kinetic energy within 1 % (of the initial) over this many 1/60 "
-       "s steps",
-       {1000, 10, 1e4, false, 0},
-       {1000, 10, 1e5, false, 0}},
+       "a torque-free spinning box keeps its kinetic energy and angular momentum within 1 % of the initial "
+       "over "
+       "this many 1/60 s steps (rounded)",
+       {10, 10, 1e4, false, 2},
+       {10, 10, 1e5, false, 4}},
       {StressAxis::SmallSize,
        "small-size",
        "m",
@@ -224,15 +225,30 @@ EnvelopeProbe ProbeStress(const BackendRegistry& registry, const std::string& ba
       break;
     }
     case StressAxis::EnergyDrift: {
-      const double initial = trajectory.samples.front().measures.kineticEnergy;
-      double drift = 0.0;
+      // Relative drift of the kinetic energy and of the angular momentum
+      // (the body stays at the origin, so about the origin is about its
+      // centre of mass); the larger is the measure.
+      const WorldMeasures& initial = trajectory.samples.front().measures;
+      double energy = 0.0;
+      double momentum = 0.0;
       for (const Sample& sample : trajectory.samples) {
-        const double e = sample.measures.kineticEnergy;
-        drift = std::isfinite(e) ? std::max(drift, std::abs(e - initial) / initial) : kNaN;
-        if (std::isnan(drift)) break;
+        const WorldMeasures& m = sample.measures;
+        if (!std::isfinite(m.kineticEnergy) || !m.angularMomentum.allFinite()) {
+          energy = momentum = kNaN;
+          break;
+        }
+        energy = std::max(energy, std::abs(m.kineticEnergy - initial.kineticEnergy) / initial.kineticEnergy);
+        momentum = std::max(
+            momentum, (m.angularMomentum - initial.angularMomentum).norm() / initial.angularMomentum.norm());
       }
-      probe.measure = drift;
-      if (!(drift <= 0.01)) probe.detail = Concat({"energy drifted by ", Number(100.0 * drift), " %"});
+      probe.measure = std::max(energy, momentum);
+      if (std::isnan(energy)) {
+        probe.detail = "non-finite state";
+      } else if (energy > 0.01) {
+        probe.detail = Concat({"kinetic energy drifted by ", Number(100.0 * energy), " %"});
+      } else if (momentum > 0.01) {
+        probe.detail = Concat({"angular momentum drifted by ", Number(100.0 * momentum), " %"});
+      }
       break;
     }
     default:
