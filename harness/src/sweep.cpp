@@ -49,7 +49,9 @@ double RunErrorScalar(const RunResult& result) {
   if (!result.error.empty()) return std::numeric_limits<double>::quiet_NaN();
   double worst = std::numeric_limits<double>::quiet_NaN();
   for (const MetricResult& metric : result.metrics) {
-    if (!metric.checked) continue;
+    // Every metric with a tolerance counts, gated or not (an ungated truth
+    // is a known shortfall, still a truth to be accurate against).
+    if (!(metric.tolerance.absolute > 0.0 || metric.tolerance.relative > 0.0)) continue;
     const double scale = metric.tolerance.absolute + metric.tolerance.relative * std::abs(metric.truth);
     double value = kInfinity;
     if (std::isfinite(metric.error) && scale > 0.0) value = std::abs(metric.error) / scale;
@@ -243,7 +245,8 @@ std::string SweepToJson(const std::vector<SweepGroup>& groups) {
 std::string SweepMarkdown(const std::vector<SweepGroup>& groups) {
   std::ostringstream out;
   out << "## Run time against error\n\n"
-      << "Error: the largest |error| / tolerance over a run's checked metrics (1 = at the tolerance, inf = "
+      << "Error: the largest |error| / tolerance over a run's metrics with a tolerance (1 = at the "
+         "tolerance, inf = "
          "not measured). Cost: wall seconds of the run. Most accurate at equal cost: most wins over the "
          "budgets at or above the matched cost (docs/testbed-sweeps.md).\n\n"
       << "| scenario | most accurate at equal cost | matched cost (s) | error at matched cost | wins |\n"

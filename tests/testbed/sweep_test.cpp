@@ -40,11 +40,11 @@ TEST(RunErrorScalar, IsTheLargestCheckedErrorOverItsToleranceScale) {
   EXPECT_EQ(RunErrorScalar(result), kInf);
 }
 
-TEST(RunErrorScalar, IsNaNWithoutACheckedMetricOrWhenTheRunFailed) {
+TEST(RunErrorScalar, IsNaNWithoutAToleranceOrWhenTheRunFailed) {
   RunResult result;
-  result.metrics = {Metric(1.0, 1.0, 0.1, 0.0, false)};
+  result.metrics = {Metric(1.0, 1.0, 0.0, 0.0, false)};
   EXPECT_TRUE(std::isnan(RunErrorScalar(result)));
-  result.metrics[0].checked = true;
+  result.metrics[0].tolerance.absolute = 0.1;
   EXPECT_NEAR(RunErrorScalar(result), 10.0, 1e-12);
   result.error = "refused";
   EXPECT_TRUE(std::isnan(RunErrorScalar(result)));

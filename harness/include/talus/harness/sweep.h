@@ -28,9 +28,10 @@
 namespace talus::harness {
 
 /// The error scalar of one result: the largest |error| / (absolute +
-/// relative |truth|) over its checked metrics, so 1 is "exactly at the
-/// tolerance". A checked metric that could not be measured (NaN) makes it
-/// +infinity; NaN when the result has no checked metric (no truth) or
+/// relative |truth|) over its metrics that have a tolerance (gated by the
+/// CI check or not), so 1 is "exactly at the tolerance". Such a metric
+/// that could not be measured (NaN), or whose tolerance scale is 0, makes
+/// it +infinity; NaN when the result has no such metric (no truth) or
 /// failed to run.
 double RunErrorScalar(const RunResult& result);
 
