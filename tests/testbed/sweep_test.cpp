@@ -30,11 +30,12 @@ MetricResult Metric(double error, double truth, double absolute, double relative
   return metric;
 }
 
-TEST(RunErrorScalar, IsTheLargestCheckedErrorOverItsToleranceScale) {
+TEST(RunErrorScalar, IsTheLargestErrorOverItsToleranceScale) {
   RunResult result;
-  // Scales: 0.01 + 0.1 * 2 = 0.21 and 0.5; unchecked metrics do not count.
-  result.metrics = {Metric(-0.042, 2.0, 0.01, 0.1, true), Metric(0.25, 10.0, 0.5, 0.0, true),
-                    Metric(100.0, 1.0, 0.1, 0.0, false)};
+  // Scales: 0.01 + 0.1 * 2 = 0.21 and 0.5 (an ungated metric counts too);
+  // metrics without a tolerance (drift, contacts) do not count.
+  result.metrics = {Metric(-0.042, 2.0, 0.01, 0.1, true), Metric(0.25, 10.0, 0.5, 0.0, false),
+                    Metric(100.0, 1.0, 0.0, 0.0, false)};
   EXPECT_NEAR(RunErrorScalar(result), 0.5, 1e-15);                     // 0.25 / 0.5 > 0.042 / 0.21 = 0.2
   result.metrics[0].error = std::numeric_limits<double>::quiet_NaN();  // not measured
   EXPECT_EQ(RunErrorScalar(result), kInf);
