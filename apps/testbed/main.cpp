@@ -2,6 +2,7 @@
 // CLI11 and hands them to the subcommands (testbed_commands.h).
 #include <CLI/CLI.hpp>
 
+#include "sweep_commands.h"
 #include "testbed_commands.h"
 
 int main(int argc, char** argv) {
@@ -51,12 +52,18 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   checkCommand->add_flag("-q,--quiet", check.quiet, "no progress on stderr");
 
+  CommandAction chosen;
+  AddSweepCommand(app, chosen);
+  AddMergeCommand(app, chosen);
+  AddStressCommand(app, chosen);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     const int code = app.exit(error);
     return code == 0 ? kExitOk : kExitBadInput;
   }
+  if (chosen) return chosen();
   if (*runCommand) return RunCommand(run);
   if (*reportCommand) return ReportCommand(report);
   return CheckCommand(check);

@@ -13,6 +13,7 @@
 
 #include "report_html_replay.h"
 #include "talus/harness/report.h"
+#include "talus/harness/sweep.h"
 #include "text_util.h"
 
 namespace talus::harness {
@@ -216,7 +217,9 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary,
       << "</script>\n";
   out << "<script>\n" << ScriptSafe(std::string(chartLibrary)) << "\n</script>\n";
   out << ReplaySections(file, threeLibrary);
-  out << "<script>" << kScript << "</script>\n</body>\n</html>\n";
+  out << "<script>" << kScript << "</script>\n";
+  out << SweepHtmlSection(file);
+  out << "</body>\n</html>\n";
   return out.str();
 }
 

@@ -1,0 +1,79 @@
+// `talus-testbed merge`: the shard files of one `sweep --shard i/n`
+// partition combined into the results file an unsharded sweep writes, plus
+// its sweep analysis.
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "sweep_commands.h"
+#include "talus/harness/results_file.h"
+#include "talus/harness/sweep.h"
+#include "testbed_commands.h"
+
+namespace talus::testbed {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct MergeOptions {
+  std::vector<std::string> shards;
+  std::string out = "reports/sweep";
+};
+
+int Merge(const MergeOptions& options) {
+  std::vector<harness::ShardFile> shards;
+  for (const std::string& path : options.shards) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      std::cerr << "talus-testbed: " << path << ": cannot read\n";
+      return kExitBadInput;
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    auto shard = harness::ShardFromJson(text.str());
+    if (!shard) {
+      std::cerr << "talus-testbed: " << path << ": " << shard.GetError().message << "\n";
+      return kExitBadInput;
+    }
+    shards.push_back(std::move(shard).Value());
+  }
+  auto merged = harness::MergeShards(shards);
+  if (!merged) {
+    std::cerr << "talus-testbed: " << merged.GetError().message << "\n";
+    return kExitBadInput;
+  }
+  const std::vector<harness::SweepGroup> groups = harness::AnalyseSweep(merged.Value(), {"ode-step"});
+  std::error_code error;
+  fs::create_directories(options.out, error);
+  const std::pair<const char*, std::string> files[] = {
+      {"results.json", harness::ResultsToJson(merged.Value())},
+      {"sweep.json", harness::SweepToJson(groups)},
+      {"sweep.md", harness::SweepMarkdown(groups)},
+  };
+  for (const auto& [name, text] : files) {
+    std::ofstream out(fs::path(options.out) / name, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) {
+      std::cerr << "talus-testbed: " << (fs::path(options.out) / name).string() << ": cannot write\n";
+      return kExitBadInput;
+    }
+  }
+  std::cout << "merged " << shards.size() << " shards: " << merged.Value().results.size()
+            << " results\nresults: " << (fs::path(options.out) / "results.json").string() << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddMergeCommand(CLI::App& app, CommandAction& chosen) {
+  auto options = std::make_shared<MergeOptions>();
+  CLI::App* command = app.add_subcommand("merge", "combine the shard files of a sharded sweep");
+  command->add_option("shards", options->shards, "every shard file of one partition")->required();
+  command->add_option("-o,--out", options->out, "output folder")->capture_default_str();
+  command->callback([options, &chosen] { chosen = [options] { return Merge(*options); }; });
+}
+
+}  // namespace talus::testbed

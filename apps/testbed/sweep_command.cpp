@@ -1,0 +1,152 @@
+// `talus-testbed sweep`: every scenario with a truth at every (time step,
+// iterations) pair through every backend, then the run-time-against-error
+// analysis (harness sweep.h); `--shard i/n` runs one part of the job list
+// into a shard file that `merge` combines.
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+#include "sweep_commands.h"
+#include "talus/harness/results_file.h"
+#include "talus/harness/runner.h"
+#include "talus/harness/sweep.h"
+#include "talus/reference/bullet_backend.h"
+#include "talus/reference/ode_backend.h"
+#include "talus/reference/talus_backend.h"
+#include "testbed_commands.h"
+
+namespace talus::testbed {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SweepOptions {
+  std::vector<std::string> scenarios;
+  std::vector<std::string> backends;
+  std::vector<double> timeSteps{1.0 / 30, 1.0 / 60, 1.0 / 120, 1.0 / 240, 1.0 / 480, 1.0 / 960};
+  std::vector<int> iterations{5, 10, 20, 40};
+  std::string shard;
+  std::string out = "reports/sweep";
+  int jobs = 0;
+  bool deterministic = false;
+  bool quiet = false;
+};
+
+bool WriteText(const fs::path& path, const std::string& text) {
+  std::error_code error;
+  if (!path.parent_path().empty()) fs::create_directories(path.parent_path(), error);
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) std::cerr << "talus-testbed: " << path.string() << ": cannot write\n";
+  return static_cast<bool>(out);
+}
+
+int Sweep(const SweepOptions& options) {
+  harness::Shard shard;
+  if (!options.shard.empty()) {
+    auto parsed = harness::ParseShard(options.shard);
+    if (!parsed) {
+      std::cerr << "talus-testbed: " << parsed.GetError().message << "\n";
+      return kExitBadInput;
+    }
+    shard = parsed.Value();
+  }
+  std::vector<fs::path> paths(options.scenarios.begin(), options.scenarios.end());
+  if (paths.empty())
+    paths.push_back(fs::exists("scenarios") ? fs::path("scenarios") : fs::path(TALUS_DEFAULT_SCENARIOS));
+  auto loaded = harness::LoadScenarios(paths);
+  if (!loaded) {
+    std::cerr << "talus-testbed: " << loaded.GetError().message << "\n";
+    return kExitBadInput;
+  }
+  std::vector<harness::Run> withTruth;
+  for (const harness::Run& run : loaded.Value()) {
+    if (!run.scenario.truths.empty()) withTruth.push_back(run);
+  }
+  auto expanded = harness::ExpandStepping(withTruth, options.timeSteps, options.iterations);
+  if (!expanded) {
+    std::cerr << "talus-testbed: " << expanded.GetError().message << "\n";
+    return kExitBadInput;
+  }
+  const std::vector<harness::Run>& all = expanded.Value();
+  harness::ShardFile part;
+  part.shard = shard;
+  part.runCount = static_cast<int>(all.size());
+  part.runIndices = harness::ShardRuns(part.runCount, shard);
+  std::vector<harness::Run> runs;
+  for (int r : part.runIndices) runs.push_back(all[static_cast<std::size_t>(r)]);
+
+  harness::RunnerOptions runner;
+  runner.backends = options.backends.empty() ? DefaultBackends() : options.backends;
+  runner.jobs =
+      options.jobs > 0 ? options.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  runner.deterministic = options.deterministic;
+  runner.plotPoints = 2;  // a sweep's report shows costs and errors, not time series
+  if (!options.quiet) runner.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+  auto results = harness::RunAll(AllBackends(), runs, runner);
+  if (!results) {
+    std::cerr << "talus-testbed: " << results.GetError().message << "\n";
+    return kExitBadInput;
+  }
+  part.results.backends = runner.backends;
+  part.results.deterministic = options.deterministic;
+  part.results.results = std::move(results).Value();
+  const fs::path out(options.out);
+  if (!options.shard.empty()) {
+    const fs::path path =
+        out / ("shard-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".json");
+    if (!WriteText(path, harness::ShardToJson(part))) return kExitBadInput;
+    std::cout << "shard " << options.shard << ": " << part.runIndices.size() << " of " << part.runCount
+              << " runs x " << runner.backends.size() << " backends\nshard file: " << path.string() << "\n";
+    return kExitOk;
+  }
+  const std::vector<harness::SweepGroup> groups = harness::AnalyseSweep(part.results, {"ode-step"});
+  const std::string markdown = harness::SweepMarkdown(groups);
+  if (!WriteText(out / "results.json", harness::ResultsToJson(part.results)) ||
+      !WriteText(out / "sweep.json", harness::SweepToJson(groups)) ||
+      !WriteText(out / "sweep.md", markdown)) {
+    return kExitBadInput;
+  }
+  std::cout << markdown << "\nresults: " << (out / "results.json").string()
+            << " (talus-testbed report draws the charts)\nsweep: " << (out / "sweep.json").string() << ", "
+            << (out / "sweep.md").string() << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+const harness::BackendRegistry& AllBackends() {
+  static const harness::BackendRegistry registry = [] {
+    harness::BackendRegistry r;
+    reference::RegisterTalusBackends(r);
+    reference::RegisterBulletBackends(r);
+    reference::RegisterOdeBackends(r);
+    return r;
+  }();
+  return registry;
+}
+
+void AddSweepCommand(CLI::App& app, CommandAction& chosen) {
+  auto options = std::make_shared<SweepOptions>();
+  CLI::App* command = app.add_subcommand(
+      "sweep", "run time against error: scenarios with a truth over time steps and iterations");
+  command->add_option("scenarios", options->scenarios, "scenario files or folders (default: scenarios/)");
+  command->add_option("-b,--backend", options->backends, "backends (default: all)")->delimiter(',');
+  command->add_option("--time-step", options->timeSteps, "time steps, s")
+      ->delimiter(',')
+      ->capture_default_str();
+  command->add_option("--iterations", options->iterations, "solver iterations (0 = engine default)")
+      ->delimiter(',')
+      ->capture_default_str();
+  command->add_option("--shard", options->shard, "run only shard i of n (i/n), into a shard file for merge");
+  command->add_option("-o,--out", options->out, "output folder")->capture_default_str();
+  command->add_option("-j,--jobs", options->jobs, "threads (0 = every core)")->check(CLI::NonNegativeNumber);
+  command->add_flag("--deterministic", options->deterministic, "zero wall times (costs become 0)");
+  command->add_flag("-q,--quiet", options->quiet, "no progress on stderr");
+  command->callback([options, &chosen] { chosen = [options] { return Sweep(*options); }; });
+}
+
+}  // namespace talus::testbed

@@ -1,0 +1,25 @@
+// The subcommands `sweep`, `merge` and `stress` of talus-testbed
+// (docs/testbed-sweeps.md), each in its own file. Each Add function adds
+// its subcommand to the app; when that subcommand is parsed, `chosen` is
+// set to the action, which returns the process exit code
+// (testbed_commands.h).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+#include "talus/harness/backend.h"
+
+namespace talus::testbed {
+
+/// What main runs after parsing; empty when none of these was chosen.
+using CommandAction = std::function<int()>;
+
+void AddSweepCommand(CLI::App& app, CommandAction& chosen);
+void AddMergeCommand(CLI::App& app, CommandAction& chosen);
+void AddStressCommand(CLI::App& app, CommandAction& chosen);
+
+/// Every backend the testbed knows (Talus's variants, Bullet, ODE).
+const harness::BackendRegistry& AllBackends();
+
+}  // namespace talus::testbed
