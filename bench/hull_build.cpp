@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "talus/hull_builder.h"
-#include "talus_reference/qhull_oracle.h"
+#include "talus/reference/qhull_oracle.h"
 
 namespace talus {
 namespace {

@@ -1,5 +1,5 @@
 // qhull's reentrant C API behind one function; see qhull_oracle.h.
-#include "talus_reference/qhull_oracle.h"
+#include "talus/reference/qhull_oracle.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -12,7 +12,7 @@
 
 namespace talus::testing {
 
-/// SplitMix64 (as in /work/shared/bench/SCENES.md): a portable stream, so the
+/// SplitMix64 (as in shared/bench/SCENES.md (beside the repository)): a portable stream, so the
 /// worlds are the same on every standard library.
 class SplitMix64 {
  public:

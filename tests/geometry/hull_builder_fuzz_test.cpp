@@ -18,7 +18,7 @@
 #include "geometry/hull_check.h"
 #include "talus/hull_builder.h"
 #include "talus/math.h"
-#include "talus_reference/qhull_oracle.h"
+#include "talus/reference/qhull_oracle.h"
 
 namespace talus {
 namespace {

@@ -1,7 +1,7 @@
 // Large scenes through the real pipeline, too slow for the sanitizer pass
 // (this binary's tests carry the ctest label "slow", which that pass
 // excludes; the Release pass runs them). The scenes follow
-// /work/shared/bench/SCENES.md exactly, so the figures compare with the
+// shared/bench/SCENES.md (beside the repository) exactly, so the figures compare with the
 // benchmark reports.
 #include <gtest/gtest.h>
 

@@ -10,7 +10,7 @@
 #include "talus/hull_builder.h"
 #include "talus/hull_queries.h"
 #include "talus/mass_properties.h"
-#include "talus_reference/qhull_oracle.h"
+#include "talus/reference/qhull_oracle.h"
 
 namespace talus::reference {
 namespace {

@@ -125,9 +125,12 @@ class TalusBackend final : public harness::Backend {
 
 const char* PositionCorrectionName(PositionCorrection correction) {
   switch (correction) {
-    case PositionCorrection::Baumgarte: return "Baumgarte";
-    case PositionCorrection::SplitImpulses: return "split impulses";
-    case PositionCorrection::NonlinearGaussSeidel: return "non-linear Gauss-Seidel";
+    case PositionCorrection::Baumgarte:
+      return "Baumgarte";
+    case PositionCorrection::SplitImpulses:
+      return "split impulses";
+    case PositionCorrection::NonlinearGaussSeidel:
+      return "non-linear Gauss-Seidel";
   }
   return "unknown";
 }
@@ -279,11 +282,11 @@ void TalusBackend::AddSettings(const Run& run) {
        std::to_string(s.velocityIterations) + (run.iterations > 0 ? "" : " (engine default)")},
       {"warm starting", OnOff(s.warmStarting)},
       {"block solver (a pair's normal rows together)", OnOff(s.blockSolver)},
-      {"extra velocity sweeps for new contacts",
-       s.maxVelocityIterations > s.velocityIterations
-           ? "up to " + std::to_string(s.maxVelocityIterations) + " sweeps, until changes < " +
-                 Format(s.velocityTolerance) + " m/s"
-           : "none"},
+      {"extra velocity sweeps for new contacts", s.maxVelocityIterations > s.velocityIterations
+                                                     ? "up to " + std::to_string(s.maxVelocityIterations) +
+                                                           " sweeps, until changes < " +
+                                                           Format(s.velocityTolerance) + " m/s"
+                                                     : "none"},
       {"position correction", PositionCorrectionName(s.positionCorrection)},
       {"position iterations", s.positionCorrection == PositionCorrection::Baumgarte
                                   ? "unused"

@@ -1,7 +1,7 @@
 // The reference benchmark scenes (`pyramid`, `hull_pile`), built as
 // engine-agnostic Scenarios so every backend constructs the same world
 // through the Backend interface. The definitions are those of
-// /work/shared/bench/SCENES.md, restated in docs/bench-scenes.md; this file
+// shared/bench/SCENES.md (beside the repository), restated in docs/bench-scenes.md; this file
 // is the single scene list that the tests (tests/scenes), the `talus-scenes`
 // program (apps/scenes) and the reports all read.
 //

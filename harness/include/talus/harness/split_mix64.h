@@ -1,5 +1,5 @@
 // SplitMix64: the small, fully specified pseudo-random generator the
-// reference benchmark scenes draw from (/work/shared/bench/SCENES.md,
+// reference benchmark scenes draw from (shared/bench/SCENES.md (beside the repository),
 // docs/bench-scenes.md), so that any engine, in any language, can rebuild
 // the same random scene bit for bit.
 //
