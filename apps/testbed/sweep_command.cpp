@@ -86,10 +86,16 @@ int Sweep(const SweepOptions& options) {
   runner.deterministic = options.deterministic;
   runner.plotPoints = 2;  // a sweep's report shows costs and errors, not time series
   if (!options.quiet) runner.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+  runner.notice = [](const std::string& line) { std::cout << "talus-testbed: " << line << "\n"; };
   auto results = harness::RunAll(AllBackends(), runs, runner);
   if (!results) {
     std::cerr << "talus-testbed: " << results.GetError().message << "\n";
     return kExitBadInput;
+  }
+  for (const harness::Run& run : runs) {
+    // RunAll accepted every list, so this cannot fail here.
+    auto chosen = harness::BackendsForRun(AllBackends(), run, runner.backends);
+    part.resultCounts.push_back(chosen ? static_cast<int>(chosen.Value().size()) : 0);
   }
   part.results.backends = runner.backends;
   part.results.deterministic = options.deterministic;

@@ -68,6 +68,8 @@ std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
   options.deterministic = deterministic;
   options.replay = replay;
   if (!quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+  // Shown even with --quiet: a run that ran nowhere must not vanish unseen.
+  options.notice = [](const std::string& line) { std::cout << "talus-testbed: " << line << "\n"; };
   auto results = harness::RunAll(Registry(), runs.Value(), options);
   if (!results) {
     std::cerr << "talus-testbed: " << results.GetError().message << "\n";

@@ -68,7 +68,43 @@ PlotSeries MakeSeries(const Run& run, const Trajectory& trajectory, int plotPoin
   return series;
 }
 
+std::string KnownBackends(const BackendRegistry& registry) {
+  std::string known;
+  for (const std::string& n : registry.Names()) known.append(known.empty() ? "" : ", ").append(n);
+  return known;
+}
+
+std::string JoinNames(const std::vector<std::string>& names) {
+  std::string joined;
+  for (const std::string& n : names) joined.append(joined.empty() ? "" : ", ").append(n);
+  return joined;
+}
+
+std::string NothingToRunNotice(const Run& run, const std::vector<std::string>& asked) {
+  return Concat({run.id, " (", run.scenario.file, "): not run: its backends (",
+                 JoinNames(run.scenario.backends), ") and those asked for (", JoinNames(asked),
+                 ") have none in common"});
+}
+
 }  // namespace
+
+Result<std::vector<std::string>> BackendsForRun(const BackendRegistry& registry, const Run& run,
+                                                const std::vector<std::string>& asked) {
+  const std::vector<std::string>& listed = run.scenario.backends;
+  for (std::size_t i = 0; i < listed.size(); ++i) {
+    if (!registry.Has(listed[i])) {
+      return Error{Concat({run.scenario.file.empty() ? run.scenario.name : run.scenario.file, ": /backends/",
+                           std::to_string(i), ": unknown backend \"", listed[i],
+                           "\" (known: ", KnownBackends(registry), ")"})};
+    }
+  }
+  if (listed.empty()) return asked;
+  std::vector<std::string> chosen;
+  for (const std::string& name : asked) {
+    if (std::find(listed.begin(), listed.end(), name) != listed.end()) chosen.push_back(name);
+  }
+  return chosen;
+}
 
 Result<std::vector<Run>> LoadScenarios(const std::vector<fs::path>& paths) {
   std::vector<fs::path> files;
@@ -261,9 +297,7 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
   if (options.backends.empty()) return Error{"no backends to run"};
   for (const std::string& name : options.backends) {
     if (!registry.Has(name)) {
-      std::string known;
-      for (const std::string& n : registry.Names()) known.append(known.empty() ? "" : ", ").append(n);
-      return Error{Concat({"unknown backend \"", name, "\" (known: ", known, ")"})};
+      return Error{Concat({"unknown backend \"", name, "\" (known: ", KnownBackends(registry), ")"})};
     }
   }
   if (options.jobs < 1) return Error{Concat({"jobs must be >= 1, got ", std::to_string(options.jobs)})};
@@ -271,14 +305,22 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
   if (options.plotPoints < 2) return Error{"plotPoints must be >= 2"};
   if (options.replayFrames < 2) return Error{"replayFrames must be >= 2"};
 
-  // Jobs in output order; each writes only its own slot.
+  // Jobs in output order; each writes only its own slot. Every scenario's
+  // list is checked before anything runs.
   struct Job {
     const Run* run;
     std::string backend;
   };
   std::vector<Job> jobs;
+  std::vector<std::string> notices;
   for (const Run& run : runs) {
-    for (const std::string& backend : options.backends) jobs.push_back({&run, backend});
+    auto chosen = BackendsForRun(registry, run, options.backends);
+    if (!chosen) return chosen.GetError();
+    if (chosen.Value().empty()) notices.push_back(NothingToRunNotice(run, options.backends));
+    for (const std::string& backend : chosen.Value()) jobs.push_back({&run, backend});
+  }
+  if (options.notice) {
+    for (const std::string& line : notices) options.notice(line);
   }
   std::vector<RunResult> results(jobs.size());
   std::mutex progressMutex;

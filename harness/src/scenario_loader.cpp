@@ -361,6 +361,15 @@ Result<Scenario> MapScenario(const json& doc, std::string_view file) {
     }
     scenario.bodies.push_back(std::move(body).Value());
   }
+  if (doc.contains("backends")) {
+    for (size_t i = 0; i < doc["backends"].size(); ++i) {
+      const std::string name = doc["backends"][i].get<std::string>();
+      if (std::find(scenario.backends.begin(), scenario.backends.end(), name) != scenario.backends.end()) {
+        return FieldError(file, "/backends/" + std::to_string(i), "duplicate backend \"" + name + "\"");
+      }
+      scenario.backends.push_back(name);
+    }
+  }
   if (doc.contains("measure")) {
     for (const json& name : doc["measure"]) scenario.measure.push_back(MapQuantity(name.get<std::string>()));
   }

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "text_util.h"
@@ -337,6 +338,7 @@ std::string ShardToJson(const ShardFile& shard) {
   out["count"] = shard.shard.count;
   out["runCount"] = shard.runCount;
   out["runIndices"] = shard.runIndices;
+  if (!shard.resultCounts.empty()) out["resultCounts"] = shard.resultCounts;
   out["results"] = nlohmann::ordered_json::parse(ResultsToJson(shard.results));
   return out.dump(2) + "\n";
 }
@@ -362,6 +364,13 @@ Result<ShardFile> ShardFromJson(std::string_view text) {
     if (!index.is_number_integer()) return Error{"shard file: runIndices must be integers"};
     shard.runIndices.push_back(index.get<int>());
   }
+  if (in.contains("resultCounts")) {
+    if (!in["resultCounts"].is_array()) return Error{"shard file: resultCounts must be an array"};
+    for (const auto& count : in["resultCounts"]) {
+      if (!count.is_number_integer()) return Error{"shard file: resultCounts must be integers"};
+      shard.resultCounts.push_back(count.get<int>());
+    }
+  }
   auto results = ResultsFromJson(in["results"].dump());
   if (!results) return Error{Concat({"shard file: ", results.GetError().message})};
   shard.results = std::move(results).Value();
@@ -373,7 +382,8 @@ Result<ResultsFile> MergeShards(const std::vector<ShardFile>& shards) {
   const ShardFile& first = shards.front();
   const std::size_t backends = first.results.backends.size();
   if (backends == 0) return Error{"merge: shard has no backends"};
-  std::vector<const RunResult*> byRun(static_cast<std::size_t>(first.runCount) * backends, nullptr);
+  // Each run's results, in the runner's order; a run of no shard stays null.
+  std::vector<std::optional<std::vector<const RunResult*>>> byRun(static_cast<std::size_t>(first.runCount));
   std::vector<int> seenShards(static_cast<std::size_t>(first.shard.count), 0);
   for (const ShardFile& shard : shards) {
     const std::string name =
@@ -389,15 +399,22 @@ Result<ResultsFile> MergeShards(const std::vector<ShardFile>& shards) {
       return Error{Concat({"merge: ", name, ": index out of range"})};
     }
     if (seenShards[shard.shard.index]++ > 0) return Error{Concat({"merge: ", name, " given twice"})};
-    if (shard.runIndices != ShardRuns(shard.runCount, shard.shard) ||
-        shard.results.results.size() != shard.runIndices.size() * backends) {
+    std::vector<int> counts = shard.resultCounts;
+    if (counts.empty()) counts.assign(shard.runIndices.size(), static_cast<int>(backends));
+    std::size_t total = 0;
+    bool countsFit = counts.size() == shard.runIndices.size();
+    for (int count : counts) {
+      countsFit = countsFit && count >= 0 && static_cast<std::size_t>(count) <= backends;
+      total += static_cast<std::size_t>(std::max(count, 0));
+    }
+    if (shard.runIndices != ShardRuns(shard.runCount, shard.shard) || !countsFit ||
+        shard.results.results.size() != total) {
       return Error{Concat({"merge: ", name, ": its runs are not the partition's"})};
     }
+    std::size_t next = 0;
     for (std::size_t k = 0; k < shard.runIndices.size(); ++k) {
-      for (std::size_t b = 0; b < backends; ++b) {
-        byRun[static_cast<std::size_t>(shard.runIndices[k]) * backends + b] =
-            &shard.results.results[k * backends + b];
-      }
+      auto& slot = byRun[static_cast<std::size_t>(shard.runIndices[k])].emplace();
+      for (int b = 0; b < counts[k]; ++b) slot.push_back(&shard.results.results[next++]);
     }
   }
   for (int i = 0; i < first.shard.count; ++i) {
@@ -409,7 +426,9 @@ Result<ResultsFile> MergeShards(const std::vector<ShardFile>& shards) {
   ResultsFile merged;
   merged.backends = first.results.backends;
   merged.deterministic = first.results.deterministic;
-  for (const RunResult* result : byRun) merged.results.push_back(*result);
+  for (const auto& run : byRun) {
+    for (const RunResult* result : *run) merged.results.push_back(*result);
+  }
   return merged;
 }
 

@@ -1,6 +1,8 @@
 // The runner: runs scenarios x backends (x sweep values, already expanded
 // into Runs by the loader) and records, per run and backend, a trajectory,
-// the metrics the scenario asks for and the wall time per step.
+// the metrics the scenario asks for and the wall time per step. A run goes
+// to the backends asked for that its scenario also lists (all asked for
+// when it lists none).
 //
 // Work is split into independent jobs, one per (run, backend), executed by
 // a pool of threads; results come back in job order (runs in file order,
@@ -74,6 +76,12 @@ struct RunnerOptions {
   /// Called (serialised) after each job with a line such as
   /// "[3/24] box_slide[mu=0.3,v0=1] bullet 0.12 s"; may be empty.
   std::function<void(const std::string&)> progress;
+  /// Called on the calling thread, before any job runs, once per run that
+  /// runs on no backend because its scenario's `backends` and `backends`
+  /// above have no name in common (such a run has no RunResult), e.g.
+  /// "box_rest (scenarios/stacking/box_rest.json): not run: its backends
+  /// (bullet) and those asked for (talus) have none in common"; may be empty.
+  std::function<void(const std::string&)> notice;
 };
 
 /// Scenario files from `paths`: files as given, folders searched
@@ -90,9 +98,19 @@ Result<std::vector<Run>> LoadScenarios(const std::vector<std::filesystem::path>&
 Result<std::vector<Run>> ExpandStepping(const std::vector<Run>& runs, const std::vector<double>& timeSteps,
                                         const std::vector<int>& iterations);
 
-/// Runs every run with every backend of `options`. An unknown backend name
-/// or bad options is an Error before anything runs; a backend refusing one
-/// run is recorded in that RunResult's `error`.
+/// The backends `run` runs on: the names of `asked` (in that order) that
+/// its scenario's `backends` lists, or all of `asked` when it lists none;
+/// possibly none. A listed name the registry does not know is an Error
+/// naming the file and field, e.g. "box.json: /backends/1: unknown backend
+/// \"havok\" (known: ...)".
+Result<std::vector<std::string>> BackendsForRun(const BackendRegistry& registry, const Run& run,
+                                                const std::vector<std::string>& asked);
+
+/// Runs every run with each backend BackendsForRun gives it from
+/// `options.backends`. An unknown backend name (asked for or in a scenario)
+/// or bad options is an Error before anything runs; a run left with no
+/// backend is passed to options.notice and has no result; a backend
+/// refusing one run is recorded in that RunResult's `error`.
 Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std::vector<Run>& runs,
                                       const RunnerOptions& options);
 

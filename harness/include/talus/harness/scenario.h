@@ -186,6 +186,13 @@ struct Scenario {
   std::string file;  ///< where it was read from ("" when parsed from text)
   WorldSettings world;
   std::vector<BodySpec> bodies;  ///< at least one
+  /// Backends (registry names) the scenario runs on, file order, no
+  /// duplicates; empty (the default) = every backend the runner is given.
+  /// Names are checked against the registry by the runner, which runs the
+  /// intersection with its own list (runner.h).
+  std::vector<std::string> backends;
+  /// Quantities to record; the optional metrics (energy and momentum drift,
+  /// penetration, contacts) are computed only when listed.
   std::vector<Quantity> measure;
   std::vector<Truth> truths;
 };

@@ -119,7 +119,11 @@ struct ShardFile {
   Shard shard;
   int runCount = 0;             ///< runs in the unsharded list
   std::vector<int> runIndices;  ///< this shard's runs, increasing
-  ResultsFile results;          ///< runIndices.size() x backends results, run-major
+  ResultsFile results;          ///< the runs' results, run-major (the runner's order)
+  /// Results per entry of runIndices: the backends that ran it (fewer than
+  /// results.backends when its scenario lists backends, possibly 0). Empty
+  /// means every run has one result per backend.
+  std::vector<int> resultCounts;
 };
 std::string ShardToJson(const ShardFile& shard);
 Result<ShardFile> ShardFromJson(std::string_view text);
