@@ -20,6 +20,9 @@
 namespace talus::harness {
 namespace {
 
+// gtest's Test::Run hides harness::Run inside TEST bodies.
+using ScenarioRun = Run;
+
 const BackendRegistry& Registry() {
   static const BackendRegistry registry = [] {
     BackendRegistry r;
@@ -33,14 +36,14 @@ const BackendRegistry& Registry() {
 
 // A falling sphere (a closed system: no static body), 20 steps, with the
 // given extra top-level fields (e.g. "\"backends\": [\"talus\"],").
-std::vector<Run> Falling(const std::string& name, const std::string& extra) {
+std::vector<ScenarioRun> Falling(const std::string& name, const std::string& extra) {
   const std::string text = R"({"name": ")" + name + R"(", )" + extra +
                            R"( "world": {"timeStep": 0.01, "duration": {"steps": 20}},
       "bodies": [{"name": "ball", "shape": {"kind": "sphere", "radius": 0.5}, "motion": "dynamic",
                   "position": [0, 2, 0], "mass": 1}]})";
   auto runs = ParseScenarioText(text, name + ".json");
   EXPECT_TRUE(runs) << runs.GetError().message;
-  return runs ? runs.Value() : std::vector<Run>{};
+  return runs ? runs.Value() : std::vector<ScenarioRun>{};
 }
 
 std::vector<std::string> BackendsOf(const std::vector<RunResult>& results, const std::string& runId) {
@@ -59,10 +62,10 @@ std::vector<std::string> MetricNames(const RunResult& result) {
 
 // Three scenarios: one listing two backends (in the opposite order to the
 // command line), one listing none, one whose only backend is not asked for.
-std::vector<Run> Mixed() {
-  std::vector<Run> runs = Falling("listed", R"("backends": ["bullet", "talus"],)");
-  for (Run& run : Falling("unlisted", "")) runs.push_back(run);
-  for (Run& run : Falling("elsewhere", R"("backends": ["talus-split"],)")) runs.push_back(run);
+std::vector<ScenarioRun> Mixed() {
+  std::vector<ScenarioRun> runs = Falling("listed", R"("backends": ["bullet", "talus"],)");
+  for (ScenarioRun& run : Falling("unlisted", "")) runs.push_back(run);
+  for (ScenarioRun& run : Falling("elsewhere", R"("backends": ["talus-split"],)")) runs.push_back(run);
   return runs;
 }
 
@@ -102,8 +105,8 @@ TEST(ScenarioBackends, RunWithNothingInCommonIsReportedNotDropped) {
 }
 
 TEST(ScenarioBackends, UnknownListedBackendIsRefusedWithFileAndPointerBeforeRunning) {
-  std::vector<Run> runs = Falling("good", "");
-  for (Run& run : Falling("bad", R"("backends": ["talus", "havok"],)")) runs.push_back(run);
+  std::vector<ScenarioRun> runs = Falling("good", "");
+  for (ScenarioRun& run : Falling("bad", R"("backends": ["talus", "havok"],)")) runs.push_back(run);
   RunnerOptions options;
   options.backends = {"talus"};
   int progressCalls = 0;
@@ -144,7 +147,7 @@ TEST(ScenarioBackends, MeasureListDecidesTheOptionalMetrics) {
 }
 
 TEST(ScenarioBackends, OutputIsByteIdenticalWhateverTheThreadCountAndSharding) {
-  const std::vector<Run> runs = Mixed();
+  const std::vector<ScenarioRun> runs = Mixed();
   RunnerOptions options;
   options.backends = {"talus", "ode-step", "bullet"};
   options.deterministic = true;
@@ -164,7 +167,7 @@ TEST(ScenarioBackends, OutputIsByteIdenticalWhateverTheThreadCountAndSharding) {
     shard.shard = {index, 2};
     shard.runCount = static_cast<int>(runs.size());
     shard.runIndices = ShardRuns(shard.runCount, shard.shard);
-    std::vector<Run> part;
+    std::vector<ScenarioRun> part;
     for (int r : shard.runIndices) {
       part.push_back(runs[static_cast<std::size_t>(r)]);
       auto chosen = BackendsForRun(Registry(), part.back(), options.backends);
