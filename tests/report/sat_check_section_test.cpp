@@ -102,8 +102,9 @@ TEST(SatCheckSection, HtmlHasTheTablesThreePlotsAndTheirData) {
   ASSERT_EQ(data["methods"].size(), s.methods.size());
   for (std::size_t i = 0; i < s.methods.size(); ++i) {
     EXPECT_EQ(data["methods"][i]["name"], s.methods[i].name);
-    if (s.methods[i].timeNs.count > 0)
+    if (s.methods[i].timeNs.count > 0) {
       EXPECT_EQ(data["methods"][i]["timeNs"]["p50"], s.methods[i].timeNs.p50);
+    }
   }
   // Three charts: depth error and normal angle percentiles, time vs error.
   EXPECT_EQ(Occurrences(html.substr(end), "percentileChart('"), 2u);
