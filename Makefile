@@ -18,6 +18,8 @@ SOURCES = $(shell git ls-files '*.cpp' '*.h' 2>/dev/null)
 REPORT_DIR ?= reports/latest
 TESTBED = $(BUILD_DIR)/apps/testbed/talus-testbed
 REPLAY ?= free_fall_15,box_pyramid_4,hull_rest,box_toss
+SAT_CHECK = $(BUILD_DIR)/apps/sat_check/talus-sat-check
+SAT_PAIRS ?= 1000
 
 .PHONY: deps configure build test test-release test-asan format format-check clean report
 
@@ -47,10 +49,15 @@ test: format-check test-release test-asan
 # the default suite; the report is written even when a run failed, and the
 # target then fails. REPLAY names the runs the page can replay in 3D (the
 # write-up's figures 2-4: free fall of 15 bodies, a small pyramid, a hull
-# coming to rest, a tossed box).
+# coming to rest, a tossed box). The SAT validation (talus-sat-check,
+# SAT_PAIRS pairs, seed 1) is run into the same folder and added as a
+# section; if it fails, the report is written without it and the target fails.
 report: build
 	@status=0; $(TESTBED) run scenarios --jobs $(JOBS) --replay $(REPLAY) --out $(REPORT_DIR) >/dev/null || status=$$?; \
-	  $(TESTBED) report $(REPORT_DIR)/results.json && exit $$status
+	  sat=; if $(SAT_CHECK) --pairs $(SAT_PAIRS) --seed 1 --json $(REPORT_DIR)/sat_check.json \
+	    --markdown $(REPORT_DIR)/sat_check.md; then sat="--sat-check $(REPORT_DIR)/sat_check.json"; \
+	  else status=1; fi; \
+	  $(TESTBED) report $(REPORT_DIR)/results.json $$sat && exit $$status
 
 format:
 	clang-format -i $(SOURCES)

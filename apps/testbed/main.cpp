@@ -40,6 +40,8 @@ int main(int argc, char** argv) {
                             "charting library to inline (default: Chart.js from npm)");
   reportCommand->add_option("--three-js", report.threeJs,
                             "3D library to inline (default: three.js from npm)");
+  reportCommand->add_option("--sat-check", report.satCheck,
+                            "talus-sat-check --json results to add as the SAT validation section");
 
   CheckOptions check;
   CLI::App* checkCommand =

@@ -132,8 +132,17 @@ int ReportCommand(const ReportOptions& options) {
       options.chartJs.empty() ? fs::path(TALUS_DEFAULT_CHART_JS) : fs::path(options.chartJs);
   const fs::path threeJs =
       options.threeJs.empty() ? fs::path(TALUS_DEFAULT_THREE_JS) : fs::path(options.threeJs);
-  auto written =
-      harness::WriteReport(file.Value(), folder.empty() ? fs::path(".") : folder, chartJs, threeJs);
+  std::optional<harness::SatCheckSummary> satCheck;
+  if (!options.satCheck.empty()) {
+    auto read = harness::ReadSatCheckFile(options.satCheck);
+    if (!read) {
+      std::cerr << "talus-testbed: " << read.GetError().message << "\n";
+      return kExitBadInput;
+    }
+    satCheck = std::move(read).Value();
+  }
+  auto written = harness::WriteReport(file.Value(), folder.empty() ? fs::path(".") : folder, chartJs, threeJs,
+                                      satCheck ? &*satCheck : nullptr);
   if (!written) {
     std::cerr << "talus-testbed: " << written.GetError().message << "\n";
     return kExitBadInput;

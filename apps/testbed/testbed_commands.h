@@ -32,10 +32,11 @@ struct RunOptions {
 int RunCommand(const RunOptions& options);
 
 struct ReportOptions {
-  std::string results;  ///< results.json of a run
-  std::string out;      ///< report folder; empty = the results file's folder
-  std::string chartJs;  ///< charting library; empty = the npm copy under harness/report
-  std::string threeJs;  ///< three.js (3D views); empty = the npm copy under harness/report
+  std::string results;   ///< results.json of a run
+  std::string out;       ///< report folder; empty = the results file's folder
+  std::string chartJs;   ///< charting library; empty = the npm copy under harness/report
+  std::string threeJs;   ///< three.js (3D views); empty = the npm copy under harness/report
+  std::string satCheck;  ///< talus-sat-check --json output to add as a section; empty = none
 };
 int ReportCommand(const ReportOptions& options);
 

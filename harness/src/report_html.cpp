@@ -13,6 +13,7 @@
 
 #include "report_html_replay.h"
 #include "talus/harness/report.h"
+#include "talus/harness/sat_check_results.h"
 #include "talus/harness/sweep.h"
 #include "text_util.h"
 
@@ -75,6 +76,8 @@ std::vector<std::string> SplitRow(const std::string& line) {
   return cells;
 }
 
+}  // namespace
+
 std::string MarkdownToHtml(const std::string& markdown) {
   std::istringstream in(markdown);
   std::ostringstream out;
@@ -120,6 +123,8 @@ std::string MarkdownToHtml(const std::string& markdown) {
   if (inTable) out << "</table>\n";
   return out.str();
 }
+
+namespace {
 
 // What the page's script plots, as JSON.
 nlohmann::ordered_json PlotData(const ResultsFile& file) {
@@ -206,8 +211,8 @@ Result<std::monostate> WriteText(const std::filesystem::path& path, const std::s
 
 }  // namespace
 
-std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary,
-                       std::string_view threeLibrary) {
+std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, std::string_view threeLibrary,
+                       const SatCheckSummary* satCheck) {
   std::ostringstream out;
   out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       << "<title>Talus testbed report</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n";
@@ -219,13 +224,15 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary,
   out << ReplaySections(file, threeLibrary);
   out << "<script>" << kScript << "</script>\n";
   out << SweepHtmlSection(file);
+  if (satCheck != nullptr) out << SatCheckHtmlSection(*satCheck);
   out << "</body>\n</html>\n";
   return out.str();
 }
 
 Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesystem::path& folder,
                                    const std::filesystem::path& chartLibraryPath,
-                                   const std::filesystem::path& threeLibraryPath) {
+                                   const std::filesystem::path& threeLibraryPath,
+                                   const SatCheckSummary* satCheck) {
   std::ifstream library(chartLibraryPath, std::ios::binary);
   if (!library) {
     return Error{Concat({chartLibraryPath.string(),
@@ -248,10 +255,10 @@ Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesyste
   std::filesystem::create_directories(folder, error);
   if (error) return Error{Concat({folder.string(), ": ", error.message()})};
   const std::pair<const char*, std::string> files[] = {
-      {"summary.md", SummaryMarkdown(file)},
+      {"summary.md", SummaryMarkdown(file, satCheck)},
       {"results.csv", ResultsCsv(file)},
       {"results.json", ResultsToJson(file)},
-      {"report.html", ReportHtml(file, js.str(), three.str())},
+      {"report.html", ReportHtml(file, js.str(), three.str(), satCheck)},
   };
   for (const auto& [name, text] : files) {
     auto written = WriteText(folder / name, text);

@@ -150,7 +150,7 @@ std::string OverviewTable(const ResultsFile& file) {
   return out.str();
 }
 
-std::string SummaryMarkdown(const ResultsFile& file) {
+std::string SummaryMarkdown(const ResultsFile& file, const SatCheckSummary* satCheck) {
   std::ostringstream out;
   out << "# Talus testbed report\n\n";
   out << "Backends: " <<
@@ -226,6 +226,7 @@ std::string SummaryMarkdown(const ResultsFile& file) {
     for (const Setting& s : it->settings) Row(out, {s.key, s.value});
     out << "\n";
   }
+  if (satCheck != nullptr) out << SatCheckMarkdown(*satCheck);
   return out.str();
 }
 

@@ -20,4 +20,9 @@ inline std::string Concat(std::initializer_list<std::string_view> pieces) {
 /// `value` with up to `digits` significant digits, shortest form ("%.*g").
 std::string FormatNumber(double value, int digits = 6);
 
+/// HTML for summary.md's Markdown subset: headings (#, ##, ###), pipe
+/// tables (cells ending in FAIL / ok coloured), paragraphs, `code`
+/// (report_html.cpp).
+std::string MarkdownToHtml(const std::string& markdown);
+
 }  // namespace talus::harness
