@@ -9,29 +9,21 @@
 #include <vector>
 
 #include "collision/broad_phase_proxy.h"
+#include "talus/harness/split_mix64.h"
 
 namespace talus::testing {
 
-/// SplitMix64 (as in shared/bench/SCENES.md (beside the repository)): a portable stream, so the
-/// worlds are the same on every standard library.
-class SplitMix64 {
+/// The SplitMix64 stream of the benchmark scenes (talus/harness/split_mix64.h,
+/// header-only), so the worlds are the same on every standard library, with
+/// the ranges these tests draw from.
+class SplitMix64 : public harness::SplitMix64 {
  public:
-  explicit SplitMix64(std::uint64_t seed) : m_state(seed) {}
-  std::uint64_t Next() {
-    m_state += 0x9E3779B97F4A7C15ull;
-    std::uint64_t z = m_state;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
+  using harness::SplitMix64::SplitMix64;
   /// Uniform in [0, 1).
-  double Uniform() { return static_cast<double>(Next() >> 11) * 0x1.0p-53; }
+  double Uniform() { return NextUniform(); }
   double Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform(); }
   /// Log-uniform in [lo, hi), lo > 0: mixed sizes over decades.
   double LogUniform(double lo, double hi) { return lo * std::exp(std::log(hi / lo) * Uniform()); }
-
- private:
-  std::uint64_t m_state;
 };
 
 /// How a random world is drawn.
