@@ -14,9 +14,7 @@
 
 #include "talus/harness/backend.h"
 #include "talus/harness/scenario_loader.h"
-#include "talus/reference/bullet_backend.h"
-#include "talus/reference/ode_backend.h"
-#include "talus/reference/talus_backend.h"
+#include "testbed/all_backends.h"
 
 namespace talus::harness {
 namespace {
@@ -24,16 +22,7 @@ namespace {
 // gtest's Test::Run hides harness::Run inside TEST bodies.
 using ScenarioRun = Run;
 
-const BackendRegistry& Registry() {
-  static const BackendRegistry registry = [] {
-    BackendRegistry r;
-    reference::RegisterTalusBackends(r);
-    reference::RegisterBulletBackends(r);
-    reference::RegisterOdeBackends(r);
-    return r;
-  }();
-  return registry;
-}
+const BackendRegistry& Registry() { return testing::AllBackends(); }
 
 // The file's single run with the gyroscopic setting forced to `gyroscopic`.
 Run LoadTumbling(const std::string& file, bool gyroscopic) {

@@ -10,9 +10,7 @@
 
 #include "talus/harness/results_file.h"
 #include "talus/harness/runner.h"
-#include "talus/reference/bullet_backend.h"
-#include "talus/reference/ode_backend.h"
-#include "talus/reference/talus_backend.h"
+#include "testbed/all_backends.h"
 
 namespace talus::harness {
 namespace {
@@ -20,16 +18,7 @@ namespace {
 // gtest's Test::Run hides harness::Run inside TEST bodies.
 using ScenarioRun = Run;
 
-const BackendRegistry& Registry() {
-  static const BackendRegistry registry = [] {
-    BackendRegistry r;
-    reference::RegisterTalusBackends(r);
-    reference::RegisterBulletBackends(r);
-    reference::RegisterOdeBackends(r);
-    return r;
-  }();
-  return registry;
-}
+const BackendRegistry& Registry() { return testing::AllBackends(); }
 
 std::vector<Run> Load(const std::string& relative) {
   auto runs = LoadScenarios({std::string(TALUS_SCENARIO_DIR) + "/" + relative});

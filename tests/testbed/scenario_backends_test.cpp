@@ -13,9 +13,7 @@
 #include "talus/harness/runner.h"
 #include "talus/harness/scenario_loader.h"
 #include "talus/harness/sweep.h"
-#include "talus/reference/bullet_backend.h"
-#include "talus/reference/ode_backend.h"
-#include "talus/reference/talus_backend.h"
+#include "testbed/all_backends.h"
 
 namespace talus::harness {
 namespace {
@@ -23,16 +21,7 @@ namespace {
 // gtest's Test::Run hides harness::Run inside TEST bodies.
 using ScenarioRun = Run;
 
-const BackendRegistry& Registry() {
-  static const BackendRegistry registry = [] {
-    BackendRegistry r;
-    reference::RegisterTalusBackends(r);
-    reference::RegisterBulletBackends(r);
-    reference::RegisterOdeBackends(r);
-    return r;
-  }();
-  return registry;
-}
+const BackendRegistry& Registry() { return testing::AllBackends(); }
 
 // A falling sphere (a closed system: no static body), 20 steps, with the
 // given extra top-level fields (e.g. "\"backends\": [\"talus\"],").
