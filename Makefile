@@ -5,6 +5,10 @@
 #   make format    reformat the sources with clang-format
 #   make report    run the default scenarios through Talus, Bullet and ODE
 #                  and write the comparison report to reports/latest/
+#   make report-full   the same page with every analysis added: the time
+#                  step x iterations sweep, the stress envelope and the
+#                  large scenes' scaling series (long: about an hour on 2
+#                  cores), in reports/full/
 #
 # JOBS sets build and test parallelism (default: all cores).
 
@@ -20,8 +24,10 @@ TESTBED = $(BUILD_DIR)/apps/testbed/talus-testbed
 REPLAY ?= free_fall_15,box_pyramid_4,hull_rest,box_toss
 SAT_CHECK = $(BUILD_DIR)/apps/sat_check/talus-sat-check
 SAT_PAIRS ?= 1000
+FULL_DIR ?= reports/full
+SCENES = $(BUILD_DIR)/apps/scenes/talus-scenes
 
-.PHONY: deps configure build test test-release test-asan format format-check clean report
+.PHONY: deps configure build test test-release test-asan format format-check clean report report-full
 
 deps:
 	@scripts/install-deps.sh
@@ -67,3 +73,23 @@ format-check: deps
 
 clean:
 	rm -rf $(BUILD_DIR) $(ASAN_DIR)
+
+# One page with every analysis: the default run and SAT validation as in
+# `report`, plus the sweep (run time against error), the stress envelope and
+# the scaling series of the large scenes, each run into its own subfolder
+# and added with the report's --sweep, --stress and --scenes. Each step
+# prints its progress on stderr; the page is written even when a step
+# failed (without that step's section), and the target then fails.
+report-full: build
+	@mkdir -p $(FULL_DIR); status=0; extras=; \
+	  $(TESTBED) run scenarios --jobs $(JOBS) --replay $(REPLAY) --out $(FULL_DIR) >/dev/null || status=$$?; \
+	  if $(SAT_CHECK) --pairs $(SAT_PAIRS) --seed 1 --json $(FULL_DIR)/sat_check.json \
+	    --markdown $(FULL_DIR)/sat_check.md; then extras="$$extras --sat-check $(FULL_DIR)/sat_check.json"; \
+	  else status=1; fi; \
+	  if $(TESTBED) sweep scenarios --jobs $(JOBS) -o $(FULL_DIR)/sweep >/dev/null; then \
+	    extras="$$extras --sweep $(FULL_DIR)/sweep/results.json"; else status=1; fi; \
+	  if $(TESTBED) stress -b talus,talus-split,bullet,ode-step,ode-quickstep -o $(FULL_DIR)/stress >/dev/null; \
+	    then extras="$$extras --stress $(FULL_DIR)/stress/stress.json"; else status=1; fi; \
+	  if $(SCENES) --series --format jsonl >$(FULL_DIR)/scenes.jsonl; then \
+	    extras="$$extras --scenes $(FULL_DIR)/scenes.jsonl"; else status=1; fi; \
+	  $(TESTBED) report $(FULL_DIR)/results.json $$extras && exit $$status

@@ -1,9 +1,9 @@
 // CSV and JSON-lines formatting of benchmark reports (see report_writer.h).
 #include "report_writer.h"
 
-#include <cmath>
 #include <cstdio>
-#include <nlohmann/json.hpp>
+
+#include "talus/harness/bench_report_json.h"
 
 namespace talus::scenes {
 namespace {
@@ -28,10 +28,6 @@ std::string Quote(const std::string& text) {
   return quoted + "\"";
 }
 
-nlohmann::ordered_json JsonNumber(double value) {
-  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
-}
-
 }  // namespace
 
 std::string CsvHeader() {
@@ -51,26 +47,6 @@ std::string FormatCsv(const harness::BenchReport& report) {
   return line;
 }
 
-std::string FormatJson(const harness::BenchReport& report) {
-  nlohmann::ordered_json line;
-  line["engine"] = report.engine;
-  line["scene"] = report.scene;
-  line["parameter"] = report.parameter;
-  line["bodies"] = report.bodies;
-  line["threads"] = report.threads;
-  line["steps"] = report.steps;
-  if (!report.skipped.empty()) {
-    line["skipped"] = report.skipped;
-    return line.dump();
-  }
-  line["ms_per_step_median"] = JsonNumber(report.msMedian);
-  line["ms_per_step_mean"] = JsonNumber(report.msMean);
-  line["max_contacts"] = report.maxContacts;
-  if (report.drift) line["drift_m"] = JsonNumber(*report.drift);
-  if (report.maxPenetration) line["max_penetration_m"] = JsonNumber(*report.maxPenetration);
-  if (report.kineticEnergy) line["kinetic_energy_j"] = JsonNumber(*report.kineticEnergy);
-  if (report.escaped) line["escaped"] = *report.escaped;
-  return line.dump();
-}
+std::string FormatJson(const harness::BenchReport& report) { return harness::BenchReportToJson(report); }
 
 }  // namespace talus::scenes

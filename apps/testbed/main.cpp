@@ -42,6 +42,13 @@ int main(int argc, char** argv) {
                             "3D library to inline (default: three.js from npm)");
   reportCommand->add_option("--sat-check", report.satCheck,
                             "talus-sat-check --json results to add as the SAT validation section");
+  reportCommand->add_option(
+      "--sweep", report.sweep,
+      "results.json of `talus-testbed sweep` to add as the run-time-against-error section");
+  reportCommand->add_option("--stress", report.stress,
+                            "stress.json of `talus-testbed stress` to add as the stability envelope section");
+  reportCommand->add_option("--scenes", report.scenes,
+                            "`talus-scenes --format jsonl` output to add as the large-scenes section");
 
   CheckOptions check;
   CLI::App* checkCommand =

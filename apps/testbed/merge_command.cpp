@@ -44,7 +44,8 @@ int Merge(const MergeOptions& options) {
     std::cerr << "talus-testbed: " << merged.GetError().message << "\n";
     return kExitBadInput;
   }
-  const std::vector<harness::SweepGroup> groups = harness::AnalyseSweep(merged.Value(), {"ode-step"});
+  const std::vector<harness::SweepGroup> groups =
+      harness::AnalyseSweep(merged.Value(), harness::kSweepSingleSetting);
   std::error_code error;
   fs::create_directories(options.out, error);
   const std::pair<const char*, std::string> files[] = {

@@ -109,7 +109,8 @@ int Sweep(const SweepOptions& options) {
               << " runs x " << runner.backends.size() << " backends\nshard file: " << path.string() << "\n";
     return kExitOk;
   }
-  const std::vector<harness::SweepGroup> groups = harness::AnalyseSweep(part.results, {"ode-step"});
+  const std::vector<harness::SweepGroup> groups =
+      harness::AnalyseSweep(part.results, harness::kSweepSingleSetting);
   const std::string markdown = harness::SweepMarkdown(groups);
   if (!WriteText(out / "results.json", harness::ResultsToJson(part.results)) ||
       !WriteText(out / "sweep.json", harness::SweepToJson(groups)) ||

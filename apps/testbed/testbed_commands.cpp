@@ -9,10 +9,12 @@
 #include <optional>
 #include <thread>
 
+#include "talus/harness/bench_report_json.h"
 #include "talus/harness/regression_check.h"
 #include "talus/harness/report.h"
 #include "talus/harness/results_file.h"
 #include "talus/harness/runner.h"
+#include "talus/harness/stress.h"
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/ode_backend.h"
 #include "talus/reference/talus_backend.h"
@@ -120,6 +122,20 @@ int RunCommand(const RunOptions& options) {
   return ReportRunErrors(*file) ? kExitFailed : kExitOk;
 }
 
+// Reads the optional input at `path` with `read` into `out`; an empty path
+// is no input. False (after printing the reader's message) when it fails.
+template <typename T, typename Reader>
+bool ReadExtra(const std::string& path, Reader read, std::optional<T>& out) {
+  if (path.empty()) return true;
+  auto value = read(path);
+  if (!value) {
+    std::cerr << "talus-testbed: " << value.GetError().message << "\n";
+    return false;
+  }
+  out = std::move(value).Value();
+  return true;
+}
+
 int ReportCommand(const ReportOptions& options) {
   auto file = harness::ReadResultsFile(options.results);
   if (!file) {
@@ -132,17 +148,24 @@ int ReportCommand(const ReportOptions& options) {
       options.chartJs.empty() ? fs::path(TALUS_DEFAULT_CHART_JS) : fs::path(options.chartJs);
   const fs::path threeJs =
       options.threeJs.empty() ? fs::path(TALUS_DEFAULT_THREE_JS) : fs::path(options.threeJs);
+  // Each extra is read in full before anything is written, so a bad one
+  // leaves the report folder untouched.
   std::optional<harness::SatCheckSummary> satCheck;
-  if (!options.satCheck.empty()) {
-    auto read = harness::ReadSatCheckFile(options.satCheck);
-    if (!read) {
-      std::cerr << "talus-testbed: " << read.GetError().message << "\n";
-      return kExitBadInput;
-    }
-    satCheck = std::move(read).Value();
+  std::optional<ResultsFile> sweep;
+  std::optional<std::vector<harness::StressEntry>> stress;
+  std::optional<std::vector<harness::BenchReport>> scenes;
+  if (!ReadExtra(options.satCheck, harness::ReadSatCheckFile, satCheck) ||
+      !ReadExtra(options.sweep, harness::ReadResultsFile, sweep) ||
+      !ReadExtra(options.stress, harness::ReadStressFile, stress) ||
+      !ReadExtra(options.scenes, harness::ReadBenchReportFile, scenes)) {
+    return kExitBadInput;
   }
-  auto written = harness::WriteReport(file.Value(), folder.empty() ? fs::path(".") : folder, chartJs, threeJs,
-                                      satCheck ? &*satCheck : nullptr);
+  const harness::ReportExtras extras{.satCheck = satCheck ? &*satCheck : nullptr,
+                                     .sweep = sweep ? &*sweep : nullptr,
+                                     .stress = stress ? &*stress : nullptr,
+                                     .scenes = scenes ? &*scenes : nullptr};
+  auto written =
+      harness::WriteReport(file.Value(), folder.empty() ? fs::path(".") : folder, chartJs, threeJs, extras);
   if (!written) {
     std::cerr << "talus-testbed: " << written.GetError().message << "\n";
     return kExitBadInput;

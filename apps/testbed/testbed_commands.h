@@ -37,6 +37,9 @@ struct ReportOptions {
   std::string chartJs;   ///< charting library; empty = the npm copy under harness/report
   std::string threeJs;   ///< three.js (3D views); empty = the npm copy under harness/report
   std::string satCheck;  ///< talus-sat-check --json output to add as a section; empty = none
+  std::string sweep;     ///< a sweep's results.json to add as run time against error; empty = none
+  std::string stress;    ///< talus-testbed stress's stress.json to add as the envelope; empty = none
+  std::string scenes;    ///< talus-scenes --format jsonl output to add as large scenes; empty = none
 };
 int ReportCommand(const ReportOptions& options);
 

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "report_html_replay.h"
+#include "talus/harness/bench_summary.h"
 #include "talus/harness/report.h"
 #include "talus/harness/sat_check_results.h"
 #include "talus/harness/sweep.h"
@@ -147,14 +148,6 @@ nlohmann::ordered_json PlotData(const ResultsFile& file) {
   return data;
 }
 
-// Keeps "</script" out of inlined text so the element cannot end early.
-std::string ScriptSafe(std::string text) {
-  for (std::size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) {
-    text.replace(at, 2, "<\\/");
-  }
-  return text;
-}
-
 constexpr const char* kStyle = R"(body{font-family:sans-serif;margin:2em;max-width:90em}
 table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:.25em .6em;text-align:left}
 th{background:#eee}td.ok{background:#e6f4e6}td.fail{background:#f8d7d7;font-weight:bold}
@@ -212,7 +205,7 @@ Result<std::monostate> WriteText(const std::filesystem::path& path, const std::s
 }  // namespace
 
 std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, std::string_view threeLibrary,
-                       const SatCheckSummary* satCheck) {
+                       const ReportExtras& extras) {
   std::ostringstream out;
   out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       << "<title>Talus testbed report</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n";
@@ -224,7 +217,10 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, s
   out << ReplaySections(file, threeLibrary);
   out << "<script>" << kScript << "</script>\n";
   out << SweepHtmlSection(file);
-  if (satCheck != nullptr) out << SatCheckHtmlSection(*satCheck);
+  if (extras.satCheck != nullptr) out << SatCheckHtmlSection(*extras.satCheck);
+  if (extras.sweep != nullptr) out << SweepHtmlSection(*extras.sweep);
+  if (extras.stress != nullptr) out << MarkdownToHtml(StressMarkdown(*extras.stress));
+  if (extras.scenes != nullptr) out << BenchHtmlSection(*extras.scenes);
   out << "</body>\n</html>\n";
   return out.str();
 }
@@ -232,7 +228,7 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, s
 Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesystem::path& folder,
                                    const std::filesystem::path& chartLibraryPath,
                                    const std::filesystem::path& threeLibraryPath,
-                                   const SatCheckSummary* satCheck) {
+                                   const ReportExtras& extras) {
   std::ifstream library(chartLibraryPath, std::ios::binary);
   if (!library) {
     return Error{Concat({chartLibraryPath.string(),
@@ -255,10 +251,10 @@ Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesyste
   std::filesystem::create_directories(folder, error);
   if (error) return Error{Concat({folder.string(), ": ", error.message()})};
   const std::pair<const char*, std::string> files[] = {
-      {"summary.md", SummaryMarkdown(file, satCheck)},
+      {"summary.md", SummaryMarkdown(file, extras)},
       {"results.csv", ResultsCsv(file)},
       {"results.json", ResultsToJson(file)},
-      {"report.html", ReportHtml(file, js.str(), three.str(), satCheck)},
+      {"report.html", ReportHtml(file, js.str(), three.str(), extras)},
   };
   for (const auto& [name, text] : files) {
     auto written = WriteText(folder / name, text);

@@ -19,6 +19,7 @@
 #include "report_assets.h"
 #include "talus/harness/split_mix64.h"
 #include "talus/hull_builder.h"
+#include "text_util.h"
 
 namespace talus::harness {
 namespace {
@@ -97,14 +98,6 @@ Json ReplayRunsJson(const ResultsFile& file) {
         {{"backend", r.backend}, {"counters", replay["counters"]}, {"frames", replay["frames"]}});
   }
   return runs;
-}
-
-// Keeps "</script" out of inlined text so the element cannot end early.
-std::string ScriptSafe(std::string text) {
-  for (std::size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) {
-    text.replace(at, 2, "<\\/");
-  }
-  return text;
 }
 
 constexpr const char* kStyle =

@@ -41,13 +41,6 @@ Json PlotJson(const SatCheckSummary& s) {
   return {{"pairCount", s.pairCount}, {"seed", s.seed}, {"methods", methods}};
 }
 
-std::string ScriptSafe(std::string text) {
-  for (std::size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) {
-    text.replace(at, 2, "<\\/");
-  }
-  return text;
-}
-
 // Colours by family (Talus blues, libccd reds, Bullet greens), shade by
 // position within the family, so a method keeps its colour in every plot.
 constexpr const char* kSatScript = R"(

@@ -9,6 +9,7 @@
 
 #include "talus/harness/stress.h"
 #include "talus/harness/sweep.h"
+#include "text_util.h"
 
 namespace talus::harness {
 namespace {
@@ -81,13 +82,6 @@ std::string TablesToHtml(const std::string& markdown) {
   return out.str();
 }
 
-std::string ScriptSafe(std::string text) {
-  for (std::size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) {
-    text.replace(at, 2, "<\\/");
-  }
-  return text;
-}
-
 // One log-log chart per group: a line per curve (backend, iterations), its
 // Pareto points drawn large; errors of 0 are drawn at 1e-12 and costs of 0
 // (deterministic mode) at 1e-9 s, since a log axis cannot show 0;
@@ -133,7 +127,7 @@ std::string SweepHtmlSection(const ResultsFile& file) {
                        [](const SweepValue& v) { return v.name == "h"; });
   });
   if (!swept) return "";
-  const std::vector<SweepGroup> groups = AnalyseSweep(file, {"ode-step"});
+  const std::vector<SweepGroup> groups = AnalyseSweep(file, kSweepSingleSetting);
   std::ostringstream out;
   out << TablesToHtml(SweepMarkdown(groups));
   out << "<div class=\"plots\" id=\"sweep-plots\"></div>\n";

@@ -7,7 +7,9 @@
 #include <set>
 #include <sstream>
 
+#include "talus/harness/bench_summary.h"
 #include "talus/harness/report.h"
+#include "talus/harness/sweep.h"
 #include "text_util.h"
 
 namespace talus::harness {
@@ -150,7 +152,7 @@ std::string OverviewTable(const ResultsFile& file) {
   return out.str();
 }
 
-std::string SummaryMarkdown(const ResultsFile& file, const SatCheckSummary* satCheck) {
+std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras) {
   std::ostringstream out;
   out << "# Talus testbed report\n\n";
   out << "Backends: " <<
@@ -226,7 +228,10 @@ std::string SummaryMarkdown(const ResultsFile& file, const SatCheckSummary* satC
     for (const Setting& s : it->settings) Row(out, {s.key, s.value});
     out << "\n";
   }
-  if (satCheck != nullptr) out << SatCheckMarkdown(*satCheck);
+  if (extras.satCheck != nullptr) out << SatCheckMarkdown(*extras.satCheck);
+  if (extras.sweep != nullptr) out << SweepMarkdown(AnalyseSweep(*extras.sweep, kSweepSingleSetting)) << "\n";
+  if (extras.stress != nullptr) out << StressMarkdown(*extras.stress) << "\n";
+  if (extras.scenes != nullptr) out << BenchMarkdown(*extras.scenes);
   return out.str();
 }
 

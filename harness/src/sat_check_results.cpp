@@ -7,106 +7,16 @@
 // clear message; nothing is returned unless the whole walk succeeded.
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
+#include "json_checker.h"
 #include "talus/harness/sat_check_results.h"
 #include "text_util.h"
 
 namespace talus::harness {
 namespace {
 
-using Json = nlohmann::json;
-
-// Remembers the first problem met; every getter returns a default after it.
-class Checker {
- public:
-  bool Failed() const { return !m_error.empty(); }
-  const std::string& Message() const { return m_error; }
-
-  // The member `key` of the object at `path`, or null (and a problem).
-  const Json* Member(const Json& object, const std::string& path, const char* key) {
-    if (Failed()) return nullptr;
-    if (!object.is_object()) return Fail(path, "an object");
-    const auto it = object.find(key);
-    if (it == object.end()) {
-      m_error = Concat({path, ".", key, ": missing"});
-      return nullptr;
-    }
-    return &*it;
-  }
-
-  double Number(const Json& object, const std::string& path, const char* key, bool nonNegative) {
-    const Json* value = Member(object, path, key);
-    if (value == nullptr) return 0.0;
-    if (!value->is_number() || !std::isfinite(value->get<double>()) ||
-        (nonNegative && value->get<double>() < 0.0)) {
-      Fail(Concat({path, ".", key}), nonNegative ? "a finite number >= 0" : "a finite number");
-      return 0.0;
-    }
-    return value->get<double>();
-  }
-
-  long long Integer(const Json& object, const std::string& path, const char* key, bool nonNegative = true) {
-    const Json* value = Member(object, path, key);
-    if (value == nullptr) return 0;
-    if (!value->is_number_integer() || (nonNegative && value->get<long long>() < 0)) {
-      Fail(Concat({path, ".", key}), nonNegative ? "an integer >= 0" : "an integer");
-      return 0;
-    }
-    return value->get<long long>();
-  }
-
-  int Count(const Json& object, const std::string& path, const char* key) {
-    const long long value = Integer(object, path, key);
-    if (value > 1000000000) {
-      Fail(Concat({path, ".", key}), "a count below 1e9");
-      return 0;
-    }
-    return static_cast<int>(value);
-  }
-
-  bool Bool(const Json& object, const std::string& path, const char* key) {
-    const Json* value = Member(object, path, key);
-    if (value == nullptr) return false;
-    if (!value->is_boolean()) {
-      Fail(Concat({path, ".", key}), "true or false");
-      return false;
-    }
-    return value->get<bool>();
-  }
-
-  std::string Text(const Json& object, const std::string& path, const char* key) {
-    const Json* value = Member(object, path, key);
-    if (value == nullptr) return {};
-    if (!value->is_string() || value->get<std::string>().empty()) {
-      Fail(Concat({path, ".", key}), "a non-empty string");
-      return {};
-    }
-    return value->get<std::string>();
-  }
-
-  const Json* Array(const Json& object, const std::string& path, const char* key) {
-    const Json* value = Member(object, path, key);
-    if (value != nullptr && !value->is_array()) return Fail(Concat({path, ".", key}), "an array");
-    return value;
-  }
-
-  std::nullptr_t Fail(const std::string& path, const char* expected) {
-    if (!Failed()) m_error = Concat({path, ": expected ", expected});
-    return nullptr;
-  }
-
- private:
-  std::string m_error;
-};
-
-std::string Indexed(const std::string& path, const char* key, std::size_t i) {
-  return Concat({path, ".", key, "[", std::to_string(i), "]"});
-}
-
-SatDistribution ReadDistribution(Checker& check, const Json& method, const std::string& path,
+SatDistribution ReadDistribution(JsonChecker& check, const Json& method, const std::string& path,
                                  const char* key) {
   SatDistribution d;
   const Json* object = check.Member(method, path, key);
@@ -120,7 +30,8 @@ SatDistribution ReadDistribution(Checker& check, const Json& method, const std::
   return d;
 }
 
-std::vector<SatCase> ReadCases(Checker& check, const Json& method, const std::string& path, const char* key) {
+std::vector<SatCase> ReadCases(JsonChecker& check, const Json& method, const std::string& path,
+                               const char* key) {
   std::vector<SatCase> cases;
   const Json* array = check.Array(method, path, key);
   if (array == nullptr) return cases;
@@ -137,7 +48,7 @@ std::vector<SatCase> ReadCases(Checker& check, const Json& method, const std::st
   return cases;
 }
 
-std::vector<std::pair<std::string, int>> ReadCounts(Checker& check, const Json& root, const char* key) {
+std::vector<std::pair<std::string, int>> ReadCounts(JsonChecker& check, const Json& root, const char* key) {
   std::vector<std::pair<std::string, int>> counts;
   const Json* object = check.Member(root, "$", key);
   if (object == nullptr) return counts;
@@ -148,7 +59,7 @@ std::vector<std::pair<std::string, int>> ReadCounts(Checker& check, const Json& 
   return counts;
 }
 
-SatMethod ReadMethod(Checker& check, const Json& method, const std::string& path) {
+SatMethod ReadMethod(JsonChecker& check, const Json& method, const std::string& path) {
   SatMethod m;
   m.name = check.Text(method, path, "name");
   m.family = check.Text(method, path, "family");
@@ -200,7 +111,7 @@ void WorstRows(std::ostringstream& out, const SatMethod& m, const char* kind,
 Result<SatCheckSummary> ParseSatCheckJson(std::string_view text, std::string_view source) {
   const Json root = Json::parse(text, nullptr, false);
   if (root.is_discarded()) return Error{Concat({source, ": not valid JSON"})};
-  Checker check;
+  JsonChecker check;
   SatCheckSummary s;
   if (const Json* settings = check.Member(root, "$", "settings")) {
     s.pairs = check.Count(*settings, "$.settings", "pairs");
@@ -233,11 +144,9 @@ Result<SatCheckSummary> ParseSatCheckJson(std::string_view text, std::string_vie
 }
 
 Result<SatCheckSummary> ReadSatCheckFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{Concat({path.string(), ": cannot read the sat-check results"})};
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseSatCheckJson(text.str(), path.string());
+  auto text = ReadTextFile(path, "the sat-check results");
+  if (!text) return text.GetError();
+  return ParseSatCheckJson(text.Value(), path.string());
 }
 
 std::string SatCheckMarkdown(const SatCheckSummary& s) {

@@ -6,7 +6,6 @@
 #include <cassert>
 #include <cmath>
 #include <cstdio>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "talus/harness/runner.h"
@@ -297,29 +296,6 @@ std::string StressMarkdown(const std::vector<StressEntry>& entries) {
     }
   }
   return out.str();
-}
-
-std::string StressJson(const std::vector<StressEntry>& entries) {
-  const auto number = [](double v) {
-    return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
-  };
-  nlohmann::ordered_json out;
-  out["format"] = "talus-testbed-stress";
-  out["version"] = 1;
-  out["envelopes"] = nlohmann::ordered_json::array();
-  for (const StressEntry& e : entries) {
-    nlohmann::ordered_json probes = nlohmann::ordered_json::array();
-    for (const EnvelopeProbe& p : e.envelope.probes) {
-      probes.push_back(
-          {{"value", p.value}, {"pass", p.pass}, {"measure", number(p.measure)}, {"detail", p.detail}});
-    }
-    out["envelopes"].push_back({{"axis", e.axis},
-                                {"backend", e.backend},
-                                {"lastPass", number(e.envelope.lastPass)},
-                                {"firstFail", number(e.envelope.firstFail)},
-                                {"probes", probes}});
-  }
-  return out.dump(2) + "\n";
 }
 
 }  // namespace talus::harness

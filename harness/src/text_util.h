@@ -1,12 +1,16 @@
-// Small text helpers shared by the runner, the results file and the report.
+// Small text helpers shared by the runner, the results file, the readers
+// and the report.
 // Concat exists because GCC 12 mis-warns (-Wrestrict, a false positive in
 // libstdc++'s inlined memcpy at -O3) on chains of std::string operator+
 // that start from a literal; appending each piece avoids the pattern.
 #pragma once
 
+#include <filesystem>
 #include <initializer_list>
 #include <string>
 #include <string_view>
+
+#include "talus/result.h"
 
 namespace talus::harness {
 
@@ -24,5 +28,13 @@ std::string FormatNumber(double value, int digits = 6);
 /// tables (cells ending in FAIL / ok coloured), paragraphs, `code`
 /// (report_html.cpp).
 std::string MarkdownToHtml(const std::string& markdown);
+
+/// `text` with every "</" written "<\\/", so inlined script or JSON cannot
+/// end its <script> element early (text_util.cpp).
+std::string ScriptSafe(std::string text);
+
+/// The whole file as bytes, or an Error "<path>: cannot read <what>"
+/// (text_util.cpp).
+Result<std::string> ReadTextFile(const std::filesystem::path& path, std::string_view what);
 
 }  // namespace talus::harness

@@ -59,7 +59,7 @@ TEST(SatCheckSection, SummaryMarkdownEndsWithTheSectionOnlyWhenGiven) {
   const SatCheckSummary s = Fixture();
   const ResultsFile file;
   EXPECT_EQ(SummaryMarkdown(file).find("SAT validation"), std::string::npos);
-  const std::string markdown = SummaryMarkdown(file, &s);
+  const std::string markdown = SummaryMarkdown(file, {.satCheck = &s});
   const std::size_t section = markdown.find("\n## SAT validation\n");
   ASSERT_NE(section, std::string::npos);
   EXPECT_EQ(markdown.substr(section + 1), SatCheckMarkdown(s));
@@ -89,7 +89,7 @@ TEST(SatCheckSection, HtmlHasTheTablesThreePlotsAndTheirData) {
   const SatCheckSummary s = Fixture();
   const ResultsFile file;
   EXPECT_EQ(ReportHtml(file, "").find("sat-check"), std::string::npos);
-  const std::string html = ReportHtml(file, "", "", &s);
+  const std::string html = ReportHtml(file, "", "", {.satCheck = &s});
   EXPECT_EQ(Occurrences(html, "<h2>SAT validation</h2>"), 1u);
   EXPECT_NE(html.find("id=\"sat-check-plots\""), std::string::npos);
   EXPECT_NE(html.find("type: 'logarithmic'"), std::string::npos);
@@ -118,7 +118,7 @@ TEST(SatCheckSection, WriteReportPutsTheSectionInBothFiles) {
   std::filesystem::remove_all(folder);
   std::filesystem::create_directories(folder);
   { std::ofstream(folder / "chart.js") << "/* chart */"; }
-  ASSERT_TRUE(WriteReport(ResultsFile{}, folder, folder / "chart.js", {}, &s));
+  ASSERT_TRUE(WriteReport(ResultsFile{}, folder, folder / "chart.js", {}, {.satCheck = &s}));
   const auto slurp = [](const std::filesystem::path& path) {
     std::ifstream in(path);
     std::ostringstream text;

@@ -11,9 +11,11 @@
 // the first failing value. Everything is deterministic.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "talus/harness/backend.h"
@@ -94,8 +96,16 @@ struct StressEntry {
 /// The envelope table (Markdown: a row per backend, a column per axis with
 /// "last pass / first fail"), the criteria and every probe.
 std::string StressMarkdown(const std::vector<StressEntry>& entries);
-/// The same as JSON (NaN as null).
+/// The same as JSON (NaN as null): {"format": "talus-testbed-stress",
+/// "version": 1, "envelopes": [{"axis", "backend", "lastPass", "firstFail",
+/// "probes": [{"value", "pass", "measure", "detail"}]}]} (stress_json.cpp).
 std::string StressJson(const std::vector<StressEntry>& entries);
+/// Reads what StressJson writes; `source` names the text in messages. Every
+/// field is checked (format and version, types, finite probe values); the
+/// first problem is an Error naming its JSON path.
+Result<std::vector<StressEntry>> ParseStressJson(std::string_view text, std::string_view source);
+/// The same, from a file (stress.json of `talus-testbed stress`).
+Result<std::vector<StressEntry>> ReadStressFile(const std::filesystem::path& path);
 /// A self-contained HTML page of the same tables.
 std::string StressHtml(const std::vector<StressEntry>& entries);
 

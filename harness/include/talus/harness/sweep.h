@@ -87,6 +87,10 @@ struct SweepGroup {
   FrontComparison comparison;         ///< over `backends`
 };
 
+/// The backends a sweep analysis treats as having no iteration setting:
+/// ODE's dWorldStep solves its LCP directly, so iterations do not apply.
+inline const std::vector<std::string> kSweepSingleSetting{"ode-step"};
+
 /// Groups the results with a truth into curves; backends in
 /// `singleSetting` ignore iterations (e.g. "ode-step"): only their first
 /// iteration count is kept.
