@@ -7,11 +7,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "all_backends.h"
 #include "report_writer.h"
 #include "talus/harness/bench_run.h"
-#include "talus/reference/bullet_backend.h"
-#include "talus/reference/ode_backend.h"
-#include "talus/reference/talus_backend.h"
 
 namespace talus::harness {
 namespace {
@@ -19,16 +17,7 @@ namespace {
 // SCENES.md: "a pyramid that stands has drift well under 0.05 m".
 constexpr double kStandingDrift = 0.05;
 
-const BackendRegistry& Registry() {
-  static const BackendRegistry registry = [] {
-    BackendRegistry r;
-    reference::RegisterTalusBackends(r);
-    reference::RegisterBulletBackends(r);
-    reference::RegisterOdeBackends(r);
-    return r;
-  }();
-  return registry;
-}
+const BackendRegistry& Registry() { return testing::AllBackends(); }
 
 BenchReport RunScene(std::string_view engine, std::string_view scene, int parameter, int steps) {
   auto report = RunBenchScene(Registry(), engine, *FindBenchScene(scene), parameter, steps);
@@ -36,7 +25,7 @@ BenchReport RunScene(std::string_view engine, std::string_view scene, int parame
   return report.Ok() ? report.Value() : BenchReport{};
 }
 
-class SmallPyramid : public testing::TestWithParam<const char*> {};
+class SmallPyramid : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(SmallPyramid, StandsForSixHundredSteps) {
   // H = 4 (30 cubes); ODE's dWorldStep takes 0.74 s per step there, so it
@@ -55,9 +44,9 @@ TEST_P(SmallPyramid, StandsForSixHundredSteps) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Engines, SmallPyramid,
-                         testing::Values("talus", "bullet", "ode-quickstep", "ode-step"));
+                         ::testing::Values("talus", "bullet", "ode-quickstep", "ode-step"));
 
-class SmallHullPile : public testing::TestWithParam<const char*> {};
+class SmallHullPile : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(SmallHullPile, KeepsEveryBodyInsideTheWalls) {
   // L = 1: ten hulls in a column inside walls 2.75 m from the centre.
@@ -75,7 +64,7 @@ TEST_P(SmallHullPile, KeepsEveryBodyInsideTheWalls) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Engines, SmallHullPile,
-                         testing::Values("talus", "bullet", "ode-quickstep", "ode-step"));
+                         ::testing::Values("talus", "bullet", "ode-quickstep", "ode-step"));
 
 TEST(BenchRun, OdeStepOnTheFullPyramidIsSkippedWithAReason) {
   const BenchReport report = RunScene("ode-step", "pyramid", 15, 600);

@@ -9,12 +9,10 @@
 #include <limits>
 #include <set>
 
+#include "all_backends.h"
 #include "talus/harness/results_file.h"
 #include "talus/harness/runner.h"
 #include "talus/harness/sweep.h"
-#include "talus/reference/bullet_backend.h"
-#include "talus/reference/ode_backend.h"
-#include "talus/reference/talus_backend.h"
 
 namespace talus::harness {
 namespace {
@@ -110,16 +108,7 @@ TEST(ShardRuns, ThePartitionCoversEveryRunExactlyOnce) {
   }
 }
 
-const BackendRegistry& Registry() {
-  static const BackendRegistry registry = [] {
-    BackendRegistry r;
-    reference::RegisterTalusBackends(r);
-    reference::RegisterBulletBackends(r);
-    reference::RegisterOdeBackends(r);
-    return r;
-  }();
-  return registry;
-}
+const BackendRegistry& Registry() { return testing::AllBackends(); }
 
 TEST(MergeShards, MergedShardsAreByteIdenticalToTheUnshardedSweep) {
   auto loaded = LoadScenarios({std::string(TALUS_SCENARIO_DIR) + "/tumbling/box_free_fall.json",
