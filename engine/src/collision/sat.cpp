@@ -1,18 +1,22 @@
 // The Separating Axis Test: face queries, edge queries (all pairs or Gauss
 // map pruned), the cached-axis probe and the choice of the contact axis.
 //
-// Every candidate is measured the same way in both modes, so the two modes
-// compute bit-identical numbers for any axis they both test:
-// - a face of A with world plane (n, d): separation = min over B of n.b - d;
+// The search runs in A's body frame (SatFrame): B's vertices and planes are
+// moved there once per query, A's are read as stored.
+// - a face of A with plane (n, d): separation = min over B of n.b - d;
 // - a face of B likewise with the roles swapped;
-// - an edge pair: n = eA x eB normalised, both polyhedra projected on n,
-//   separation = the larger of the two one-sided gaps (B beyond A along n,
-//   or along -n), with supports found by hill climbing from the edges' own
-//   vertices (which are the supports when the pair is a Minkowski face).
+// - Full mode, an edge pair: n = eA x eB normalised, both polyhedra
+//   projected on n by hill climbing from the edges' own vertices,
+//   separation = the larger of the two one-sided gaps (the write-up);
+// - GaussMapPruned, an edge pair that builds a Minkowski face: the edges are
+//   the supports, so separation = n . (pB - pA) with n oriented away from A.
 // The minimum overlap over all E^2 edge axes equals the minimum over the
 // Minkowski-face pairs (the overlap along a direction is the support
 // distance of A - B, smallest at one of its faces), which is why pruning
-// loses nothing (Gregorius, GDC 2013).
+// loses nothing (Gregorius, GDC 2013). The two modes therefore agree on the
+// verdict and on the least overlap up to round-off; the axis they finally
+// report is measured by one world-space function, EvaluateSatAxis, so the
+// same axis gives bit-identical numbers in both.
 #include "collision/sat.h"
 
 #include <cmath>
