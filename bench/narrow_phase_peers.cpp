@@ -3,8 +3,9 @@
 // the clipped manifold, libccd's GJK intersect, MPR penetration and GJK+EPA
 // penetration, and Bullet's btGjkPairDetector (GJK + btGjkEpa penetration
 // solver) and btGjkEpaSolver2, for random hulls of 8, 32 and 128 vertices
-// (points on a unit sphere), overlapping by 0.3 of their reach or
-// separated by 0.05 m. Every method answers the full question it is built
+// (points on a unit sphere), separated by 0.05 m, touching (overlapping
+// by 0.01 m, a resting contact) or deep (overlapping by 0.3 of their
+// reach). Every method answers the full question it is built
 // for (Talus: verdict, normal, depth and manifold).
 #include <benchmark/benchmark.h>
 
@@ -62,7 +63,8 @@ Shape SphereHull(int vertices, std::uint64_t seed) {
   return Shape::CreateHull(std::make_shared<const Hull>(BuildHull(points).Value())).Value();
 }
 
-// range(0): vertices; range(1): 1 overlapping, 0 separated; range(2): Method.
+// range(0): vertices; range(1): 0 separated, 1 deep, 2 touching; range(2):
+// Method.
 void BM_NarrowPhasePeers(benchmark::State& state) {
   const Shape a = SphereHull(static_cast<int>(state.range(0)), 1);
   const Shape b = SphereHull(static_cast<int>(state.range(0)), 2);
@@ -73,7 +75,27 @@ void BM_NarrowPhasePeers(benchmark::State& state) {
                 .rotation = Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()))};
   const double reach = a.Support(Vec3::UnitX()).x() -
                        (xfB.rotation * b.Support(xfB.rotation.conjugate() * -Vec3::UnitX())).x();
-  xfB.position.x() = state.range(1) != 0 ? 0.7 * reach : reach + 0.05;
+  constexpr double kGap = 0.05;          // metres, separated pairs
+  constexpr double kTouchDepth = 0.01;   // metres past first contact, touching pairs
+  constexpr double kDeepFraction = 0.7;  // of the reach, deep pairs
+  if (state.range(1) == 0) {
+    xfB.position.x() = reach + kGap;
+  } else if (state.range(1) == 1) {
+    xfB.position.x() = kDeepFraction * reach;
+  } else {
+    // First contact along x by bisection on libccd's verdict (the y and z
+    // offsets keep it below `reach`), then pushed in by kTouchDepth.
+    double inside = kDeepFraction * reach;
+    double outside = reach + kGap;
+    for (int i = 0; i < 60; ++i) {
+      xfB.position.x() = 0.5 * (inside + outside);
+      const bool hit = reference::CcdGjkIntersect({.hull = &a.GetHull(), .transform = xfA},
+                                                  {.hull = &b.GetHull(), .transform = xfB})
+                           .intersecting;
+      (hit ? inside : outside) = xfB.position.x();
+    }
+    xfB.position.x() = inside - kTouchDepth;
+  }
 
   const NarrowPhaseSettings settings{
       .satMode = method == Method::Full ? SatMode::Full : SatMode::GaussMapPruned,
@@ -126,7 +148,7 @@ void BM_NarrowPhasePeers(benchmark::State& state) {
 
 BENCHMARK(BM_NarrowPhasePeers)
     ->ArgNames({"vertices", "overlap", "method"})
-    ->ArgsProduct({{8, 32, 128}, {1, 0}, {0, 1, 2, 3, 4, 5, 6, 7}})
+    ->ArgsProduct({{8, 32, 128}, {0, 2, 1}, {0, 1, 2, 3, 4, 5, 6, 7}})
     ->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -11,12 +11,43 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 
 #include "talus/hull.h"
 #include "talus/math.h"
 #include "talus/transform.h"
 
 namespace talus {
+
+/// The vertex of `hull`'s graph farthest along `direction`, by hill climbing
+/// from `start`, with the vertex positions read from `vertices` (the hull's
+/// own, or the same vertices moved rigidly into another frame, `direction`
+/// given in that frame). Moves to the first neighbour that is strictly
+/// farther, so the answer depends only on the inputs.
+[[nodiscard]] inline int ClimbSupport(const Hull& hull, std::span<const Vec3> vertices, const Vec3& direction,
+                                      int start) {
+  const auto edges = hull.HalfEdges();
+  const auto vertexEdges = hull.VertexEdges();
+  int v = start;
+  double best = direction.dot(vertices[static_cast<std::size_t>(v)]);
+  for (bool moved = true; moved;) {
+    moved = false;
+    const int first = vertexEdges[static_cast<std::size_t>(v)];
+    int h = first;
+    do {
+      const HullHalfEdge& twin = edges[static_cast<std::size_t>(edges[static_cast<std::size_t>(h)].twin)];
+      const double value = direction.dot(vertices[static_cast<std::size_t>(twin.origin)]);
+      if (value > best) {
+        best = value;
+        v = twin.origin;
+        moved = true;
+        break;
+      }
+      h = twin.next;
+    } while (h != first);
+  }
+  return v;
+}
 
 struct PosedHull {
   const Hull* hull = nullptr;
@@ -52,29 +83,7 @@ struct PosedHull {
   /// The vertex farthest along `worldDirection`, by hill climbing from
   /// `start`. Deterministic: the result depends only on the inputs.
   [[nodiscard]] int Support(const Vec3& worldDirection, int start) const {
-    const Vec3 d = rotation.transpose() * worldDirection;
-    const auto vertices = hull->Vertices();
-    const auto edges = hull->HalfEdges();
-    const auto vertexEdges = hull->VertexEdges();
-    int v = start;
-    double best = d.dot(vertices[static_cast<std::size_t>(v)]);
-    for (bool moved = true; moved;) {
-      moved = false;
-      const int first = vertexEdges[static_cast<std::size_t>(v)];
-      int h = first;
-      do {
-        const HullHalfEdge& twin = edges[static_cast<std::size_t>(edges[static_cast<std::size_t>(h)].twin)];
-        const double value = d.dot(vertices[static_cast<std::size_t>(twin.origin)]);
-        if (value > best) {
-          best = value;
-          v = twin.origin;
-          moved = true;
-          break;
-        }
-        h = twin.next;
-      } while (h != first);
-    }
-    return v;
+    return ClimbSupport(*hull, hull->Vertices(), rotation.transpose() * worldDirection, start);
   }
 
   /// max over vertices of worldDirection . vertex (metres for a unit

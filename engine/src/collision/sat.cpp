@@ -1,23 +1,28 @@
 // The Separating Axis Test: face queries, edge queries (all pairs or Gauss
 // map pruned), the cached-axis probe and the choice of the contact axis.
 //
-// Every candidate is measured the same way in both modes, so the two modes
-// compute bit-identical numbers for any axis they both test:
-// - a face of A with world plane (n, d): separation = min over B of n.b - d;
+// The search runs in A's body frame (SatFrame): B's vertices and planes are
+// moved there once per query, A's are read as stored.
+// - a face of A with plane (n, d): separation = min over B of n.b - d;
 // - a face of B likewise with the roles swapped;
-// - an edge pair: n = eA x eB normalised, both polyhedra projected on n,
-//   separation = the larger of the two one-sided gaps (B beyond A along n,
-//   or along -n), with supports found by hill climbing from the edges' own
-//   vertices (which are the supports when the pair is a Minkowski face).
+// - Full mode, an edge pair: n = eA x eB normalised, both polyhedra
+//   projected on n by hill climbing from the edges' own vertices,
+//   separation = the larger of the two one-sided gaps (the write-up);
+// - GaussMapPruned, an edge pair that builds a Minkowski face: the edges are
+//   the supports, so separation = n . (pB - pA) with n oriented away from A.
 // The minimum overlap over all E^2 edge axes equals the minimum over the
 // Minkowski-face pairs (the overlap along a direction is the support
 // distance of A - B, smallest at one of its faces), which is why pruning
-// loses nothing (Gregorius, GDC 2013).
+// loses nothing (Gregorius, GDC 2013). The two modes therefore agree on the
+// verdict and on the least overlap up to round-off; the axis they finally
+// report is measured by one world-space function, EvaluateSatAxis, so the
+// same axis gives bit-identical numbers in both.
 #include "collision/sat.h"
 
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <span>
 #include <vector>
 
 namespace talus {
@@ -36,24 +41,104 @@ struct EdgeQuery {
   double separation = kNegativeInfinity;
 };
 
-// Separation of face f of `p` against `q`: how far q's deepest vertex is in
-// front of the face plane. `start` is q's support hint.
+// Both hulls of one query in A's body frame. A's vertices, planes and face
+// normals are read as stored; B's are moved into A's frame once, with one
+// relative transform, instead of rotating each vertex or normal every time
+// a face or edge query visits it. Filled per query into per-thread scratch
+// (a query allocates only when a hull outgrows it; contents never leak into
+// results). Only the axis search reads it: the reported axis is measured
+// again in world space by EvaluateSatAxis.
+struct SatFrame {
+  // Per edge of either hull: the two faces' normals (the endpoints of the
+  // edge's arc on the Gauss map) and their cross product (the arc's plane).
+  // For B the normals are read through the face indices from planesB.
+  struct Arc {
+    Vec3 cross;      // normalRight x normalLeft, A's frame
+    int left = -1;   // face of half-edge 2e
+    int right = -1;  // face of half-edge 2e + 1
+  };
+
+  const Hull* hullA = nullptr;
+  const Hull* hullB = nullptr;
+  Mat3 rotation = Mat3::Identity();  // B's local axes in A's frame
+  Vec3 translation = Vec3::Zero();   // B's origin in A's frame
+  Vec3 centroidA = Vec3::Zero();     // mean of A's vertices: inside A
+  std::vector<Vec3> verticesB;       // B's vertices, A's frame
+  std::vector<Plane> planesB;        // B's face planes, A's frame
+  std::vector<Arc> arcsA;
+  std::vector<Arc> arcsB;
+  std::vector<double> sideB;  // per face of B: normal . (the current A arc's plane)
+
+  // The stages fill what they need, so a pair separated by an early face
+  // pays for no more than B's vertices.
+  void FillVertices(const PosedHull& a, const PosedHull& b) {
+    hullA = a.hull;
+    hullB = b.hull;
+    // B's local frame seen from A's: x_A = rotation * x_B + translation.
+    rotation = a.rotation.transpose() * b.rotation;
+    translation = a.rotation.transpose() * (b.position - a.position);
+    const auto localB = hullB->Vertices();
+    verticesB.resize(localB.size());
+    for (std::size_t v = 0; v < localB.size(); ++v) verticesB[v] = rotation * localB[v] + translation;
+  }
+
+  void FillPlanes() {
+    const auto facesB = hullB->Faces();
+    planesB.resize(facesB.size());
+    for (std::size_t f = 0; f < facesB.size(); ++f) {
+      const Vec3 n = rotation * facesB[f].plane.normal;
+      planesB[f] = {.normal = n, .offset = facesB[f].plane.offset + n.dot(translation)};
+    }
+  }
+
+  void FillArcs() {
+    centroidA = Vec3::Zero();
+    for (const Vec3& v : hullA->Vertices()) centroidA += v;
+    centroidA /= static_cast<double>(hullA->VertexCount());
+    const auto facesA = hullA->Faces();
+    ArcsOf(
+        *hullA, [&](int f) { return facesA[static_cast<std::size_t>(f)].plane.normal; }, &arcsA);
+    ArcsOf(
+        *hullB, [&](int f) { return planesB[static_cast<std::size_t>(f)].normal; }, &arcsB);
+    sideB.resize(planesB.size());
+  }
+
+  template <typename NormalOf>
+  static void ArcsOf(const Hull& hull, NormalOf normalOf, std::vector<Arc>* arcs) {
+    const auto halfEdges = hull.HalfEdges();
+    arcs->resize(static_cast<std::size_t>(hull.EdgeCount()));
+    for (std::size_t e = 0; e < arcs->size(); ++e) {
+      Arc& arc = (*arcs)[e];
+      arc.left = halfEdges[2 * e].face;
+      arc.right = halfEdges[2 * e + 1].face;
+      arc.cross = normalOf(arc.right).cross(normalOf(arc.left));
+    }
+  }
+};
+
+// Separation of face f of `p` against `q` in world space: how far q's
+// deepest vertex is in front of the face plane. `start` is q's support hint.
 double FaceSeparation(const PosedHull& p, int f, const PosedHull& q, int* start) {
   const Plane plane = p.FacePlane(f);
   *start = q.Support(-plane.normal, *start);
   return plane.normal.dot(q.Vertex(*start)) - plane.offset;
 }
 
-// The face of `p` whose plane q is farthest in front of; stops at the first
-// one beyond `margin`.
-FaceQuery QueryFaces(const PosedHull& p, const PosedHull& q, double margin, NarrowPhaseStats* stats) {
+// The face of one hull whose plane the other hull, `q` with its vertices
+// `qVertices` in the same frame as the planes, is farthest in front of;
+// stops at the first one beyond `margin`. The support hint carries over
+// from face to face.
+template <typename PlaneOf>
+FaceQuery QueryFaces(int faceCount, PlaneOf planeOf, const Hull& q, std::span<const Vec3> qVertices,
+                     double margin, NarrowPhaseStats* stats) {
   FaceQuery best;
   int start = 0;
-  const int faceCount = p.hull->FaceCount();
   int tested = 0;
   for (int f = 0; f < faceCount; ++f) {
     ++tested;
-    const double separation = FaceSeparation(p, f, q, &start);
+    const Plane& plane = planeOf(f);
+    start = ClimbSupport(q, qVertices, -plane.normal, start);
+    const double separation = plane.normal.dot(qVertices[static_cast<std::size_t>(start)]) - plane.offset;
     if (separation > best.separation) {
       best = {.face = f, .separation = separation};
       if (separation > margin) break;
@@ -64,7 +149,9 @@ FaceQuery QueryFaces(const PosedHull& p, const PosedHull& q, double margin, Narr
 }
 
 // The projection gap along the cross product of edges ea (of a) and eb (of
-// b); `axis` gets the direction from A towards B that achieves it.
+// b), in world space, with both hulls projected by hill climbing from the
+// edges' own vertices; `axis` gets the direction from A towards B that
+// achieves it. The write-up's measure, valid for any edge pair.
 double EdgeSeparation(const PosedHull& a, int ea, const Vec3& dirA, const PosedHull& b, int eb,
                       const Vec3& dirB, Vec3* axis) {
   const Vec3 cross = dirA.cross(dirB);
@@ -89,61 +176,88 @@ double EdgeSeparation(const PosedHull& a, int ea, const Vec3& dirA, const PosedH
   return alongPlus;
 }
 
-// World-space edge data reused across the E_A x E_B loop.
-struct EdgeFrame {
-  std::vector<Vec3> direction;    // edge vector, world
-  std::vector<Vec3> normalLeft;   // normal of the face of half-edge 2e
-  std::vector<Vec3> normalRight;  // normal of the face of half-edge 2e + 1
-  std::vector<Vec3> arcCross;     // normalRight x normalLeft (the arc's plane)
-
-  void Fill(const PosedHull& p, bool withNormals) {
-    const int edgeCount = p.hull->EdgeCount();
-    const auto halfEdges = p.hull->HalfEdges();
-    direction.resize(static_cast<std::size_t>(edgeCount));
-    if (withNormals) {
-      normalLeft.resize(direction.size());
-      normalRight.resize(direction.size());
-      arcCross.resize(direction.size());
-    }
-    for (int e = 0; e < edgeCount; ++e) {
-      const auto i = static_cast<std::size_t>(e);
-      direction[i] = p.EdgeDirection(e);
-      if (!withNormals) continue;
-      normalLeft[i] = p.FaceNormal(halfEdges[2 * i].face);
-      normalRight[i] = p.FaceNormal(halfEdges[2 * i + 1].face);
-      arcCross[i] = normalRight[i].cross(normalLeft[i]);
-    }
-  }
-};
-
-EdgeQuery QueryEdges(const PosedHull& a, const PosedHull& b, SatMode mode, double margin,
-                     NarrowPhaseStats* stats) {
-  // Scratch kept per thread so a query allocates only when a hull outgrows
-  // it; contents never leak into results.
-  thread_local EdgeFrame frameA;
-  thread_local EdgeFrame frameB;
-  const bool pruned = mode == SatMode::GaussMapPruned;
-  frameA.Fill(a, pruned);
-  frameB.Fill(b, pruned);
+// Full mode: every edge pair measured by projection (the write-up).
+EdgeQuery QueryAllEdges(const PosedHull& a, const PosedHull& b, double margin, NarrowPhaseStats* stats) {
   EdgeQuery best;
   std::uint64_t tested = 0;
-  std::uint64_t prunedCount = 0;
   const int edgeCountA = a.hull->EdgeCount();
   const int edgeCountB = b.hull->EdgeCount();
   for (int ea = 0; ea < edgeCountA; ++ea) {
-    const auto i = static_cast<std::size_t>(ea);
+    const Vec3 dirA = a.EdgeDirection(ea);
     for (int eb = 0; eb < edgeCountB; ++eb) {
-      const auto j = static_cast<std::size_t>(eb);
-      if (pruned && !IsMinkowskiFace(frameA.normalLeft[i], frameA.normalRight[i], frameA.arcCross[i],
-                                     frameB.normalLeft[j], frameB.normalRight[j], frameB.arcCross[j])) {
+      ++tested;
+      Vec3 axis = Vec3::Zero();
+      const double separation = EdgeSeparation(a, ea, dirA, b, eb, b.EdgeDirection(eb), &axis);
+      if (separation > best.separation) {
+        best = {.edgeA = ea, .edgeB = eb, .separation = separation};
+        if (separation > margin) {
+          if (stats) stats->edgeAxesTested += tested;
+          return best;  // early out on the first separating axis
+        }
+      }
+    }
+  }
+  if (stats) stats->edgeAxesTested += tested;
+  return best;
+}
+
+// GaussMapPruned mode (Gregorius, GDC 2013): only edge pairs that build a
+// face of the Minkowski difference A - B are measured, and those need no
+// projection. For such a pair the axis n = eA x eB (oriented away from A's
+// interior) lies on both edges' arcs, so edge eA is A's support along n and
+// edge eB is B's support along -n: the gap is n . (pB - pA) for any vertex
+// pA of eA and pB of eB. The Gauss map test reads B's face normals against
+// A's arc plane from a table filled once per edge of A (one dot per face of
+// B instead of two per edge pair), and runs the same predicates, on the
+// same numbers, as IsMinkowskiFace.
+EdgeQuery QueryMinkowskiEdges(SatFrame& frame, double margin, NarrowPhaseStats* stats) {
+  const auto verticesA = frame.hullA->Vertices();
+  const auto halfEdgesA = frame.hullA->HalfEdges();
+  const auto halfEdgesB = frame.hullB->HalfEdges();
+  const std::span<const Vec3> verticesB = frame.verticesB;
+  const auto faceCountB = frame.planesB.size();
+  EdgeQuery best;
+  std::uint64_t tested = 0;
+  std::uint64_t prunedCount = 0;
+  const auto edgeCountA = frame.arcsA.size();
+  const auto edgeCountB = frame.arcsB.size();
+  for (std::size_t ea = 0; ea < edgeCountA; ++ea) {
+    const SatFrame::Arc& arcA = frame.arcsA[ea];
+    const Vec3& normalLeftA = frame.hullA->Faces()[static_cast<std::size_t>(arcA.left)].plane.normal;
+    const Vec3& normalRightA = frame.hullA->Faces()[static_cast<std::size_t>(arcA.right)].plane.normal;
+    for (std::size_t f = 0; f < faceCountB; ++f) frame.sideB[f] = frame.planesB[f].normal.dot(arcA.cross);
+    const Vec3& pointA = verticesA[static_cast<std::size_t>(halfEdgesA[2 * ea].origin)];
+    const Vec3 dirA = verticesA[static_cast<std::size_t>(halfEdgesA[2 * ea + 1].origin)] - pointA;
+    const double dirASquared = dirA.squaredNorm();
+    const Vec3 outwardA = pointA - frame.centroidA;
+    for (std::size_t eb = 0; eb < edgeCountB; ++eb) {
+      const SatFrame::Arc& arcB = frame.arcsB[eb];
+      // IsMinkowskiFace(a, b, b x a, c, d, d x c) with (a, b) A's normals and
+      // (c, d) B's: B's arc must cross A's arc plane first (the cheap test).
+      const double cba = -frame.sideB[static_cast<std::size_t>(arcB.left)];
+      const double dba = -frame.sideB[static_cast<std::size_t>(arcB.right)];
+      if (!(cba * dba < 0.0)) {
+        ++prunedCount;
+        continue;
+      }
+      const double adc = normalLeftA.dot(arcB.cross);
+      const double bdc = normalRightA.dot(arcB.cross);
+      if (!(adc * bdc < 0.0 && cba * bdc > 0.0)) {
         ++prunedCount;
         continue;
       }
       ++tested;
-      Vec3 axis = Vec3::Zero();
-      const double separation = EdgeSeparation(a, ea, frameA.direction[i], b, eb, frameB.direction[j], &axis);
+      const Vec3& pointB = verticesB[static_cast<std::size_t>(halfEdgesB[2 * eb].origin)];
+      const Vec3 dirB = verticesB[static_cast<std::size_t>(halfEdgesB[2 * eb + 1].origin)] - pointB;
+      const Vec3 cross = dirA.cross(dirB);
+      const double crossSquared = cross.squaredNorm();
+      // Parallel edges: no reliable axis, and the face axes cover it.
+      if (crossSquared <= kParallelEdgeSine * kParallelEdgeSine * dirASquared * dirB.squaredNorm()) continue;
+      Vec3 n = cross / std::sqrt(crossSquared);
+      if (n.dot(outwardA) < 0.0) n = -n;
+      const double separation = n.dot(pointB - pointA);
       if (separation > best.separation) {
-        best = {.edgeA = ea, .edgeB = eb, .separation = separation};
+        best = {.edgeA = static_cast<int>(ea), .edgeB = static_cast<int>(eb), .separation = separation};
         if (separation > margin) {
           ea = edgeCountA;  // early out on the first separating axis
           break;
@@ -250,11 +364,26 @@ SatResult RunSat(const PosedHull& a, const PosedHull& b, SatMode mode, double ma
     return result;
   };
 
-  const FaceQuery faceA = QueryFaces(a, b, margin, stats);
+  // The search runs in A's frame (see SatFrame).
+  thread_local SatFrame frame;
+  frame.FillVertices(a, b);
+  const auto facesA = a.hull->Faces();
+  const FaceQuery faceA = QueryFaces(
+      a.hull->FaceCount(), [&](int f) -> const Plane& { return facesA[static_cast<std::size_t>(f)].plane; },
+      *b.hull, frame.verticesB, margin, stats);
   if (faceA.separation > margin) return finish({SatAxisType::FaceA, faceA.face, -1}, true);
-  const FaceQuery faceB = QueryFaces(b, a, margin, stats);
+  frame.FillPlanes();
+  const FaceQuery faceB = QueryFaces(
+      b.hull->FaceCount(), [&](int f) -> const Plane& { return frame.planesB[static_cast<std::size_t>(f)]; },
+      *a.hull, a.hull->Vertices(), margin, stats);
   if (faceB.separation > margin) return finish({SatAxisType::FaceB, -1, faceB.face}, true);
-  const EdgeQuery edge = QueryEdges(a, b, mode, margin, stats);
+  EdgeQuery edge;
+  if (mode == SatMode::GaussMapPruned) {
+    frame.FillArcs();
+    edge = QueryMinkowskiEdges(frame, margin, stats);
+  } else {
+    edge = QueryAllEdges(a, b, margin, stats);
+  }
   if (edge.separation > margin) return finish({SatAxisType::EdgePair, edge.edgeA, edge.edgeB}, true);
 
   // Least overlap, with a bias towards faces of A, then faces of B, then

@@ -9,8 +9,10 @@
 // reports the axis of least overlap: the contact normal and penetration
 // depth.
 //
-// Everything is computed in world space so that swapping A and B evaluates
-// the same numbers (an edge axis eA x eB becomes eB x eA, negated exactly).
+// The search runs in A's body frame (B moved there once per query); the
+// axis it settles on is measured again in world space, so swapping A and B
+// gives the same answer up to round-off (an edge axis eA x eB becomes
+// eB x eA, negated exactly, in that final measure).
 // The SatCache is the temporal coherence the write-up proposed: per pair, the
 // last axis found; it is evaluated first and, if it still separates, the
 // query ends there.
