@@ -181,21 +181,22 @@ TEST(SatRandom, CrossedTetrahedraEdgesAreMeasuredByTheirGap) {
   // rests its bottom edge across A's top edge: the pair's distance is `gap`
   // along z, an edge-edge axis only. With a margin above the gap the pair
   // counts as touching and the SAT must report that edge axis and gap; with
-  // a margin below it, separated. Pruned mode only: the Full mode meets A's
-  // bottom edge x B's top edge first (the same axis and projection gap), and
-  // SupportingEdge then swaps in two parallel slanted edges (a known Full
-  // mode tie bug, left for a separate change).
+  // a margin below it, separated. Both modes: the Full mode meets A's
+  // bottom edge x B's top edge first (the same axis and projection gap), so
+  // it must find the crossed edges that actually support the axis.
   const Shape tetrahedron = test::HullShape(test::TetrahedronPoints());
   for (const double gap : {1e-4, 1e-2, 0.3}) {
     const Pair p{tetrahedron, tetrahedron, Transform{}, Transform{.position = Vec3(0.0, 0.0, 2.0 + gap)}};
     const PosedHull a = PosedHull::Make(p.a.GetHull(), p.xfA);
     const PosedHull b = PosedHull::Make(p.b.GetHull(), p.xfB);
-    const SatResult touching = RunSat(a, b, SatMode::GaussMapPruned, 2.0 * gap, nullptr, nullptr);
-    ASSERT_FALSE(touching.separated);
-    EXPECT_EQ(touching.axis.type, SatAxisType::EdgePair);
-    EXPECT_NEAR(touching.separation, gap, kRoundOff);
-    EXPECT_NEAR((touching.normal - Vec3(0.0, 0.0, -1.0)).norm(), 0.0, kRoundOff);
-    EXPECT_TRUE(RunSat(a, b, SatMode::GaussMapPruned, 0.5 * gap, nullptr, nullptr).separated);
+    for (const SatMode mode : {SatMode::Full, SatMode::GaussMapPruned}) {
+      const SatResult touching = RunSat(a, b, mode, 2.0 * gap, nullptr, nullptr);
+      ASSERT_FALSE(touching.separated);
+      EXPECT_EQ(touching.axis.type, SatAxisType::EdgePair);
+      EXPECT_NEAR(touching.separation, gap, kRoundOff) << "mode " << static_cast<int>(mode);
+      EXPECT_NEAR((touching.normal - Vec3(0.0, 0.0, -1.0)).norm(), 0.0, kRoundOff);
+      EXPECT_TRUE(RunSat(a, b, mode, 0.5 * gap, nullptr, nullptr).separated);
+    }
   }
 }
 

@@ -272,23 +272,35 @@ EdgeQuery QueryMinkowskiEdges(SatFrame& frame, double margin, NarrowPhaseStats* 
   return best;
 }
 
-// Parallel edges give the same axis and the same projections, so the edge
-// pair the search met first need not be the pair that touches. This returns
-// the edge of `p` parallel to `edge` (or closest to it) through p's support
-// vertex along `direction`: the edge that actually supports the axis.
+// The edge pair the search met first need not be the pair that touches:
+// parallel edges give the same axis and the same projections, and in the
+// Full mode so can a pair of non-parallel edges (crossed edges on opposite
+// sides of two polyhedra span the same axis). The edge that supports the
+// axis passes through p's support vertex along `direction` and lies in the
+// support plane, so at that vertex this returns the edge most perpendicular
+// to `direction`, and among edges equally so (a tie within kPlaneTolerance,
+// e.g. several edges of a face that the axis preference did not pick) the
+// one most parallel to `edge`.
 int SupportingEdge(const PosedHull& p, const Vec3& direction, int edge) {
+  constexpr double kPlaneTolerance = 1e-9;  // |cos| differences below this are ties
   const Vec3 along = p.EdgeDirection(edge).normalized();
+  const Vec3 axis = direction.normalized();
   const int v = p.Support(direction, p.EdgeStart(edge));
   const auto halfEdges = p.hull->HalfEdges();
   const int first = p.hull->VertexEdges()[static_cast<std::size_t>(v)];
   int best = edge;
-  double bestCosine = -1.0;
+  double bestTilt = 2.0;
+  double bestParallel = -1.0;
   int h = first;
   do {
     const int twin = halfEdges[static_cast<std::size_t>(h)].twin;
-    const double cosine = std::abs((p.Vertex(p.Origin(twin)) - p.Vertex(v)).normalized().dot(along));
-    if (cosine > bestCosine) {
-      bestCosine = cosine;
+    const Vec3 dir = (p.Vertex(p.Origin(twin)) - p.Vertex(v)).normalized();
+    const double tilt = std::abs(dir.dot(axis));
+    const double parallel = std::abs(dir.dot(along));
+    if (tilt < bestTilt - kPlaneTolerance ||
+        (tilt <= bestTilt + kPlaneTolerance && parallel > bestParallel)) {
+      bestTilt = std::min(bestTilt, tilt);
+      bestParallel = parallel;
       best = h >> 1;
     }
     h = halfEdges[static_cast<std::size_t>(twin)].next;
