@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
+#include <limits>
+#include <string>
+#include <vector>
 
 #include "talus/world.h"
 
@@ -35,8 +37,10 @@ struct FloorAndBox {
 
 FloorAndBox MakeFloorAndBox(const WorldSettings& settings, double friction = 0.5) {
   World world = World::Create(settings).Value();
-  EXPECT_TRUE(world.CreateBody(
-      {.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({50, 0.5, 50}), .friction = friction}));
+  EXPECT_TRUE(world.CreateBody({.type = BodyType::Static,
+                                .position = {0, -0.5, 0},
+                                .shape = Box({50, 0.5, 50}),
+                                .friction = friction}));
   const BodyId box = world
                          .CreateBody({.type = BodyType::Dynamic,
                                       .position = {0, 0.5, 0},
@@ -125,7 +129,9 @@ TEST(ManifoldReuse, BodyTurningPastTheThresholdGetsAFreshManifold) {
     ASSERT_EQ(stats.manifolds, 1);
     if (stats.manifoldsReused == 0) {
       ++fresh;
-      if (fresh > 1) EXPECT_EQ(run, 3) << "step " << n;
+      if (fresh > 1) {
+        EXPECT_EQ(run, 3) << "step " << n;
+      }
       run = 0;
     } else {
       ++reused;
@@ -150,7 +156,8 @@ TEST(ManifoldReuse, BodyTurningPastTheThresholdGetsAFreshManifold) {
 TEST(ManifoldReuse, ReuseOffAndUnreachableReuseGiveBitIdenticalStates) {
   const auto run = [](double reuseDistance) {
     World world = World::Create(Settings(reuseDistance)).Value();
-    EXPECT_TRUE(world.CreateBody({.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({50, 0.5, 50})}));
+    EXPECT_TRUE(
+        world.CreateBody({.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({50, 0.5, 50})}));
     std::vector<BodyId> bodies;
     for (int i = 0; i < 6; ++i) {
       bodies.push_back(world
