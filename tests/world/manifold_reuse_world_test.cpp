@@ -189,7 +189,7 @@ TEST(ManifoldReuse, BadReuseDistanceIsRefusedWithTheFieldNamed) {
     EXPECT_NE(world.GetError().message.find("narrowPhase.reuseDistance"), std::string::npos);
   }
   EXPECT_TRUE(World::Create(Settings(0.0)));
-  EXPECT_EQ(WorldSettings{}.narrowPhase.reuseDistance, 0.001);
+  EXPECT_EQ(WorldSettings{}.narrowPhase.reuseDistance, 0.0005);
 }
 
 }  // namespace
