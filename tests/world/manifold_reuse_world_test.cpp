@@ -19,6 +19,9 @@ namespace {
 constexpr double kH = 1.0 / 60.0;
 constexpr double kG = 9.81;
 
+// The shipped reuse distance (0.5 mm).
+const double kDefaultReuse = NarrowPhaseSettings{}.reuseDistance;
+
 Shape Box(const Vec3& half) { return Shape::CreateBox(half).Value(); }
 
 WorldSettings Settings(double reuseDistance) {
@@ -77,7 +80,7 @@ RestRun RunResting(double reuseDistance) {
 }
 
 TEST(ManifoldReuse, RestingBoxReusesItsManifoldAndRestsWhereItRestsWithout) {
-  const RestRun with = RunResting(0.001);
+  const RestRun with = RunResting(kDefaultReuse);
   const RestRun without = RunResting(0.0);
   // After the first second the box has settled to well under a micrometre
   // of motion, so every step reuses the manifold computed when it settled.
@@ -91,9 +94,10 @@ TEST(ManifoldReuse, RestingBoxReusesItsManifoldAndRestsWhereItRestsWithout) {
 }
 
 // The box_slide case (v0 = 5 m/s, mu = 0.5) with reuse on: it slides 4 cm
-// a step at first (no reuse) and reuses once slower than reuseDistance / h.
+// a step at first (no reuse) and reuses once slower than reuseDistance / h
+// (default distance).
 TEST(ManifoldReuse, SlidingBoxStopsAtTheCoulombDistanceWithReuse) {
-  FloorAndBox scene = MakeFloorAndBox(Settings(0.001), 0.5);
+  FloorAndBox scene = MakeFloorAndBox(Settings(kDefaultReuse), 0.5);
   ASSERT_TRUE(scene.world.SetLinearVelocity(scene.box, {5, 0, 0}));
   const double h = 1.0 / 120.0;
   int reused = 0;
