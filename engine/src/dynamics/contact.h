@@ -3,7 +3,9 @@
 // A Contact holds the pair's manifold from the narrow phase plus what must
 // survive to the next step: the accumulated normal and friction impulses of
 // each point, keyed by the point's feature id, and the pair's mixed
-// friction and restitution. The solver's per-step rows (dynamics/
+// friction and restitution, and the manifold written down in the two
+// bodies' frames (collision/manifold_reuse.h) so that a pair that barely
+// moved can skip the narrow phase. The solver's per-step rows (dynamics/
 // contact_solver.h) are rebuilt from Contacts every step; only impulses flow
 // back. Keeping the two apart keeps the rows small and dense and lets the
 // warm start survive any change of manifold point order.
@@ -18,6 +20,7 @@
 #include <span>
 
 #include "collision/contact_manifold.h"
+#include "collision/manifold_reuse.h"
 #include "talus/math.h"
 #include "talus/world_settings.h"
 
@@ -38,6 +41,10 @@ struct Contact {
   /// Whether the pair was touching last step too (set by CarryImpulses); a
   /// new pair has no impulses to start from and gets extra solver sweeps.
   bool persisted = false;
+  /// The manifold in the bodies' frames, as the narrow phase last computed
+  /// it, for reuse while the pair barely moves (NarrowPhaseSettings::
+  /// reuseDistance); not recorded when reuse is off.
+  ManifoldAnchors anchors{};
 
   /// The order key of the pair: A's index in the high half, B's in the low.
   [[nodiscard]] std::uint64_t PairKey() const {

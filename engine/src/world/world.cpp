@@ -105,6 +105,10 @@ std::string ValidateSettings(const WorldSettings& s) {
     return "WorldSettings.narrowPhase.speculativeMargin = " +
            std::to_string(s.narrowPhase.speculativeMargin) + " m must be finite and >= 0";
   }
+  if (!std::isfinite(s.narrowPhase.reuseDistance) || s.narrowPhase.reuseDistance < 0.0) {
+    return "WorldSettings.narrowPhase.reuseDistance = " + std::to_string(s.narrowPhase.reuseDistance) +
+           " m must be finite and >= 0 (0 turns manifold reuse off)";
+  }
   constexpr double kHuge = 1e300;
   for (const std::string& error :
        {CheckRange("baumgarte", s.baumgarte, 0.0, 1.0), CheckRange("slop", s.slop, 0.0, 1.0),

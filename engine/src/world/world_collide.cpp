@@ -34,6 +34,34 @@ void WakeIfTouched(WorldData& d, std::size_t sleeper, const BodySim& other) {
   d.sleep[sleeper].restTime = 0.0;
 }
 
+// Radius of a sphere about the body frame's origin that holds the shape:
+// how far a turn of the body can move its farthest point, per radian.
+double RadiusAboutOrigin(const Shape& shape) {
+  const Sphere& sphere = shape.LocalBoundingSphere();
+  return sphere.center.norm() + sphere.radius;
+}
+
+// Rebuilds last step's manifold of the pair from its anchors when reuse is
+// on, neither shape is a sphere, the narrow phase recorded the manifold,
+// and neither body has moved relative to the other by reuseDistance or more
+// since then. Returns false (nothing written) otherwise.
+bool ReuseManifold(const WorldData& d, const Contact& before, std::size_t a, std::size_t b,
+                   const Transform& xfA, const Transform& xfB, ContactManifold* manifold) {
+  const double reuseDistance = d.settings.narrowPhase.reuseDistance;
+  const Shape& shapeA = *d.shapes[a];
+  const Shape& shapeB = *d.shapes[b];
+  if (!(reuseDistance > 0.0) || !before.anchors.recorded || shapeA.Type() == ShapeType::Sphere ||
+      shapeB.Type() == ShapeType::Sphere) {
+    return false;
+  }
+  const double moved =
+      RelativeMotionBound(before.anchors, xfA, xfB, RadiusAboutOrigin(shapeA), RadiusAboutOrigin(shapeB));
+  if (!(moved < reuseDistance)) return false;
+  *manifold = before.manifold;
+  RebuildManifold(before.anchors, xfA, xfB, manifold);
+  return true;
+}
+
 }  // namespace
 
 Result<int> UpdateBroadPhase(WorldData& d) {
@@ -97,18 +125,37 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
       continue;
     }
 
-    PairSatCache cache{.pairKey = key, .cache = hadCache ? d.previousSatCaches[oldCache].cache : SatCache{}};
-    ContactManifold manifold{};
-    // A is the lower slot: the manifold's normal points from b towards a.
-    if (Collide(*d.shapes[a], BodyTransform(simA), *d.shapes[b], BodyTransform(simB), d.settings.narrowPhase,
-                &cache.cache, &stats.narrowPhase, &manifold)) {
+    const Transform xfA = BodyTransform(simA);
+    const Transform xfB = BodyTransform(simB);
+    const BodyRecord& ra = d.records[a];
+    const BodyRecord& rb = d.records[b];
+    const auto addContact = [&](const ContactManifold& manifold, const ManifoldAnchors& anchors) {
       WakeIfTouched(d, a, simB);
       WakeIfTouched(d, b, simA);
-      const BodyRecord& ra = d.records[a];
-      const BodyRecord& rb = d.records[b];
       d.contacts.push_back(MakeContact(
           pair.a, pair.b, manifold, MixFriction(ra.friction, rb.friction, d.settings.frictionCombine),
           MixRestitution(ra.restitution, rb.restitution, d.settings.restitutionCombine)));
+      d.contacts.back().anchors = anchors;
+    };
+    ContactManifold manifold{};
+
+    // The pair barely moved since the narrow phase last saw it: rebuild
+    // that manifold and keep the anchors (and the SAT cache) as they were,
+    // so the reference pose stays the narrow phase's.
+    if (hadContact && ReuseManifold(d, d.previousContacts[oldContact], a, b, xfA, xfB, &manifold)) {
+      addContact(manifold, d.previousContacts[oldContact].anchors);
+      if (hadCache) d.satCaches.push_back(d.previousSatCaches[oldCache]);
+      ++stats.manifoldsReused;
+      stats.reusedContactPoints += manifold.pointCount;
+      continue;
+    }
+
+    PairSatCache cache{.pairKey = key, .cache = hadCache ? d.previousSatCaches[oldCache].cache : SatCache{}};
+    // A is the lower slot: the manifold's normal points from b towards a.
+    if (Collide(*d.shapes[a], xfA, *d.shapes[b], xfB, d.settings.narrowPhase, &cache.cache,
+                &stats.narrowPhase, &manifold)) {
+      addContact(manifold, d.settings.narrowPhase.reuseDistance > 0.0 ? RecordAnchors(manifold, xfA, xfB)
+                                                                      : ManifoldAnchors{});
     }
     d.satCaches.push_back(cache);
   }

@@ -13,7 +13,11 @@
 // broad phase's (a, b) order, which is pair-key order. Pairs whose bodies
 // are all asleep (or asleep against static or kinematic) skip the narrow
 // phase and keep last step's contact, so a sleeping island stays connected
-// and costs nothing.
+// and costs nothing. A polyhedron pair that barely moved relative to the
+// pose at which the narrow phase last computed its manifold (less than
+// NarrowPhaseSettings::reuseDistance) skips the narrow phase too: its
+// manifold is rebuilt from the anchors stored in its Contact
+// (collision/manifold_reuse.h), and its SAT cache is kept as it was.
 #pragma once
 
 #include "talus/result.h"
