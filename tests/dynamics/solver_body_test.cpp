@@ -115,7 +115,9 @@ TEST(ContactSolver, PrecomputedRowsGiveARestingBoxTheImpulseMgh) {
     for (int i = 0; i < 4; ++i) {
       const double lambda = contact.normalImpulse[static_cast<std::size_t>(i)];
       total += lambda;
-      if (block) EXPECT_NEAR(lambda, mass * kG * kH / 4.0, 1e-14) << i;
+      if (block) {
+        EXPECT_NEAR(lambda, mass * kG * kH / 4.0, 1e-14) << i;
+      }
       // Nothing slides, so friction takes nothing.
       EXPECT_LT(contact.frictionImpulse[static_cast<std::size_t>(i)].norm(), 1e-12) << i;
     }
