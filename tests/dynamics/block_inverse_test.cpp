@@ -3,6 +3,7 @@
 // degenerate ones that must fall back.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -68,8 +69,8 @@ Mat3 RandomInverseInertia(Random& random) {
 double MaxAbs(const Eigen::Matrix4d& m) { return m.cwiseAbs().maxCoeff(); }
 
 // 3,000 random pairs: 2-4 points on the contact plane (a face, an edge, or
-// a clipped polygon's corners), random arms, masses and inertias, one body
-// static in a third of them. The closed form must equal the oracle to 1e-8
+// a clipped polygon's corners), random arms, masses (0.5-10 kg or 5-100 t)
+// and inertias, one body static in a third of them. The closed form must equal the oracle to 1e-8
 // of its largest entry (each is exact up to the condition number it
 // accepts, at most ~1e7, times round-off 1.1e-16) and be a pseudo-inverse:
 // K X K = K to the same relative tolerance.
@@ -89,10 +90,13 @@ TEST(BlockInverse, ClosedFormMatchesTheEigenOracleOnRandomManifolds) {
                        random.Between(-0.01, 0.01) * n);
     }
     const bool staticB = trial % 3 == 0;
-    const Block block =
-        MakeBlock(n, points, origin + random.InBox(1.0), origin + random.InBox(1.0), random.Between(0.1, 2.0),
-                  staticB ? 0.0 : random.Between(0.1, 2.0), RandomInverseInertia(random),
-                  staticB ? Mat3::Zero() : Mat3(RandomInverseInertia(random)));
+    // Light bodies, and bodies of tonnes (K below the identity padding's 1,
+    // where the oracle's cut is absolute).
+    const double scale = trial % 2 == 0 ? 1.0 : 1e-4;
+    const Block block = MakeBlock(
+        n, points, origin + random.InBox(1.0), origin + random.InBox(1.0), scale * random.Between(0.1, 2.0),
+        staticB ? 0.0 : scale * random.Between(0.1, 2.0), scale * RandomInverseInertia(random),
+        staticB ? Mat3::Zero() : Mat3(scale * RandomInverseInertia(random)));
     const Eigen::Matrix4d fast = BlockPseudoInverse(block.k, n, block.arms);
     const Eigen::Matrix4d oracle = EigenPseudoInverse(block.k, count);
     ASSERT_LE(MaxAbs(fast - oracle), 1e-8 * MaxAbs(oracle))
@@ -120,6 +124,31 @@ TEST(BlockInverse, SymmetricLoadOfFourCornersSplitsEvenly) {
   const Eigen::Vector4d impulse = BlockPseudoInverse(block.k, n, block.arms) * Eigen::Vector4d::Constant(1.0);
   // Total impulse m dv = 8 N s for a 1 m/s error, 2 each; round-off only.
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(impulse[i], 2.0, 1e-12) << i;
+}
+
+// Two corners 2.5-3 mm apart on an 8 t cube (the pyramid's): K is ~1e-3
+// kg^-1 with a near-singular mode of 6-9e-10 (gap^2 / (2 I)). The oracle,
+// padded with the identity, cuts at 1e-9 and drops that mode; the closed
+// form must drop it too, not invert it into impulses of 1e9 N s (a 0.3 m
+// pyramid drift before this case was handled: a test relative to K's own
+// largest eigenvalue, 2e-3, accepted it).
+TEST(BlockInverse, NearlyCoincidentPointsOnAHeavyBodyDropTheStiffModeLikeTheOracle) {
+  const Vec3 n = Vec3::UnitY();
+  const double mass = 8000.0;
+  const Mat3 invInertia = Mat3::Identity() / (mass * 8.0 / 12.0);
+  for (const double gap : {2.5e-3, 3e-3}) {
+    const std::vector<Vec3> points = {{1, 0, -1}, {1, 0, -1 + gap}};
+    const Block block =
+        MakeBlock(n, points, {0, 1, 0}, {0, -1, 0}, 1.0 / mass, 0.0, invInertia, Mat3::Zero());
+    const Eigen::Matrix4d fast = BlockPseudoInverse(block.k, n, block.arms);
+    const Eigen::Matrix4d oracle = EigenPseudoInverse(block.k, 2);
+    // The oracle keeps only the common mode: its 2x2 block has rank one
+    // (determinant zero up to round-off on entries of ~500).
+    EXPECT_LT(std::abs(oracle(0, 0) * oracle(1, 1) - oracle(0, 1) * oracle(1, 0)),
+              1e-9 * oracle(0, 0) * oracle(0, 0))
+        << gap;
+    EXPECT_LE(MaxAbs(fast - oracle), 1e-8 * MaxAbs(oracle)) << gap;
+  }
 }
 
 // Collinear points (an edge resting on an edge, four points on one line)

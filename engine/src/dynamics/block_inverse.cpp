@@ -11,12 +11,12 @@
 namespace talus {
 namespace {
 
-// Fast-path acceptance: det(M) > kWellConditioned trace(M)^n for the n x n
-// matrix M inverted in closed form. Since lambda_max <= trace and
+// Fast-path acceptance: det(M) > kWellConditioned trace(M)^(n-1) scale for
+// the n x n matrix M inverted in closed form. Since lambda_max <= trace and
 // lambda_min >= det / lambda_max^(n-1), it guarantees lambda_min >
-// kWellConditioned lambda_max, far above the 1e-9 rank cut of the eigen
-// path, so both give the same pseudo-inverse up to round-off; anything
-// closer to singular (collinear points) takes the eigen path.
+// kWellConditioned scale, 100 times the eigen path's rank cut (1e-9 scale),
+// so both keep every eigenvalue and agree up to round-off; anything closer
+// to singular (collinear or nearly coincident points) takes the eigen path.
 constexpr double kWellConditioned = 1e-7;
 
 // A null vector of K for four contact points, unit length, or zero when the
@@ -38,12 +38,13 @@ Eigen::Vector4d AffineDependency(const Vec3& n, std::span<const Vec3> a) {
 }
 
 // Closed-form inverse of the leading n x n block of `m` into `out`, when it
-// passes the conditioning test; false otherwise.
+// passes the conditioning test against `scale` (the largest eigenvalue the
+// eigen path measures its cut against, or a bound on it); false otherwise.
 template <int kN>
-bool InvertWellConditioned(const Eigen::Matrix4d& m, Eigen::Matrix4d& out) {
+bool InvertWellConditioned(const Eigen::Matrix4d& m, double scale, Eigen::Matrix4d& out) {
   const Eigen::Matrix<double, kN, kN> block = m.topLeftCorner<kN, kN>();
   const double trace = block.trace();
-  if (!(block.determinant() > kWellConditioned * std::pow(trace, kN))) return false;
+  if (!(block.determinant() > kWellConditioned * std::pow(trace, kN - 1) * scale)) return false;
   out.setZero();
   out.topLeftCorner<kN, kN>() = block.inverse();
   return true;
@@ -71,14 +72,22 @@ Eigen::Matrix4d BlockPseudoInverse(const Eigen::Matrix4d& k, const Vec3& normal,
   const int count = static_cast<int>(arms.size());
   assert(count >= 2 && count <= 4);
   Eigen::Matrix4d result;
-  if (count == 2 && InvertWellConditioned<2>(k, result)) return result;
-  if (count == 3 && InvertWellConditioned<3>(k, result)) return result;
+  // Below four points the eigen path sees K padded with the identity, so its
+  // cut is 1e-9 max(lambda_max(K), 1): heavy bodies (K ~ 1e-3 kg^-1 for the
+  // pyramid's 8 t cubes) drop a near-singular mode (two points a millimetre
+  // apart) that a relative test would keep. The closed form keeps that cut.
+  double trace = 0.0;
+  for (int i = 0; i < count; ++i) trace += k(i, i);
+  const double padded = std::max(trace, 1.0);
+  if (count == 2 && InvertWellConditioned<2>(k, padded, result)) return result;
+  if (count == 3 && InvertWellConditioned<3>(k, padded, result)) return result;
   if (count == 4) {
     const Eigen::Vector4d u = AffineDependency(normal, arms);
     // Any s > 0 is exact; the mean diagonal keeps the sum's eigenvalues of
     // one scale, so the conditioning test judges K's own three.
     const double s = 0.25 * k.trace();
-    if (u.squaredNorm() > 0.0 && InvertWellConditioned<4>(k + s * u * u.transpose(), result)) {
+    const Eigen::Matrix4d deflated = k + s * u * u.transpose();
+    if (u.squaredNorm() > 0.0 && InvertWellConditioned<4>(deflated, deflated.trace(), result)) {
       return result - (u * u.transpose()) / s;
     }
   }

@@ -13,9 +13,11 @@
 //
 // Invariants: the result is symmetric, zero outside the leading count x
 // count block, and equal (up to round-off) to the pseudo-inverse from an
-// eigen decomposition that drops eigenvalues below 1e-9 of the largest,
-// which stays as the fallback for blocks the closed form does not trust
-// (collinear points, or a condition number above ~1e7).
+// eigen decomposition of K padded to 4x4 with the identity that drops
+// eigenvalues below 1e-9 of the largest (the solver's original, so below
+// four points the cut is 1e-9 max(lambda_max, 1)), which stays as the
+// fallback for blocks the closed form does not trust: collinear or nearly
+// coincident points, anything within a factor 100 of that cut.
 #pragma once
 
 #include <span>

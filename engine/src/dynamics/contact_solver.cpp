@@ -122,8 +122,6 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
       NormalRow row;
       row.j = MakeJacobian(n, rA, rB, invInertiaA, invInertiaB);
       row.mass = RowMass(row.j, pair);
-      const double vn = n.dot(
-          RelativeVelocity(a.linearVelocity, a.angularVelocity, rA, b.linearVelocity, b.angularVelocity, rB));
       const double correction = settings.baumgarte * invH * std::max(cp.depth - settings.slop, 0.0);
       if (cp.depth < 0.0) {
         // Not touching yet: the gap may close this step, no further.
@@ -134,11 +132,15 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
       PointCold cold;
       const bool split = settings.positionCorrection == PositionCorrection::SplitImpulses;
       cold.positionTarget = split && cp.depth > 0.0 ? correction : 0.0;
-      // The surface points of A and B the midpoint stands for, half the
-      // depth either side along n, kept in body axes for the position pass.
-      cold.localAnchorA = a.orientation.conjugate() * (rA - 0.5 * cp.depth * n);
-      cold.localAnchorB = b.orientation.conjugate() * (rB + 0.5 * cp.depth * n);
+      if (settings.positionCorrection == PositionCorrection::NonlinearGaussSeidel) {
+        // The surface points of A and B the midpoint stands for, half the
+        // depth either side along n, kept in body axes for the position pass.
+        cold.localAnchorA = a.orientation.conjugate() * (rA - 0.5 * cp.depth * n);
+        cold.localAnchorB = b.orientation.conjugate() * (rB + 0.5 * cp.depth * n);
+      }
       if (contact.restitution > 0.0) {
+        const double vn = n.dot(RelativeVelocity(a.linearVelocity, a.angularVelocity, rA, b.linearVelocity,
+                                                 b.angularVelocity, rB));
         // Bounce when closing fast enough and the point touches by the end of
         // the step (a speculative point that stays apart must not bounce).
         if (vn < -settings.restitutionThreshold && cp.depth - vn * h > 0.0) {
