@@ -110,7 +110,12 @@ TEST(BlockInverse, ClosedFormMatchesTheEigenOracleOnRandomManifolds) {
         ASSERT_EQ(fast(r, c), 0.0) << "trial " << trial;
       }
     }
-    ASSERT_LE(MaxAbs(k * fast * k - k), 1e-8 * MaxAbs(k)) << "trial " << trial;
+    // For tonne bodies the oracle's absolute cut may drop a soft mode on
+    // purpose, and then X is not K's exact pseudo-inverse; the comparison
+    // above covers those.
+    if (scale == 1.0) {
+      ASSERT_LE(MaxAbs(k * fast * k - k), 1e-8 * MaxAbs(k)) << "trial " << trial;
+    }
   }
 }
 
