@@ -23,10 +23,9 @@
 //
 // Block solve (option, default on). A pair's 2-4 normal rows are solved
 //   together: dlambda = K+ (target - J v), K = J M^-1 J^T (4x4, rank 3 for
-//   four coplanar points, so its pseudo-inverse, in closed form at Prepare:
-//   dynamics/block_inverse.h), accepted when every accumulated impulse
-//   stays >= 0, else row by row. Box2D v2.4's two-point block solver
-//   extended to four points.
+//   four coplanar points, so its pseudo-inverse, from an eigen decomposition
+//   in Prepare), accepted when every accumulated impulse stays >= 0, else
+//   row by row. Box2D v2.4's two-point block solver extended to four points.
 //
 // Extra sweeps. In a step with new pairs (no impulses to warm start from)
 //   the sweeps go on past the minimum until the new pairs' rows change by
