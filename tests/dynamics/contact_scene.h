@@ -83,11 +83,12 @@ class ContactScene {
     Collide();
     if (m_settings.warmStarting) m_stats.warmStartedPoints = CarryImpulses(m_previous, m_contacts);
     m_solver.Prepare(m_bodies, m_contacts, m_settings, h, m_stats);
-    if (m_settings.warmStarting) m_solver.WarmStart(m_bodies);
-    m_solver.SolveVelocities(m_bodies, m_settings.velocityIterations, m_settings.maxVelocityIterations,
+    if (m_settings.warmStarting) m_solver.WarmStart();
+    m_solver.SolveVelocities(m_settings.velocityIterations, m_settings.maxVelocityIterations,
                              m_settings.velocityTolerance);
     const bool split = m_settings.positionCorrection == PositionCorrection::SplitImpulses;
-    if (split) m_solver.SolveSplitImpulses(m_bodies, m_settings.positionIterations);
+    if (split) m_solver.SolveSplitImpulses(m_settings.positionIterations);
+    m_solver.Scatter(m_bodies, split);
     m_solver.StoreImpulses(m_contacts);
     IntegratePositions(m_bodies, h, split);
     if (m_settings.positionCorrection == PositionCorrection::NonlinearGaussSeidel) {

@@ -1,12 +1,12 @@
-// Sequential Impulses on contact and friction rows; the constraint
-// derivations are in dynamics/contact_solver.h.
+// Sequential Impulses on contact and friction rows: building the rows and
+// the solver bodies (Prepare), warm start, split impulses, the non-linear
+// position pass and the impulses stored back. The constraint derivations
+// and the data layout are in dynamics/contact_solver.h; the velocity sweeps
+// in contact_solver_sweep.cpp.
 #include "dynamics/contact_solver.h"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
-
-#include <Eigen/Eigenvalues>
 
 namespace talus {
 namespace {
@@ -51,35 +51,53 @@ double EffectiveMass(const Vec3& axis, const Vec3& rA, const Vec3& rB, double in
 
 }  // namespace
 
+ContactSolver::RowJacobian ContactSolver::MakeJacobian(const Vec3& d, const Vec3& rA, const Vec3& rB,
+                                                       const Mat3& invInertiaA, const Mat3& invInertiaB) {
+  RowJacobian j;
+  j.angularA = rA.cross(d);
+  j.angularB = rB.cross(d);
+  j.imageA = invInertiaA * j.angularA;
+  j.imageB = invInertiaB * j.angularB;
+  return j;
+}
+
+double ContactSolver::RowMass(const RowJacobian& j, const PairRows& pair) {
+  const double k = pair.invMassA + pair.invMassB + j.angularA.dot(j.imageA) + j.angularB.dot(j.imageB);
+  return k > 0.0 ? 1.0 / k : 0.0;
+}
+
 void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Contact> contacts,
                             const WorldSettings& settings, double h, StepStatistics& stats) {
+  m_bodies.Reset(bodies.size());
   m_pairs.clear();
-  m_points.clear();
-  m_newPairs.clear();
+  m_normals.clear();
+  m_frictions.clear();
+  m_cold.clear();
+  m_blockInverses.clear();
+  m_newPairs = 0;
   const double invH = 1.0 / h;
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const Contact& contact = contacts[c];
     const BodySim& a = bodies[static_cast<std::size_t>(contact.bodyA)];
     const BodySim& b = bodies[static_cast<std::size_t>(contact.bodyB)];
-    const bool movesA = a.IsSolverDynamic();
-    const bool movesB = b.IsSolverDynamic();
     // A pair that contact cannot move (both immovable this step) needs no rows.
-    if ((!movesA && !movesB) || contact.manifold.pointCount == 0) continue;
+    if ((!a.IsSolverDynamic() && !b.IsSolverDynamic()) || contact.manifold.pointCount == 0) continue;
 
     PairRows pair;
     pair.contact = static_cast<int>(c);
-    pair.bodyA = contact.bodyA;
-    pair.bodyB = contact.bodyB;
-    pair.firstPoint = static_cast<int>(m_points.size());
+    pair.bodyA = m_bodies.Add(bodies, contact.bodyA);
+    pair.bodyB = m_bodies.Add(bodies, contact.bodyB);
+    pair.firstPoint = static_cast<int>(m_normals.size());
+    pair.firstFriction = static_cast<int>(m_frictions.size());
     pair.pointCount = contact.manifold.pointCount;
     pair.normal = contact.manifold.normal;
     pair.friction = contact.friction;
     pair.hasFriction = contact.friction > 0.0;
     pair.persisted = contact.persisted && settings.warmStarting;
-    pair.invMassA = movesA ? a.invMass : 0.0;
-    pair.invMassB = movesB ? b.invMass : 0.0;
-    pair.invInertiaA = movesA ? a.invInertiaWorld : Mat3::Zero();
-    pair.invInertiaB = movesB ? b.invInertiaWorld : Mat3::Zero();
+    pair.invMassA = m_bodies.InvMass(pair.bodyA);
+    pair.invMassB = m_bodies.InvMass(pair.bodyB);
+    const Mat3& invInertiaA = m_bodies.InvInertia(pair.bodyA);
+    const Mat3& invInertiaB = m_bodies.InvInertia(pair.bodyB);
     const Vec3& n = pair.normal;
 
     // Friction basis: t1 along the mean sliding velocity when there is one.
@@ -99,13 +117,11 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
     for (int i = 0; i < pair.pointCount; ++i) {
       const std::size_t pi = static_cast<std::size_t>(i);
       const ContactPoint& cp = contact.manifold.points[pi];
-      PointRow row;
-      row.rA = cp.position - a.center;
-      row.rB = cp.position - b.center;
-      row.normalMass =
-          EffectiveMass(n, row.rA, row.rB, pair.invMassA, pair.invMassB, pair.invInertiaA, pair.invInertiaB);
-      const double vn = n.dot(RelativeVelocity(a.linearVelocity, a.angularVelocity, row.rA, b.linearVelocity,
-                                               b.angularVelocity, row.rB));
+      const Vec3 rA = cp.position - a.center;
+      const Vec3 rB = cp.position - b.center;
+      NormalRow row;
+      row.j = MakeJacobian(n, rA, rB, invInertiaA, invInertiaB);
+      row.mass = RowMass(row.j, pair);
       const double correction = settings.baumgarte * invH * std::max(cp.depth - settings.slop, 0.0);
       if (cp.depth < 0.0) {
         // Not touching yet: the gap may close this step, no further.
@@ -113,13 +129,18 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
       } else if (settings.positionCorrection == PositionCorrection::Baumgarte) {
         row.target = correction;
       }
+      PointCold cold;
       const bool split = settings.positionCorrection == PositionCorrection::SplitImpulses;
-      row.positionTarget = split && cp.depth > 0.0 ? correction : 0.0;
-      // The surface points of A and B the midpoint stands for, half the
-      // depth either side along n, kept in body axes for the position pass.
-      row.localAnchorA = a.orientation.conjugate() * (row.rA - 0.5 * cp.depth * n);
-      row.localAnchorB = b.orientation.conjugate() * (row.rB + 0.5 * cp.depth * n);
+      cold.positionTarget = split && cp.depth > 0.0 ? correction : 0.0;
+      if (settings.positionCorrection == PositionCorrection::NonlinearGaussSeidel) {
+        // The surface points of A and B the midpoint stands for, half the
+        // depth either side along n, kept in body axes for the position pass.
+        cold.localAnchorA = a.orientation.conjugate() * (rA - 0.5 * cp.depth * n);
+        cold.localAnchorB = b.orientation.conjugate() * (rB + 0.5 * cp.depth * n);
+      }
       if (contact.restitution > 0.0) {
+        const double vn = n.dot(RelativeVelocity(a.linearVelocity, a.angularVelocity, rA, b.linearVelocity,
+                                                 b.angularVelocity, rB));
         // Bounce when closing fast enough and the point touches by the end of
         // the step (a speculative point that stays apart must not bounce).
         if (vn < -settings.restitutionThreshold && cp.depth - vn * h > 0.0) {
@@ -128,20 +149,18 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
       } else {
         ++stats.restitutionSkipped;
       }
+      if (settings.warmStarting) row.impulse = contact.normalImpulse[pi];
       if (pair.hasFriction) {
         for (int k = 0; k < 2; ++k) {
-          row.tangentMass[k] = EffectiveMass(pair.tangent[k], row.rA, row.rB, pair.invMassA, pair.invMassB,
-                                             pair.invInertiaA, pair.invInertiaB);
+          FrictionRow friction;
+          friction.j = MakeJacobian(pair.tangent[k], rA, rB, invInertiaA, invInertiaB);
+          friction.mass = RowMass(friction.j, pair);
+          if (settings.warmStarting) friction.impulse = contact.frictionImpulse[pi].dot(pair.tangent[k]);
+          m_frictions.push_back(friction);
         }
       }
-      if (settings.warmStarting) {
-        row.normalImpulse = contact.normalImpulse[pi];
-        if (pair.hasFriction) {
-          for (int k = 0; k < 2; ++k)
-            row.tangentImpulse[k] = contact.frictionImpulse[pi].dot(pair.tangent[k]);
-        }
-      }
-      m_points.push_back(row);
+      m_normals.push_back(row);
+      m_cold.push_back(cold);
     }
     if (settings.blockSolver && pair.pointCount >= 2 && pair.pointCount <= 4) PrepareBlock(pair);
     stats.contactPoints += pair.pointCount;
@@ -150,219 +169,64 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
     } else {
       stats.frictionRowsSkipped += 2 * pair.pointCount;
     }
-    if (!pair.persisted) m_newPairs.push_back(static_cast<int>(m_pairs.size()));
+    if (!pair.persisted) ++m_newPairs;
     m_pairs.push_back(pair);
   }
 }
 
-void ContactSolver::WarmStart(std::span<BodySim> bodies) const {
+// Warm start: each point's accumulated impulse lambda_n n + lambda_1 t1 +
+// lambda_2 t2, applied through the rows' precomputed images.
+void ContactSolver::WarmStart() {
   for (const PairRows& pair : m_pairs) {
-    BodySim& a = bodies[static_cast<std::size_t>(pair.bodyA)];
-    BodySim& b = bodies[static_cast<std::size_t>(pair.bodyB)];
+    SolverVelocity& a = m_bodies.Velocity(pair.bodyA);
+    SolverVelocity& b = m_bodies.Velocity(pair.bodyB);
     for (int i = 0; i < pair.pointCount; ++i) {
-      const PointRow& row = m_points[static_cast<std::size_t>(pair.firstPoint + i)];
-      Vec3 impulse = row.normalImpulse * pair.normal;
-      if (pair.hasFriction)
-        impulse += row.tangentImpulse[0] * pair.tangent[0] + row.tangentImpulse[1] * pair.tangent[1];
-      a.linearVelocity += pair.invMassA * impulse;
-      a.angularVelocity += pair.invInertiaA * row.rA.cross(impulse);
-      b.linearVelocity -= pair.invMassB * impulse;
-      b.angularVelocity -= pair.invInertiaB * row.rB.cross(impulse);
+      const NormalRow& row = m_normals[static_cast<std::size_t>(pair.firstPoint + i)];
+      Vec3 impulse = row.impulse * pair.normal;
+      Vec3 turnA = row.impulse * row.j.imageA;
+      Vec3 turnB = row.impulse * row.j.imageB;
+      if (pair.hasFriction) {
+        for (int k = 0; k < 2; ++k) {
+          const FrictionRow& f = m_frictions[static_cast<std::size_t>(pair.firstFriction + 2 * i + k)];
+          impulse += f.impulse * pair.tangent[k];
+          turnA += f.impulse * f.j.imageA;
+          turnB += f.impulse * f.j.imageB;
+        }
+      }
+      a.v += pair.invMassA * impulse;
+      a.w += turnA;
+      b.v -= pair.invMassB * impulse;
+      b.w -= turnB;
     }
   }
 }
 
-namespace {
-
-// The velocities of a pair's two bodies, loaded once per pass over the pair
-// and written back at its end.
-struct PairVelocities {
-  Vec3 vA, wA, vB, wB;
-};
-
-PairVelocities Load(const BodySim& a, const BodySim& b) {
-  return {a.linearVelocity, a.angularVelocity, b.linearVelocity, b.angularVelocity};
+void ContactSolver::Scatter(std::span<BodySim> bodies, bool pseudo) const {
+  m_bodies.Scatter(bodies, pseudo);
 }
 
-void Store(const PairVelocities& v, BodySim& a, BodySim& b) {
-  a.linearVelocity = v.vA;
-  a.angularVelocity = v.wA;
-  b.linearVelocity = v.vB;
-  b.angularVelocity = v.wB;
-}
-
-}  // namespace
-
-void ContactSolver::PrepareBlock(PairRows& pair) const {
-  const int count = pair.pointCount;
-  Eigen::Matrix4d k = Eigen::Matrix4d::Identity();
-  const Vec3& n = pair.normal;
-  Vec3 ra[4], rb[4];
-  for (int i = 0; i < count; ++i) {
-    const PointRow& row = m_points[static_cast<std::size_t>(pair.firstPoint + i)];
-    ra[i] = row.rA.cross(n);
-    rb[i] = row.rB.cross(n);
-  }
-  for (int i = 0; i < count; ++i) {
-    for (int j = 0; j < count; ++j) {
-      k(i, j) = pair.invMassA + pair.invMassB + ra[i].dot(pair.invInertiaA * ra[j]) +
-                rb[i].dot(pair.invInertiaB * rb[j]);
-    }
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(k);
-  const Eigen::Vector4d values = eigen.eigenvalues();
-  const double largest = values.cwiseAbs().maxCoeff();
-  Eigen::Vector4d inverse = Eigen::Vector4d::Zero();
-  for (int i = 0; i < 4; ++i) {
-    if (values[i] > 1e-9 * largest) inverse[i] = 1.0 / values[i];
-  }
-  pair.blockInverse = eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
-  for (int i = count; i < 4; ++i) {
-    pair.blockInverse.row(i).setZero();
-    pair.blockInverse.col(i).setZero();
-  }
-  pair.block = true;
-}
-
-bool ContactSolver::SolveNormalBlock(std::span<BodySim> bodies, const PairRows& pair) {
-  BodySim& a = bodies[static_cast<std::size_t>(pair.bodyA)];
-  BodySim& b = bodies[static_cast<std::size_t>(pair.bodyB)];
-  PairVelocities v = Load(a, b);
-  Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
-  Eigen::Vector4d lambda = Eigen::Vector4d::Zero();
-  for (int i = 0; i < pair.pointCount; ++i) {
-    const PointRow& row = m_points[static_cast<std::size_t>(pair.firstPoint + i)];
-    const double vn = pair.normal.dot(RelativeVelocity(v.vA, v.wA, row.rA, v.vB, v.wB, row.rB));
-    rhs[i] = row.target - vn;
-    lambda[i] = row.normalImpulse;
-  }
-  const Eigen::Vector4d delta = pair.blockInverse * rhs;
-  for (int i = 0; i < pair.pointCount; ++i) {
-    if (lambda[i] + delta[i] < 0.0) return false;
-  }
-  for (int i = 0; i < pair.pointCount; ++i) {
-    PointRow& row = m_points[static_cast<std::size_t>(pair.firstPoint + i)];
-    row.normalImpulse = lambda[i] + delta[i];
-    NoteChange(pair, delta[i], row.normalMass);
-    const Vec3 impulse = delta[i] * pair.normal;
-    v.vA += pair.invMassA * impulse;
-    v.wA += pair.invInertiaA * row.rA.cross(impulse);
-    v.vB -= pair.invMassB * impulse;
-    v.wB -= pair.invInertiaB * row.rB.cross(impulse);
-  }
-  Store(v, a, b);
-  return true;
-}
-
-// The normal rows of one pair: accumulated impulse clamped to [0, inf).
-void ContactSolver::SolveNormals(std::span<BodySim> bodies, const PairRows& pair) {
-  if (pair.block && SolveNormalBlock(bodies, pair)) return;
-  BodySim& a = bodies[static_cast<std::size_t>(pair.bodyA)];
-  BodySim& b = bodies[static_cast<std::size_t>(pair.bodyB)];
-  PairVelocities v = Load(a, b);
-  for (int i = 0; i < pair.pointCount; ++i) {
-    PointRow& row = m_points[static_cast<std::size_t>(pair.firstPoint + i)];
-    const double vn = pair.normal.dot(RelativeVelocity(v.vA, v.wA, row.rA, v.vB, v.wB, row.rB));
-    const double previous = row.normalImpulse;
-    row.normalImpulse = std::max(previous - row.normalMass * (vn - row.target), 0.0);
-    NoteChange(pair, row.normalImpulse - previous, row.normalMass);
-    const Vec3 impulse = (row.normalImpulse - previous) * pair.normal;
-    v.vA += pair.invMassA * impulse;
-    v.wA += pair.invInertiaA * row.rA.cross(impulse);
-    v.vB -= pair.invMassB * impulse;
-    v.wB -= pair.invInertiaB * row.rB.cross(impulse);
-  }
-  Store(v, a, b);
-}
-
-// The friction rows of one pair, each bounded by mu times its point's
-// current normal impulse.
-void ContactSolver::SolveFriction(std::span<BodySim> bodies, const PairRows& pair) {
-  BodySim& a = bodies[static_cast<std::size_t>(pair.bodyA)];
-  BodySim& b = bodies[static_cast<std::size_t>(pair.bodyB)];
-  PairVelocities v = Load(a, b);
-  for (int i = 0; i < pair.pointCount; ++i) {
-    PointRow& row = m_points[static_cast<std::size_t>(pair.firstPoint + i)];
-    const double bound = pair.friction * row.normalImpulse;
-    for (int k = 0; k < 2; ++k) {
-      const Vec3& t = pair.tangent[k];
-      const double vt = t.dot(RelativeVelocity(v.vA, v.wA, row.rA, v.vB, v.wB, row.rB));
-      const double old = row.tangentImpulse[k];
-      row.tangentImpulse[k] = std::clamp(old - row.tangentMass[k] * vt, -bound, bound);
-      NoteChange(pair, row.tangentImpulse[k] - old, row.tangentMass[k]);
-      const Vec3 impulse = (row.tangentImpulse[k] - old) * t;
-      v.vA += pair.invMassA * impulse;
-      v.wA += pair.invInertiaA * row.rA.cross(impulse);
-      v.vB -= pair.invMassB * impulse;
-      v.wB -= pair.invInertiaB * row.rB.cross(impulse);
-    }
-  }
-  Store(v, a, b);
-}
-
-// Each iteration sweeps every normal row, then every friction row (the
-// order Bullet uses). Measured on a 10-box column: interleaving friction
-// after each point's normal row left ten times the residual rocking
-// (0.1 rad/s against 0.01 rad/s at 10 iterations), because a corner's
-// friction row then reads a normal impulse the other corners have not yet
-// balanced. The friction bound still follows the normal impulse as it
-// changes: every friction pass reads the current values.
-//
-// Past `minIterations`, when some pair is new this step, further sweeps
-// over all rows go on while the last one still changed a row of a new pair
-// by more than `tolerance` (m/s), up to `maxIterations` sweeps in all. A new
-// pair has no accumulated impulse to start from: under a stack whose
-// contacts are all new, the load must diffuse through the chain one contact
-// per sweep, and ten sweeps leave a 10-box column sagging 1.5 cm. Measured
-// alternatives: sweeping everything to convergence every step cost 6x the
-// solver time on the 1240-cube pyramid (its warm-started rows never settle
-// to 1e-3 m/s in ten sweeps); sweeping the new pairs' rows alone pushed
-// bodies into the contacts left unsolved and the pyramid drifted 0.45 m.
-int ContactSolver::SolveVelocities(std::span<BodySim> bodies, int minIterations, int maxIterations,
-                                   double tolerance) {
-  int sweeps = 0;
-  for (; sweeps < minIterations; ++sweeps) {
-    for (const PairRows& pair : m_pairs) SolveNormals(bodies, pair);
-    for (const PairRows& pair : m_pairs) {
-      if (pair.hasFriction) SolveFriction(bodies, pair);
-    }
-  }
-  if (m_newPairs.empty()) return sweeps;
-  for (; sweeps < maxIterations; ++sweeps) {
-    m_largestChange = 0.0;
-    for (const PairRows& pair : m_pairs) SolveNormals(bodies, pair);
-    for (const PairRows& pair : m_pairs) {
-      if (pair.hasFriction) SolveFriction(bodies, pair);
-    }
-    if (m_largestChange <= tolerance) return sweeps + 1;
-  }
-  return sweeps;
-}
-
-void ContactSolver::SolveSplitImpulses(std::span<BodySim> bodies, int iterations) {
+void ContactSolver::SolveSplitImpulses(int iterations) {
   for (int it = 0; it < iterations; ++it) {
     for (const PairRows& pair : m_pairs) {
-      BodySim& a = bodies[static_cast<std::size_t>(pair.bodyA)];
-      BodySim& b = bodies[static_cast<std::size_t>(pair.bodyB)];
+      SolverVelocity& a = m_bodies.Pseudo(pair.bodyA);
+      SolverVelocity& b = m_bodies.Pseudo(pair.bodyB);
       for (int i = 0; i < pair.pointCount; ++i) {
-        PointRow& row = m_points[static_cast<std::size_t>(pair.firstPoint + i)];
-        if (row.positionTarget <= 0.0 && row.pseudoImpulse == 0.0) continue;
-        const double vn = pair.normal.dot(RelativeVelocity(a.pseudoLinear, a.pseudoAngular, row.rA,
-                                                           b.pseudoLinear, b.pseudoAngular, row.rB));
-        const double previous = row.pseudoImpulse;
-        row.pseudoImpulse = std::max(previous - row.normalMass * (vn - row.positionTarget), 0.0);
-        const Vec3 impulse = (row.pseudoImpulse - previous) * pair.normal;
-        a.pseudoLinear += pair.invMassA * impulse;
-        a.pseudoAngular += pair.invInertiaA * row.rA.cross(impulse);
-        b.pseudoLinear -= pair.invMassB * impulse;
-        b.pseudoAngular -= pair.invInertiaB * row.rB.cross(impulse);
+        const std::size_t p = static_cast<std::size_t>(pair.firstPoint + i);
+        PointCold& cold = m_cold[p];
+        if (cold.positionTarget <= 0.0 && cold.pseudoImpulse == 0.0) continue;
+        const NormalRow& row = m_normals[p];
+        const double vn = pair.normal.dot(a.v - b.v) + row.j.angularA.dot(a.w) - row.j.angularB.dot(b.w);
+        const double previous = cold.pseudoImpulse;
+        cold.pseudoImpulse = std::max(previous - row.mass * (vn - cold.positionTarget), 0.0);
+        const double delta = cold.pseudoImpulse - previous;
+        const Vec3 impulse = delta * pair.normal;
+        a.v += pair.invMassA * impulse;
+        a.w += delta * row.j.imageA;
+        b.v -= pair.invMassB * impulse;
+        b.w -= delta * row.j.imageB;
       }
     }
   }
-}
-
-void ContactSolver::NoteChange(const PairRows& pair, double impulse, double mass) {
-  if (!pair.persisted && mass > 0.0) m_largestChange = std::max(m_largestChange, std::abs(impulse) / mass);
 }
 
 namespace {
@@ -383,32 +247,32 @@ int ContactSolver::SolveNonlinearPositions(std::span<BodySim> bodies, int iterat
   for (; sweeps < iterations;) {
     double deepest = 0.0;
     for (const PairRows& pair : m_pairs) {
-      BodySim& a = bodies[static_cast<std::size_t>(pair.bodyA)];
-      BodySim& b = bodies[static_cast<std::size_t>(pair.bodyB)];
+      BodySim& a = bodies[static_cast<std::size_t>(m_bodies.BodyIndex(pair.bodyA))];
+      BodySim& b = bodies[static_cast<std::size_t>(m_bodies.BodyIndex(pair.bodyB))];
+      const Mat3& invInertiaA = m_bodies.InvInertia(pair.bodyA);
+      const Mat3& invInertiaB = m_bodies.InvInertia(pair.bodyB);
       const Vec3& n = pair.normal;
       for (int i = 0; i < pair.pointCount; ++i) {
-        const PointRow& row = m_points[static_cast<std::size_t>(pair.firstPoint + i)];
+        const PointCold& row = m_cold[static_cast<std::size_t>(pair.firstPoint + i)];
         const Vec3 rA = a.orientation * row.localAnchorA;
         const Vec3 rB = b.orientation * row.localAnchorB;
         const double depth = n.dot((b.center + rB) - (a.center + rA));
         deepest = std::max(deepest, depth);
         const double correction = std::clamp(beta * (depth - slop), 0.0, kMaxCorrection);
         if (correction <= 0.0) continue;
-        const double mass =
-            EffectiveMass(n, rA, rB, pair.invMassA, pair.invMassB, pair.invInertiaA, pair.invInertiaB);
+        const double mass = EffectiveMass(n, rA, rB, pair.invMassA, pair.invMassB, invInertiaA, invInertiaB);
         const Vec3 impulse = (mass * correction) * n;
         a.center += pair.invMassA * impulse;
         b.center -= pair.invMassB * impulse;
-        if (pair.invMassA > 0.0) Turn(a.orientation, pair.invInertiaA * rA.cross(impulse));
-        if (pair.invMassB > 0.0) Turn(b.orientation, -(pair.invInertiaB * rB.cross(impulse)));
+        if (pair.invMassA > 0.0) Turn(a.orientation, invInertiaA * rA.cross(impulse));
+        if (pair.invMassB > 0.0) Turn(b.orientation, -(invInertiaB * rB.cross(impulse)));
       }
     }
     ++sweeps;
     if (deepest <= 3.0 * slop) break;
   }
-  for (const PairRows& pair : m_pairs) {
-    if (pair.invMassA > 0.0) bodies[static_cast<std::size_t>(pair.bodyA)].UpdateWorldInertia();
-    if (pair.invMassB > 0.0) bodies[static_cast<std::size_t>(pair.bodyB)].UpdateWorldInertia();
+  for (int i = 0; i < m_bodies.Count(); ++i) {
+    if (m_bodies.Moves(i)) bodies[static_cast<std::size_t>(m_bodies.BodyIndex(i))].UpdateWorldInertia();
   }
   return sweeps;
 }
@@ -417,13 +281,15 @@ void ContactSolver::StoreImpulses(std::span<Contact> contacts) const {
   for (const PairRows& pair : m_pairs) {
     Contact& contact = contacts[static_cast<std::size_t>(pair.contact)];
     for (int i = 0; i < pair.pointCount; ++i) {
-      const PointRow& row = m_points[static_cast<std::size_t>(pair.firstPoint + i)];
       const std::size_t pi = static_cast<std::size_t>(i);
-      contact.normalImpulse[pi] = row.normalImpulse;
-      contact.frictionImpulse[pi] =
-          pair.hasFriction
-              ? Vec3(row.tangentImpulse[0] * pair.tangent[0] + row.tangentImpulse[1] * pair.tangent[1])
-              : Vec3::Zero();
+      contact.normalImpulse[pi] = m_normals[static_cast<std::size_t>(pair.firstPoint + i)].impulse;
+      if (pair.hasFriction) {
+        const std::size_t f = static_cast<std::size_t>(pair.firstFriction + 2 * i);
+        contact.frictionImpulse[pi] =
+            m_frictions[f].impulse * pair.tangent[0] + m_frictions[f + 1].impulse * pair.tangent[1];
+      } else {
+        contact.frictionImpulse[pi] = Vec3::Zero();
+      }
     }
   }
 }

@@ -23,9 +23,9 @@
 //
 // Block solve (option, default on). A pair's 2-4 normal rows are solved
 //   together: dlambda = K+ (target - J v), K = J M^-1 J^T (4x4, rank 3 for
-//   coplanar points, so its pseudo-inverse, from an eigen decomposition in
-//   Prepare), accepted when every accumulated impulse stays >= 0, else row
-//   by row. Box2D v2.4's two-point block solver extended to four points.
+//   four coplanar points, so its pseudo-inverse, from an eigen decomposition
+//   in Prepare), accepted when every accumulated impulse stays >= 0, else
+//   row by row. Box2D v2.4's two-point block solver extended to four points.
 //
 // Extra sweeps. In a step with new pairs (no impulses to warm start from)
 //   the sweeps go on past the minimum until the new pairs' rows change by
@@ -57,11 +57,26 @@
 //   agree on the positions instead of each fixing a stale depth, and no
 //   velocity is left behind, so the slop can be 0.2 mm.
 //
-// Data: Prepare() builds one ContactRows header per touching pair and one
-// PointRow per point in two dense vectors that keep their capacity between
-// steps; the iterations walk those arrays and never allocate. Pairs where
-// neither body can move under contact (static, kinematic, asleep) build no
-// rows; mu == 0 builds no friction rows, e == 0 no restitution work.
+// Data (the layout the sweeps walk; see docs/dynamics.md). Prepare()
+//   gathers the velocities of every body a row touches into SolverBodies
+//   (48 bytes each; bodies contacts cannot move keep zero inverse mass and
+//   inertia there, so the sweep needs no branch and never writes them) and
+//   builds, in dense vectors that keep their capacity between steps:
+//   * one PairRows header per touching pair (solver-body indices, normal,
+//     tangents, inverse masses, friction, flags);
+//   * one NormalRow per point and two FrictionRows per point (one per
+//     tangent), each with its Jacobian's angular parts r x d precomputed
+//     together with their images under the inverse inertia, IA^-1 (rA x d)
+//     and IB^-1 (rB x d). A row is then
+//       Cdot = d.(vA - vB) + (rA x d).wA - (rB x d).wB     (two dot products)
+//       vA += mA^-1 dl d, wA += dl IA^-1 (rA x d), B the opposite (axpys),
+//     no cross product and no matrix product inside the sweep;
+//   * cold per-point data (anchors for the position pass, split-impulse
+//     target and impulse) and the block pseudo-inverses apart.
+//   The iterations never allocate. After the sweeps Scatter() writes the
+//   solver bodies' velocities back. Pairs where neither body can move under
+//   contact (static, kinematic, asleep) build no rows; mu == 0 builds no
+//   friction rows, e == 0 no restitution work.
 #pragma once
 
 #include <span>
@@ -69,6 +84,7 @@
 
 #include "dynamics/body_sim.h"
 #include "dynamics/contact.h"
+#include "dynamics/solver_body.h"
 #include "talus/step_statistics.h"
 #include "talus/world_settings.h"
 
@@ -76,20 +92,25 @@ namespace talus {
 
 class ContactSolver {
  public:
-  /// Builds the rows of `contacts` for a step of `h` seconds from the bodies'
-  /// current velocities, loading the accumulated impulses (zero, or last
+  /// Builds the rows of `contacts` for a step of `h` seconds and gathers the
+  /// velocities of their bodies from `bodies` (the solver works on its own
+  /// copy until Scatter), loading the accumulated impulses (zero, or last
   /// step's when warm starting). Adds its counts to `stats`.
   void Prepare(std::span<const BodySim> bodies, std::span<const Contact> contacts,
                const WorldSettings& settings, double h, StepStatistics& stats);
-  /// Applies the loaded impulses to the bodies (warm start).
-  void WarmStart(std::span<BodySim> bodies) const;
+  /// Applies the loaded impulses to the gathered velocities (warm start).
+  void WarmStart();
   /// Runs `minIterations` Gauss-Seidel sweeps over all rows, then, if some
   /// pair is new (not persisted), more while the last one changed a row of
   /// a new pair by more than `tolerance` (m/s), up to `maxIterations` sweeps
   /// in all. Returns the sweeps run.
-  int SolveVelocities(std::span<BodySim> bodies, int minIterations, int maxIterations, double tolerance);
+  int SolveVelocities(int minIterations, int maxIterations, double tolerance);
   /// Runs `iterations` sweeps of the split-impulse pseudo-velocity rows.
-  void SolveSplitImpulses(std::span<BodySim> bodies, int iterations);
+  void SolveSplitImpulses(int iterations);
+  /// Writes the solved velocities of the bodies contacts can move back to
+  /// `bodies` (the array handed to Prepare), with `pseudo` the split-impulse
+  /// pseudo velocities too. Bodies without rows are not touched.
+  void Scatter(std::span<BodySim> bodies, bool pseudo) const;
   /// Non-linear Gauss-Seidel on the bodies' poses after the position update:
   /// at most `iterations` sweeps, stopping after the first sweep that found
   /// no point deeper than 3 `slop`; `beta` in [0, 1], `slop` in metres.
@@ -100,48 +121,72 @@ class ContactSolver {
   void StoreImpulses(std::span<Contact> contacts) const;
 
   /// Number of point rows built by the last Prepare.
-  [[nodiscard]] int PointCount() const { return static_cast<int>(m_points.size()); }
+  [[nodiscard]] int PointCount() const { return static_cast<int>(m_normals.size()); }
 
  private:
-  struct PointRow {
-    Vec3 rA = Vec3::Zero();   ///< metres, from A's centre of mass
-    Vec3 rB = Vec3::Zero();   ///< metres, from B's centre of mass
-    double normalMass = 0.0;  ///< kg
-    double tangentMass[2] = {0.0, 0.0};
-    double target = 0.0;          ///< m/s, least normal separation speed
-    double positionTarget = 0.0;  ///< m/s, split-impulse pseudo target
-    double normalImpulse = 0.0;   ///< N s, accumulated
-    double tangentImpulse[2] = {0.0, 0.0};
-    double pseudoImpulse = 0.0;
+  /// One row along direction d (the normal or a tangent) at one point:
+  /// the angular parts of J and their images under the inverse inertia.
+  struct RowJacobian {
+    Vec3 angularA = Vec3::Zero();  ///< rA x d, metres
+    Vec3 angularB = Vec3::Zero();  ///< rB x d, metres
+    Vec3 imageA = Vec3::Zero();    ///< IA^-1 (rA x d), 1/(kg m); zero when A cannot move
+    Vec3 imageB = Vec3::Zero();    ///< IB^-1 (rB x d), 1/(kg m); zero when B cannot move
+  };
+  struct NormalRow {
+    RowJacobian j;
+    double mass = 0.0;     ///< kg, effective mass
+    double target = 0.0;   ///< m/s, least normal separation speed
+    double impulse = 0.0;  ///< N s, accumulated
+  };
+  struct FrictionRow {
+    RowJacobian j;
+    double mass = 0.0;     ///< kg, effective mass
+    double impulse = 0.0;  ///< N s, accumulated
+  };
+  /// Per point, read only by the position passes and the split impulses.
+  struct PointCold {
+    double positionTarget = 0.0;       ///< m/s, split-impulse pseudo target
+    double pseudoImpulse = 0.0;        ///< N s, accumulated split impulse
     Vec3 localAnchorA = Vec3::Zero();  ///< A's surface point, A's axes, from its centre of mass
     Vec3 localAnchorB = Vec3::Zero();  ///< B's surface point, B's axes, from its centre of mass
   };
   struct PairRows {
-    int contact = -1;  ///< index into the contacts handed to Prepare
-    int bodyA = -1, bodyB = -1;
+    int bodyA = -1, bodyB = -1;  ///< solver-body indices
     int firstPoint = 0, pointCount = 0;
+    int firstFriction = 0;  ///< index into m_frictions of point 0's t1 row (t2 follows)
+    int block = -1;         ///< index into m_blockInverses, -1 when solved row by row
+    int contact = -1;       ///< index into the contacts handed to Prepare
     Vec3 normal = Vec3::Zero();
     Vec3 tangent[2] = {Vec3::Zero(), Vec3::Zero()};
+    double invMassA = 0.0, invMassB = 0.0;  ///< 1/kg; zero for bodies contacts cannot move
     double friction = 0.0;
     bool hasFriction = false;
-    double invMassA = 0.0, invMassB = 0.0;
-    Mat3 invInertiaA = Mat3::Zero();  ///< world axes; zero for bodies contacts cannot move
-    Mat3 invInertiaB = Mat3::Zero();
-    bool block = false;      ///< normal rows solved together through blockInverse
     bool persisted = false;  ///< the pair touched last step (see Contact::persisted)
-    Eigen::Matrix4d blockInverse = Eigen::Matrix4d::Zero();
   };
 
-  void SolveNormals(std::span<BodySim> bodies, const PairRows& pair);
-  bool SolveNormalBlock(std::span<BodySim> bodies, const PairRows& pair);
-  void PrepareBlock(PairRows& pair) const;
+  static RowJacobian MakeJacobian(const Vec3& d, const Vec3& rA, const Vec3& rB, const Mat3& invInertiaA,
+                                  const Mat3& invInertiaB);
+  /// 1 / (J M^-1 J^T) of a row (the effective mass), kg; 0 when nothing can move.
+  static double RowMass(const RowJacobian& j, const PairRows& pair);
+  void PrepareBlock(PairRows& pair);
+  template <bool kTrack>
+  void SolveNormals(const PairRows& pair);
+  template <bool kTrack>
+  bool SolveNormalBlock(const PairRows& pair);
+  template <bool kTrack>
+  void SolveFriction(const PairRows& pair);
+  template <bool kTrack>
+  void Sweep();
   /// Records the velocity change (impulse / mass) of a row of a new pair.
   void NoteChange(const PairRows& pair, double impulse, double mass);
-  void SolveFriction(std::span<BodySim> bodies, const PairRows& pair);
 
+  SolverBodies m_bodies;
   std::vector<PairRows> m_pairs;
-  std::vector<PointRow> m_points;
-  std::vector<int> m_newPairs;   ///< indices into m_pairs of pairs that did not persist
+  std::vector<NormalRow> m_normals;      ///< one per point
+  std::vector<FrictionRow> m_frictions;  ///< two per point (t1, t2) of the pairs with friction
+  std::vector<PointCold> m_cold;         ///< one per point
+  std::vector<Eigen::Matrix4d> m_blockInverses;
+  int m_newPairs = 0;            ///< pairs that did not persist
   double m_largestChange = 0.0;  ///< m/s, the largest row velocity change of this sweep
 };
 

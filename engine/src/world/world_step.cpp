@@ -55,16 +55,20 @@ void PrepareContacts(WorldData& d, double h, StepStatistics& stats) {
 
 void SolveVelocities(WorldData& d, StepStatistics& stats) {
   const WorldSettings& s = d.settings;
-  if (s.warmStarting) d.solver.WarmStart(d.sims);
+  if (s.warmStarting) d.solver.WarmStart();
   stats.velocitySweeps =
-      d.solver.SolveVelocities(d.sims, s.velocityIterations, s.maxVelocityIterations, s.velocityTolerance);
+      d.solver.SolveVelocities(s.velocityIterations, s.maxVelocityIterations, s.velocityTolerance);
 }
 
+// The solver works on its own gathered copy of the velocities; they go back
+// to the bodies here, before the position update reads them.
 void SolvePositions(WorldData& d, StepStatistics& stats) {
-  if (d.settings.positionCorrection == PositionCorrection::SplitImpulses) {
-    d.solver.SolveSplitImpulses(d.sims, d.settings.positionIterations);
+  const bool split = d.settings.positionCorrection == PositionCorrection::SplitImpulses;
+  if (split) {
+    d.solver.SolveSplitImpulses(d.settings.positionIterations);
     stats.positionSweeps = d.settings.positionIterations;
   }
+  d.solver.Scatter(d.sims, split);
   d.solver.StoreImpulses(d.contacts);
 }
 
