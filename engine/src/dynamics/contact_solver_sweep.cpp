@@ -22,6 +22,40 @@
 
 namespace talus {
 
+namespace {
+
+// The velocities of a pair's two bodies, loaded into locals once per pass
+// over the pair's rows and stored at its end.
+struct PairVelocities {
+  Vec3 vA, wA, vB, wB;
+
+  static PairVelocities Load(const SolverVelocity& a, const SolverVelocity& b) {
+    return {a.v, a.w, b.v, b.w};
+  }
+  void Store(SolverVelocity& a, SolverVelocity& b) const {
+    a.v = vA;
+    a.w = wA;
+    b.v = vB;
+    b.w = wB;
+  }
+  /// Cdot of the row along `d` with Jacobian terms `j`.
+  template <typename Jacobian>
+  [[nodiscard]] double Along(const Vec3& d, const Jacobian& j) const {
+    return d.dot(vA - vB) + j.angularA.dot(wA) - j.angularB.dot(wB);
+  }
+  /// Adds the impulse `delta` along `d`: +d on A, -d on B.
+  template <typename Jacobian>
+  void Apply(double delta, const Vec3& d, const Jacobian& j, double invMassA, double invMassB) {
+    const Vec3 impulse = delta * d;
+    vA += invMassA * impulse;
+    wA += delta * j.imageA;
+    vB -= invMassB * impulse;
+    wB -= delta * j.imageB;
+  }
+};
+
+}  // namespace
+
 // K = J M^-1 J^T of the pair's normal rows, from the rows' precomputed
 // angular terms and images, and its pseudo-inverse from an eigen
 // decomposition: eigenvalues below 1e-9 of the largest count as zero (four
@@ -83,21 +117,14 @@ bool ContactSolver::SolveNormalBlock(const PairRows& pair) {
   for (int i = 0; i < pair.pointCount; ++i) {
     if (lambda[i] + delta[i] < 0.0) return false;
   }
-  Vec3 vA = a.v, wA = a.w, vB = b.v, wB = b.w;
+  PairVelocities v = PairVelocities::Load(a, b);
   for (int i = 0; i < pair.pointCount; ++i) {
     NormalRow& row = rows[i];
     row.impulse = lambda[i] + delta[i];
     if constexpr (kTrack) NoteChange(pair, delta[i], row.mass);
-    const Vec3 impulse = delta[i] * n;
-    vA += pair.invMassA * impulse;
-    wA += delta[i] * row.j.imageA;
-    vB -= pair.invMassB * impulse;
-    wB -= delta[i] * row.j.imageB;
+    v.Apply(delta[i], n, row.j, pair.invMassA, pair.invMassB);
   }
-  a.v = vA;
-  a.w = wA;
-  b.v = vB;
-  b.w = wB;
+  v.Store(a, b);
   return true;
 }
 
@@ -107,26 +134,19 @@ void ContactSolver::SolveNormals(const PairRows& pair) {
   if (pair.block >= 0 && SolveNormalBlock<kTrack>(pair)) return;
   SolverVelocity& a = m_bodies.Velocity(pair.bodyA);
   SolverVelocity& b = m_bodies.Velocity(pair.bodyB);
-  Vec3 vA = a.v, wA = a.w, vB = b.v, wB = b.w;
+  PairVelocities v = PairVelocities::Load(a, b);
   NormalRow* rows = &m_normals[static_cast<std::size_t>(pair.firstPoint)];
   const Vec3& n = pair.normal;
   for (int i = 0; i < pair.pointCount; ++i) {
     NormalRow& row = rows[i];
-    const double vn = n.dot(vA - vB) + row.j.angularA.dot(wA) - row.j.angularB.dot(wB);
+    const double vn = v.Along(n, row.j);
     const double previous = row.impulse;
     row.impulse = std::max(previous - row.mass * (vn - row.target), 0.0);
     const double delta = row.impulse - previous;
     if constexpr (kTrack) NoteChange(pair, delta, row.mass);
-    const Vec3 impulse = delta * n;
-    vA += pair.invMassA * impulse;
-    wA += delta * row.j.imageA;
-    vB -= pair.invMassB * impulse;
-    wB -= delta * row.j.imageB;
+    v.Apply(delta, n, row.j, pair.invMassA, pair.invMassB);
   }
-  a.v = vA;
-  a.w = wA;
-  b.v = vB;
-  b.w = wB;
+  v.Store(a, b);
 }
 
 // The friction rows of one pair, each bounded by mu times its point's
@@ -135,7 +155,7 @@ template <bool kTrack>
 void ContactSolver::SolveFriction(const PairRows& pair) {
   SolverVelocity& a = m_bodies.Velocity(pair.bodyA);
   SolverVelocity& b = m_bodies.Velocity(pair.bodyB);
-  Vec3 vA = a.v, wA = a.w, vB = b.v, wB = b.w;
+  PairVelocities v = PairVelocities::Load(a, b);
   const NormalRow* normals = &m_normals[static_cast<std::size_t>(pair.firstPoint)];
   FrictionRow* rows = &m_frictions[static_cast<std::size_t>(pair.firstFriction)];
   for (int i = 0; i < pair.pointCount; ++i) {
@@ -143,22 +163,15 @@ void ContactSolver::SolveFriction(const PairRows& pair) {
     for (int k = 0; k < 2; ++k) {
       FrictionRow& row = rows[2 * i + k];
       const Vec3& t = pair.tangent[k];
-      const double vt = t.dot(vA - vB) + row.j.angularA.dot(wA) - row.j.angularB.dot(wB);
+      const double vt = v.Along(t, row.j);
       const double old = row.impulse;
       row.impulse = std::clamp(old - row.mass * vt, -bound, bound);
       const double delta = row.impulse - old;
       if constexpr (kTrack) NoteChange(pair, delta, row.mass);
-      const Vec3 impulse = delta * t;
-      vA += pair.invMassA * impulse;
-      wA += delta * row.j.imageA;
-      vB -= pair.invMassB * impulse;
-      wB -= delta * row.j.imageB;
+      v.Apply(delta, t, row.j, pair.invMassA, pair.invMassB);
     }
   }
-  a.v = vA;
-  a.w = wA;
-  b.v = vB;
-  b.w = wB;
+  v.Store(a, b);
 }
 
 template <bool kTrack>
