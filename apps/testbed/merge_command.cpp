@@ -46,21 +46,13 @@ int Merge(const MergeOptions& options) {
   }
   const std::vector<harness::SweepGroup> groups =
       harness::AnalyseSweep(merged.Value(), harness::kSweepSingleSetting);
-  std::error_code error;
-  fs::create_directories(options.out, error);
   const std::pair<const char*, std::string> files[] = {
       {"results.json", harness::ResultsToJson(merged.Value())},
       {"sweep.json", harness::SweepToJson(groups)},
       {"sweep.md", harness::SweepMarkdown(groups)},
   };
   for (const auto& [name, text] : files) {
-    std::ofstream out(fs::path(options.out) / name, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) {
-      std::cerr << "talus-testbed: " << (fs::path(options.out) / name).string() << ": cannot write\n";
-      return kExitBadInput;
-    }
+    if (!WriteText(fs::path(options.out) / name, text)) return kExitBadInput;
   }
   std::cout << "merged " << shards.size() << " shards: " << merged.Value().results.size()
             << " results\nresults: " << (fs::path(options.out) / "results.json").string() << "\n";

@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -86,8 +85,6 @@ int Stress(const StressOptions& options) {
       entries.push_back(std::move(entry));
     }
   }
-  std::error_code error;
-  fs::create_directories(options.out, error);
   const std::string markdown = harness::StressMarkdown(entries);
   const std::pair<const char*, std::string> files[] = {
       {"stress.md", markdown},
@@ -95,13 +92,7 @@ int Stress(const StressOptions& options) {
       {"stress.html", harness::StressHtml(entries)},
   };
   for (const auto& [name, text] : files) {
-    std::ofstream out(fs::path(options.out) / name, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) {
-      std::cerr << "talus-testbed: " << (fs::path(options.out) / name).string() << ": cannot write\n";
-      return kExitBadInput;
-    }
+    if (!WriteText(fs::path(options.out) / name, text)) return kExitBadInput;
   }
   std::cout << markdown << "\nstress: " << (fs::path(options.out) / "stress.html").string() << "\n";
   return kExitOk;

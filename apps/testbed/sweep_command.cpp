@@ -34,16 +34,6 @@ struct SweepOptions {
   bool quiet = false;
 };
 
-bool WriteText(const fs::path& path, const std::string& text) {
-  std::error_code error;
-  if (!path.parent_path().empty()) fs::create_directories(path.parent_path(), error);
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) std::cerr << "talus-testbed: " << path.string() << ": cannot write\n";
-  return static_cast<bool>(out);
-}
-
 int Sweep(const SweepOptions& options) {
   harness::Shard shard;
   if (!options.shard.empty()) {
@@ -124,6 +114,16 @@ int Sweep(const SweepOptions& options) {
 }
 
 }  // namespace
+
+bool WriteText(const fs::path& path, const std::string& text) {
+  std::error_code error;
+  if (!path.parent_path().empty()) fs::create_directories(path.parent_path(), error);
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) std::cerr << "talus-testbed: " << path.string() << ": cannot write\n";
+  return static_cast<bool>(out);
+}
 
 const harness::BackendRegistry& AllBackends() {
   static const harness::BackendRegistry registry = [] {

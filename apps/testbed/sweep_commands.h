@@ -6,7 +6,9 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <functional>
+#include <string>
 
 #include "talus/harness/backend.h"
 
@@ -18,6 +20,10 @@ using CommandAction = std::function<int()>;
 void AddSweepCommand(CLI::App& app, CommandAction& chosen);
 void AddMergeCommand(CLI::App& app, CommandAction& chosen);
 void AddStressCommand(CLI::App& app, CommandAction& chosen);
+
+/// Writes `text` to `path`, creating its folder; false (after printing
+/// "talus-testbed: PATH: cannot write" on stderr) when it fails.
+bool WriteText(const std::filesystem::path& path, const std::string& text);
 
 /// Every backend the testbed knows (Talus's variants, Bullet, ODE).
 const harness::BackendRegistry& AllBackends();

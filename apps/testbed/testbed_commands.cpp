@@ -9,32 +9,19 @@
 #include <optional>
 #include <thread>
 
+#include "sweep_commands.h"
 #include "talus/harness/bench_report_json.h"
 #include "talus/harness/regression_check.h"
 #include "talus/harness/report.h"
 #include "talus/harness/results_file.h"
 #include "talus/harness/runner.h"
 #include "talus/harness/stress.h"
-#include "talus/reference/bullet_backend.h"
-#include "talus/reference/ode_backend.h"
-#include "talus/reference/talus_backend.h"
 
 namespace talus::testbed {
 namespace {
 
 namespace fs = std::filesystem;
 using harness::ResultsFile;
-
-const harness::BackendRegistry& Registry() {
-  static const harness::BackendRegistry registry = [] {
-    harness::BackendRegistry r;
-    reference::RegisterTalusBackends(r);
-    reference::RegisterBulletBackends(r);
-    reference::RegisterOdeBackends(r);
-    return r;
-  }();
-  return registry;
-}
 
 int Jobs(int asked) {
   if (asked > 0) return asked;
@@ -72,7 +59,7 @@ std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
   if (!quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   // Shown even with --quiet: a run that ran nowhere must not vanish unseen.
   options.notice = [](const std::string& line) { std::cout << "talus-testbed: " << line << "\n"; };
-  auto results = harness::RunAll(Registry(), runs.Value(), options);
+  auto results = harness::RunAll(AllBackends(), runs.Value(), options);
   if (!results) {
     std::cerr << "talus-testbed: " << results.GetError().message << "\n";
     return std::nullopt;
