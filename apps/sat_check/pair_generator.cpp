@@ -135,7 +135,7 @@ std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
     auto alignment = static_cast<Alignment>(draw.Integer(0, 2));
     if (family == Family::Parallel) alignment = Alignment::Face;
     if (family == Family::Identical) {
-      alignment = Alignment::Random;
+      alignment = Alignment::Face;
       placement = Placement::Shallow;
     }
     const double size = std::min(LargestExtent(a), LargestExtent(b));
@@ -144,9 +144,7 @@ std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
     Quat rotationB = draw.Rotation();
     // n: the direction from B towards A along which the pair is placed.
     Vec3 n = draw.UnitVector();
-    if (family == Family::Identical) {
-      rotationB = rotationA;
-    } else if (alignment == Alignment::Face) {
+    if (alignment == Alignment::Face) {
       rotationB = rotationA;
       // A face normal of A (for a box one of its axes), reversed: B sits
       // against that face.
@@ -187,6 +185,9 @@ std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
     Vec3 lateral = draw.UnitVector();
     lateral -= n * n.dot(lateral);
     lateral *= draw.Uniform(0.0, 0.3) * size;
+    // Identical shapes go straight along the face normal: a copy moved
+    // sideways off a curved face need not touch at all.
+    if (family == Family::Identical) lateral = Vec3::Zero();
     // Along n, B's extent (towards A) and A's (towards B) meet at gap 0.
     const double reach = SupportDistance(b, rotationB, n) + SupportDistance(a, rotationA, -n);
     const double along = reach + gap;

@@ -19,8 +19,10 @@
 //   coordinates);
 // - parallel: face-aligned pairs with B turned by 1e-6 rad about a random
 //   axis (nearly parallel faces: a face of A and one of B almost tie);
-// - identical: A and B the same shape at the same rotation, overlapping by
-//   1e-5 to 1e-2 of the size in a random direction (every face ties);
+// - identical: A and B the same shape at the same rotation, B placed along
+//   a face normal of A (no sideways offset) to overlap by 1e-5 to 1e-2 of
+//   the size along it (every face ties; the truth decides whether a hull's
+//   copy touches);
 // - slab: a thin box (3.4 x 0.004 x 2.8 m at scale 1, scale 0.25-2)
 //   against a 36-point hull, so a deepest vertex can pass through the slab.
 #pragma once

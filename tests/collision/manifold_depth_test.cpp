@@ -1,7 +1,7 @@
 // The manifold carries the SAT's depth and its points lie in both shapes,
 // over random pairs and the adversarial ones of issue 15: a thin slab
-// against a round hull, 1 mm hulls and faces turned 1e-6 rad from parallel
-// (identical overlapping hulls are the SAT check's `identical` family). The oracle for the depth is the
+// against a round hull, identical hulls barely overlapping, 1 mm hulls and
+// faces turned 1e-6 rad from parallel. The oracle for the depth is the
 // brute-force least overlap over every candidate axis (sat_test_fixtures.h),
 // which shares no code with the SAT's search.
 #include <gtest/gtest.h>
@@ -113,21 +113,21 @@ std::vector<Pair> RandomPairs(std::uint64_t seed, int count, double scale, const
 
 // The random pairs here overlap up to nearly concentric. Their depths and
 // deepest points are asserted; their point positions are not: a few very
-// deep ones (3 manifolds in these 350 pairs, single edge-contact points
+// deep ones (3 manifolds in 350 such pairs, single edge-contact points
 // and one face contact) still put a point outside both shapes, because the
 // line along the normal through it misses the intersection. Known gap,
 // docs/collision-narrow-phase.md; the SAT check's pairs (overlap up to 0.8
 // of the size) and the adversarial families below assert positions.
 TEST(ManifoldDepth, RandomPairsCarryTheSatDepth) {
-  CheckAllModes(RandomPairs(1, 150, 1.0, Vec3::Zero()), 60, false);
+  CheckAllModes(RandomPairs(1, 80, 1.0, Vec3::Zero()), 30, false);
 }
 
 TEST(ManifoldDepth, MillimetreHullsKeepTheirRelativeAccuracy) {
-  CheckAllModes(RandomPairs(2, 100, 1e-3, Vec3(2e-3, 0.0, 1e-3)), 40, false);
+  CheckAllModes(RandomPairs(2, 60, 1e-3, Vec3(2e-3, 0.0, 1e-3)), 20, false);
 }
 
 TEST(ManifoldDepth, PairsFarFromTheOriginKeepRoundOffBounds) {
-  CheckAllModes(RandomPairs(3, 100, 0.5, Vec3(3e4, -5e4, 2e4)), 40, false);
+  CheckAllModes(RandomPairs(3, 60, 0.5, Vec3(3e4, -5e4, 2e4)), 20, false);
 }
 
 TEST(ManifoldDepth, ThinSlabAgainstARoundHull) {
@@ -144,6 +144,27 @@ TEST(ManifoldDepth, ThinSlabAgainstARoundHull) {
     pairs.push_back({slab, test::HullShape(points), Transform{}, xfB});
   }
   CheckAllModes(pairs, 20);
+}
+
+TEST(ManifoldDepth, IdenticalHullsBarelyOverlapping) {
+  // Two copies of one hull at the same rotation, the second moved along a
+  // face normal of the first until they overlap along it by 4.3e-5 m
+  // (issue 15: one point at depth 0) or other small amounts; whether a
+  // copy off a curved face touches at all is left to the SAT (the oracle
+  // checks it either way).
+  std::mt19937_64 rng(5);
+  std::vector<Pair> pairs;
+  for (int i = 0; i < 60; ++i) {
+    const Shape hull = test::HullShape(test::CloudPoints(rng, 12 + static_cast<int>(rng() % 20)));
+    const Transform xfA{.position = Vec3::Zero(), .rotation = test::RandomRotation(rng)};
+    const PosedHull posed = PosedHull::Make(hull.GetHull(), xfA);
+    const Vec3 m =
+        posed.FaceNormal(static_cast<int>(rng() % static_cast<unsigned>(hull.GetHull().FaceCount())));
+    const double width = test::BruteSupport(posed, m) + test::BruteSupport(posed, -m);
+    const double overlap = i == 0 ? 4.3e-5 : std::pow(10.0, -5.0 + 3.0 * unit01(rng));
+    pairs.push_back({hull, hull, xfA, {.position = m * (width - overlap), .rotation = xfA.rotation}});
+  }
+  CheckAllModes(pairs, 15);
 }
 
 TEST(ManifoldDepth, FacesTurnedAMicroradianFromParallel) {

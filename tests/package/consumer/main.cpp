@@ -1,8 +1,11 @@
-// Builds a box hull through the installed public API and checks its volume.
+// Builds a box hull through the installed public API and checks it, then
+// runs README's pair-query example (collide_two_boxes.h).
 #include <cmath>
 #include <cstdio>
 
 #include <talus/hull.h>
+
+#include "collide_two_boxes.h"
 
 int main() {
   auto box = talus::Hull::Box({0.5, 1.0, 1.5});
@@ -11,5 +14,11 @@ int main() {
     return 1;
   }
   std::printf("consumer: box with %d faces\n", box.Value().FaceCount());
+  // README's pair-query example, against the installed headers.
+  const double depth = CollideTwoBoxes();
+  if (!(std::abs(depth - 0.02) < 1e-12)) {
+    std::fprintf(stderr, "consumer: pair query depth %g, expected 0.02\n", depth);
+    return 1;
+  }
   return 0;
 }
