@@ -54,6 +54,11 @@ bool Contains(const PosedHull& hull, const Vec3& p, double tolerance) {
 // by a round-off rate would give a garbage bound.
 constexpr double kParallelFaceCosine = 1e-9;
 
+// A clipped point's normal line misses the shapes' intersection only by
+// more than this fraction of the pair's size (the exactness the SAT check
+// asks of positions).
+constexpr double kMissRelative = 1e-9;
+
 // The parameters t for which p + t * n lies inside `hull` (n unit, world):
 // [*lo, *hi], empty when *lo > *hi. A face parallel to the line excludes it
 // only when p is farther out than the hull's own tolerance.
@@ -75,6 +80,14 @@ void LineInterval(const PosedHull& hull, const Vec3& p, const Vec3& n, double* l
   }
 }
 
+// How far world point p lies outside `hull` (metres; <= 0 inside).
+double OutsideDistance(const PosedHull& hull, const Vec3& p) {
+  const Vec3 local = hull.rotation.transpose() * (p - hull.position);
+  double worst = -std::numeric_limits<double>::infinity();
+  for (const HullFace& face : hull.hull->Faces()) worst = std::max(worst, face.plane.SignedDistance(local));
+  return worst;
+}
+
 // A contact point's position: `midpoint` (midway between the surfaces
 // along n) unless it lies outside A or B, then the nearest point on the
 // same line that is inside both. The line along the normal through a
@@ -86,7 +99,8 @@ void LineInterval(const PosedHull& hull, const Vec3& p, const Vec3& n, double* l
 // the point sits on an edge or corner of both, or for a point on a
 // non-minimal axis), the point goes midway between the two intervals,
 // where it is least outside either.
-Vec3 InsideBoth(const PosedHull& a, const PosedHull& b, const Vec3& n, const Vec3& midpoint) {
+Vec3 InsideBoth(const PosedHull& a, const PosedHull& b, const Vec3& n, const Vec3& midpoint,
+                bool* missed = nullptr) {
   double loA = 0.0;
   double hiA = 0.0;
   double loB = 0.0;
@@ -95,9 +109,28 @@ Vec3 InsideBoth(const PosedHull& a, const PosedHull& b, const Vec3& n, const Vec
   LineInterval(b, midpoint, n, &loB, &hiB);
   const double lo = std::max(loA, loB);
   const double hi = std::min(hiA, hiB);
+  if (missed) *missed = false;
   if (lo <= 0.0 && 0.0 <= hi) return midpoint;
-  if (!std::isfinite(lo) || !std::isfinite(hi)) return midpoint;
-  if (lo > hi) return midpoint + 0.5 * (lo + hi) * n;
+  if (!std::isfinite(lo) || !std::isfinite(hi)) {
+    if (missed) *missed = true;
+    return midpoint;
+  }
+  if (lo > hi) {
+    // A line through a corner or along an edge of both meets them in one
+    // point, which round-off (divided by a small rate) can turn into an
+    // empty interval; so a miss is judged by how far outside the shapes
+    // the best point of the line is: more than 1e-9 of the pair's size
+    // plus round-off of the coordinates.
+    const Vec3 between = midpoint + 0.5 * (lo + hi) * n;
+    if (missed) {
+      const double size = SatLengthScale(*a.hull, *b.hull);
+      const double roundOff = kDepthRoundOffUlps * std::numeric_limits<double>::epsilon() *
+                              (between.cwiseAbs().maxCoeff() + size);
+      *missed = std::max(OutsideDistance(a, between), OutsideDistance(b, between)) >
+                kMissRelative * size + roundOff;
+    }
+    return between;
+  }
   return midpoint + std::clamp(0.0, lo, hi) * n;
 }
 
@@ -251,8 +284,16 @@ int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double de
   for (const ClipVertex& c : polygon) {
     const double s = contact.plane.SignedDistance(c.position);
     if (s > margin) continue;
+    // A clipped point whose normal line misses the intersection of the two
+    // shapes is not in contact: the incident face passes below a rim of
+    // the reference shape that is thinner there than the depth (a round
+    // hull's leaning sides under the reference face's edge). It is
+    // dropped; the deepest vertex below keeps the manifold non-empty.
+    bool missed = false;
+    const Vec3 position = InsideBoth(a, b, normal, c.position - 0.5 * s * n, &missed);
+    if (missed && s < 0.0) continue;  // a speculative point (s >= 0) lies in the gap by design
     deepestKept = std::max(deepestKept, -s);
-    kept.push_back({.position = InsideBoth(a, b, normal, c.position - 0.5 * s * n),
+    kept.push_back({.position = position,
                     .depth = -s,
                     .featureId = OrderedFeatureId(contact, c.referenceFeature, c.incidentFeature)});
   }
@@ -262,7 +303,7 @@ int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double de
   const Vec3 deepestVertex = inc.Vertex(deepest);
   const double roundOff = kDepthRoundOffUlps * std::numeric_limits<double>::epsilon() *
                           (std::abs(contact.plane.offset) + deepestVertex.cwiseAbs().maxCoeff());
-  if (deepestKept < depth - roundOff) {
+  if (deepestKept < depth - roundOff || kept.empty()) {
     // The deepest vertex was clipped away (it lies beside the reference
     // face: possible on an axis kept inside the preference band, or when
     // round-off clips a grazing contact away entirely): add it, so the
