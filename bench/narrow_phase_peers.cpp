@@ -6,7 +6,10 @@
 // (points on a unit sphere), separated by 0.05 m, touching (overlapping
 // by 0.01 m, a resting contact) or deep (overlapping by 0.3 of their
 // reach). Every method answers the full question it is built
-// for (Talus: verdict, normal, depth and manifold).
+// for (Talus: verdict, normal, depth and manifold). The uncached Talus
+// methods call the public pair query (talus/pair_query.h), as a user
+// would; the cached one needs the per-pair SatCache only the World's
+// dispatch (collision/collide.h) takes.
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -15,6 +18,7 @@
 
 #include "collision/collide.h"
 #include "talus/hull_builder.h"
+#include "talus/pair_query.h"
 #include "talus/reference/bullet_narrow_phase.h"
 #include "talus/reference/ccd_oracle.h"
 
@@ -112,9 +116,10 @@ void BM_NarrowPhasePeers(benchmark::State& state) {
     switch (method) {
       case Method::Full:
       case Method::Pruned:
+        intersecting = CollideShapes(a, xfA, b, xfB, settings).Value().touching;
+        break;
       case Method::PrunedCached:
-        intersecting =
-            Collide(a, xfA, b, xfB, settings, settings.useSatCache ? &cache : nullptr, nullptr, &manifold);
+        intersecting = Collide(a, xfA, b, xfB, settings, &cache, nullptr, &manifold);
         break;
       case Method::CcdGjk:
         intersecting = reference::CcdGjkIntersect(ccdA, ccdB).intersecting;

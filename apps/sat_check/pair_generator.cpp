@@ -34,24 +34,27 @@ struct Draw {
   }
 };
 
-// Half extents: the largest log-uniform in [0.1, 2] m, the others that
+// Half extents: the largest log-uniform in [lo, hi] m, the others that
 // times an aspect ratio in [0.2, 1].
-Vec3 Extents(Draw& draw) {
-  const double size = 0.1 * std::pow(20.0, draw.Uniform(0.0, 1.0));
+Vec3 Extents(Draw& draw, double lo, double hi) {
+  const double size = lo * std::pow(hi / lo, draw.Uniform(0.0, 1.0));
   return Vec3(size, size * draw.Uniform(0.2, 1.0), size * draw.Uniform(0.2, 1.0));
 }
 
-Shape MakeShape(Draw& draw) {
-  const Vec3 extents = Extents(draw);
-  if (draw.Integer(0, 1) == 0) return Shape::CreateBox(extents).Value();
-  static constexpr int kCounts[] = {8, 16, 32, 64};
-  const int count = kCounts[draw.Integer(0, 3)];
+Shape HullOnEllipsoid(Draw& draw, int count, const Vec3& extents) {
   for (;;) {
     std::vector<Vec3> points;
     for (int i = 0; i < count; ++i) points.push_back(draw.UnitVector().cwiseProduct(extents));
     Result<Hull> hull = BuildHull(points);
     if (hull) return Shape::CreateHull(std::make_shared<const Hull>(std::move(hull).Value())).Value();
   }
+}
+
+Shape MakeShape(Draw& draw, double lo, double hi) {
+  const Vec3 extents = Extents(draw, lo, hi);
+  if (draw.Integer(0, 1) == 0) return Shape::CreateBox(extents).Value();
+  static constexpr int kCounts[] = {8, 16, 32, 64};
+  return HullOnEllipsoid(draw, kCounts[draw.Integer(0, 3)], extents);
 }
 
 double LargestExtent(const Shape& shape) {
@@ -93,15 +96,48 @@ const char* ToString(Alignment alignment) {
   return "unknown";
 }
 
+const char* ToString(Family family) {
+  switch (family) {
+    case Family::Standard:
+      return "standard";
+    case Family::Scaled:
+      return "scaled";
+    case Family::Far:
+      return "far";
+    case Family::Parallel:
+      return "parallel";
+    case Family::Identical:
+      return "identical";
+    case Family::Slab:
+      return "slab";
+  }
+  return "unknown";
+}
+
 std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
   Draw draw{std::mt19937_64(seed)};
   std::vector<ShapePair> pairs;
   pairs.reserve(static_cast<std::size_t>(std::max(count, 0)));
   for (int i = 0; i < count; ++i) {
-    Shape a = MakeShape(draw);
-    Shape b = MakeShape(draw);
-    const auto placement = static_cast<Placement>(draw.Integer(0, 3));
-    const auto alignment = static_cast<Alignment>(draw.Integer(0, 2));
+    const auto family = static_cast<Family>(i % kFamilyCount);
+    const double lo = family == Family::Scaled ? 5e-4 : 0.1;  // half extents, metres
+    const double hi = family == Family::Scaled ? 5.0 : 2.0;
+    Shape a = MakeShape(draw, lo, hi);
+    Shape b = MakeShape(draw, lo, hi);
+    if (family == Family::Identical) {
+      b = a;
+    } else if (family == Family::Slab) {
+      const double scale = 0.25 * std::pow(8.0, draw.Uniform(0.0, 1.0));
+      a = Shape::CreateBox(scale * Vec3(1.7, 0.002, 1.4)).Value();
+      b = HullOnEllipsoid(draw, 36, Extents(draw, 0.1 * scale, 0.5 * scale));
+    }
+    auto placement = static_cast<Placement>(draw.Integer(0, 3));
+    auto alignment = static_cast<Alignment>(draw.Integer(0, 2));
+    if (family == Family::Parallel) alignment = Alignment::Face;
+    if (family == Family::Identical) {
+      alignment = Alignment::Face;
+      placement = Placement::Shallow;
+    }
     const double size = std::min(LargestExtent(a), LargestExtent(b));
 
     const Quat rotationA = draw.Rotation();
@@ -116,6 +152,9 @@ std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
       const Vec3 localNormal =
           faces[static_cast<std::size_t>(draw.Integer(0, static_cast<int>(faces.size()) - 1))].plane.normal;
       n = -(rotationA * localNormal);
+      // Nearly parallel faces: B turned by 1e-6 rad.
+      if (family == Family::Parallel)
+        rotationB = Quat(Eigen::AngleAxisd(1e-6, draw.UnitVector())) * rotationA;
     } else if (alignment == Alignment::Edge) {
       const int first = draw.Integer(0, 2);
       const int second = (first + 1 + draw.Integer(0, 1)) % 3;
@@ -132,17 +171,23 @@ std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
         gap = size * draw.Uniform(-1e-9, 1e-9);
         break;
       case Placement::Shallow:
-        gap = -size * draw.Uniform(1e-3, 0.05);
+        gap = family == Family::Identical ? -size * std::pow(10.0, draw.Uniform(-5.0, -2.0))
+                                          : -size * draw.Uniform(1e-3, 0.05);
         break;
       case Placement::Deep:
         gap = -size * draw.Uniform(0.1, 0.8);
         break;
     }
-    const Vec3 positionA(draw.Uniform(-1.0, 1.0), draw.Uniform(-1.0, 1.0), draw.Uniform(-1.0, 1.0));
+    Vec3 positionA(draw.Uniform(-1.0, 1.0), draw.Uniform(-1.0, 1.0), draw.Uniform(-1.0, 1.0));
+    if (family == Family::Far) positionA = draw.UnitVector() * std::pow(10.0, draw.Uniform(4.0, 5.0));
+    if (family == Family::Scaled) positionA *= size;  // near the origin at the shapes' own scale
     // A small offset across n, so face-aligned pairs are not centred.
     Vec3 lateral = draw.UnitVector();
     lateral -= n * n.dot(lateral);
     lateral *= draw.Uniform(0.0, 0.3) * size;
+    // Identical shapes go straight along the face normal: a copy moved
+    // sideways off a curved face need not touch at all.
+    if (family == Family::Identical) lateral = Vec3::Zero();
     // Along n, B's extent (towards A) and A's (towards B) meet at gap 0.
     const double reach = SupportDistance(b, rotationB, n) + SupportDistance(a, rotationA, -n);
     const double along = reach + gap;
@@ -155,6 +200,7 @@ std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
                      .xfB = {.position = positionB, .rotation = rotationB},
                      .placement = placement,
                      .alignment = alignment,
+                     .family = family,
                      .targetGap = gap,
                      .size = size});
   }
@@ -175,7 +221,8 @@ std::string Describe(const ShapePair& pair) {
   shape(pair.a);
   out << " vs ";
   shape(pair.b);
-  out << ", " << ToString(pair.alignment) << ", " << ToString(pair.placement);
+  out << ", " << ToString(pair.family) << ", " << ToString(pair.alignment) << ", "
+      << ToString(pair.placement);
   return out.str();
 }
 

@@ -7,10 +7,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 
 #include "collision/collide.h"
+#include "collision/polyhedron_manifold.h"
+#include "collision/sat.h"
+#include "talus/pair_query.h"
 #include "talus/reference/bullet_narrow_phase.h"
 #include "talus/reference/ccd_oracle.h"
 #include "talus/reference/minkowski_truth.h"
@@ -32,6 +36,7 @@ struct Answer {
   double depth = 0.0;
   Vec3 normal = Vec3::Zero();
   std::vector<Vec3> points;
+  std::vector<double> pointDepths;  // Talus only: each point's own depth
 };
 
 // What a method needs about a pair, built once per pair.
@@ -48,6 +53,7 @@ struct Method {
   std::string family;
   bool givesDepth = false;
   bool givesPoints = false;
+  bool writeUpPoints = false;  // Talus's WriteUp manifold (its own 5 mm rule)
   // Prepares (untimed) and returns the timed query.
   std::function<std::function<Answer()>(const PairContext&)> prepare;
 };
@@ -57,24 +63,48 @@ Method TalusMethod(SatMode satMode, ManifoldMode manifoldMode, bool cached) {
                      (manifoldMode == ManifoldMode::WriteUp ? "-writeup" : "-clipped") +
                      (cached ? "-cached" : "");
   const NarrowPhaseSettings settings{.satMode = satMode, .manifoldMode = manifoldMode, .useSatCache = cached};
-  return {name, "talus", true, true, [settings, cached](const PairContext& c) {
-            // The cache as a resting pair has it: filled by the previous query.
+  const bool writeUp = manifoldMode == ManifoldMode::WriteUp;
+  if (!cached) {
+    // The public pair query, as a user calls it.
+    return {name, "talus", true, true, writeUp, [settings](const PairContext& c) {
+              return std::function<Answer()>([settings, &c]() {
+                const Result<PairContact> contact =
+                    CollideShapes(c.pair->a, c.pair->xfA, c.pair->b, c.pair->xfB, settings);
+                Answer answer;
+                answer.ok = contact.Ok();
+                if (!answer.ok || !contact.Value().touching) return answer;
+                const PairContact& pc = contact.Value();
+                answer.intersecting = true;
+                answer.depth = -pc.separation;
+                answer.normal = pc.normal;
+                for (int i = 0; i < pc.pointCount; ++i) {
+                  answer.points.push_back(pc.points[static_cast<std::size_t>(i)].position);
+                  answer.pointDepths.push_back(pc.points[static_cast<std::size_t>(i)].depth);
+                }
+                return answer;
+              });
+            }};
+  }
+  // The pair query has no cache; the cached modes call the dispatch the
+  // World uses, with the cache as a resting pair has it: filled by the
+  // previous query.
+  return {name, "talus", true, true, writeUp, [settings](const PairContext& c) {
             SatCache primed;
-            if (cached) {
-              ContactManifold scratch{};
-              Collide(c.pair->a, c.pair->xfA, c.pair->b, c.pair->xfB, settings, &primed, nullptr, &scratch);
-            }
-            return std::function<Answer()>([settings, cached, primed, &c]() {
+            ContactManifold scratch{};
+            Collide(c.pair->a, c.pair->xfA, c.pair->b, c.pair->xfB, settings, &primed, nullptr, &scratch);
+            return std::function<Answer()>([settings, primed, &c]() {
               SatCache cache = primed;
               ContactManifold manifold{};
               Answer answer;
-              answer.intersecting = Collide(c.pair->a, c.pair->xfA, c.pair->b, c.pair->xfB, settings,
-                                            cached ? &cache : nullptr, nullptr, &manifold);
+              answer.intersecting = Collide(c.pair->a, c.pair->xfA, c.pair->b, c.pair->xfB, settings, &cache,
+                                            nullptr, &manifold);
               if (answer.intersecting) {
                 answer.depth = manifold.depth;
                 answer.normal = manifold.normal;
-                for (int i = 0; i < manifold.pointCount; ++i)
+                for (int i = 0; i < manifold.pointCount; ++i) {
                   answer.points.push_back(manifold.points[static_cast<std::size_t>(i)].position);
+                  answer.pointDepths.push_back(manifold.points[static_cast<std::size_t>(i)].depth);
+                }
               }
               return answer;
             });
@@ -93,13 +123,13 @@ Answer FromCcd(const CcdAnswer& ccd) {
 
 Method CcdMethod(const std::string& name, bool givesDepth,
                  CcdAnswer (*query)(const CcdObject&, const CcdObject&, const reference::CcdSettings&)) {
-  return {name, "libccd", givesDepth, givesDepth, [query](const PairContext& c) {
+  return {name, "libccd", givesDepth, givesDepth, false, [query](const PairContext& c) {
             return std::function<Answer()>([query, &c]() { return FromCcd(query(c.ccdA, c.ccdB, {})); });
           }};
 }
 
 Method BulletMethod(const std::string& name, BulletNarrowPhaseMethod which) {
-  return {name, "bullet", true, true, [which](const PairContext& c) {
+  return {name, "bullet", true, true, false, [which](const PairContext& c) {
             return std::function<Answer()>([which, &c]() {
               const reference::BulletAnswer bullet =
                   BulletPairQuery(*c.bulletA, c.pair->xfA, *c.bulletB, c.pair->xfB, which);
@@ -176,13 +206,34 @@ void KeepWorst(std::vector<CaseRecord>& worst, CaseRecord record, int keep) {
   if (static_cast<int>(worst.size()) > keep) worst.resize(static_cast<std::size_t>(keep));
 }
 
+struct FamilySamples {
+  std::vector<double> depthError;
+  std::vector<double> normalAngle;
+  std::vector<double> normalExcess;
+  std::vector<double> pointOutside;
+};
+
 struct Samples {
   std::vector<double> depthError;
   std::vector<double> normalAngle;
   std::vector<double> normalExcess;
   std::vector<double> pointOutside;
   std::vector<double> timeNs;
+  std::vector<FamilySamples> families = std::vector<FamilySamples>(kFamilyCount);
 };
+
+double LargestCoordinate(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double largest = 0.0;
+  for (const Vec3& v : a) largest = std::max(largest, v.cwiseAbs().maxCoeff());
+  for (const Vec3& v : b) largest = std::max(largest, v.cwiseAbs().maxCoeff());
+  return largest;
+}
+
+std::string Sci(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3e", value);
+  return buffer;
+}
 
 }  // namespace
 
@@ -193,7 +244,9 @@ double BoxPairSignedDistance(const Vec3& halfA, const Vec3& halfB, const Vec3& o
 }
 
 Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {
-  if (settings.pairs < 1) return Error{"pairs: must be at least 1, got " + std::to_string(settings.pairs)};
+  if (settings.pairs < 1 || settings.pairs > kMaxPairs)
+    return Error{"pairs: must be between 1 and " + std::to_string(kMaxPairs) + ", got " +
+                 std::to_string(settings.pairs)};
   if (!(settings.touchingBand >= 0.0)) return Error{"touchingBand: must be >= 0"};
   if (!(settings.pointTolerance >= 0.0)) return Error{"pointTolerance: must be >= 0"};
   if (settings.timingRepeats < 0) return Error{"timingRepeats: must be >= 0"};
@@ -236,8 +289,11 @@ Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {
                                              check.GetError().message);
       }
     }
+    // The closed form needs the same rotation (not the parallel family's
+    // 1e-6 rad turn); far pairs are left out, their truth carries the
+    // round-off of 1e5 m coordinates.
     if (pair.alignment == Alignment::Face && pair.a.Type() == ShapeType::Box &&
-        pair.b.Type() == ShapeType::Box) {
+        pair.b.Type() == ShapeType::Box && pair.family != Family::Parallel && pair.family != Family::Far) {
       const Vec3 offset = pair.xfA.RotateInverse(pair.xfB.position - pair.xfA.position);
       const double closed = BoxPairSignedDistance(pair.a.HalfExtents(), pair.b.HalfExtents(), offset);
       ++report.truth.boxClosedFormChecks;
@@ -246,13 +302,21 @@ Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {
       if ((closed <= 0.0) != truth.intersecting && std::abs(closed) > settings.touchingBand)
         ++report.truth.boxClosedFormVerdictMismatches;
     }
-    const bool inBand = std::abs(truth.signedDistance) < settings.touchingBand;
+    const std::vector<Vec3> verticesA = WorldVertices(pair.a, pair.xfA);
+    const std::vector<Vec3> verticesB = WorldVertices(pair.b, pair.xfB);
+    // The pair's bounds (sat_check.h): round-off of its world coordinates,
+    // the exactness asked, and the SAT's stated preference band.
+    const double roundOff =
+        kRoundOffUlps * std::numeric_limits<double>::epsilon() * LargestCoordinate(verticesA, verticesB);
+    const double exact = kExactRelative * pair.size + roundOff;
+    const double depthBound = AxisPreferenceBand(hullA, hullB) + exact;
+    const double pointBound = settings.pointTolerance * pair.size + roundOff;
+    const bool inBand = std::abs(truth.signedDistance) < settings.touchingBand * pair.size + roundOff;
+    const auto familyIndex = static_cast<std::size_t>(pair.family);
     if (truth.intersecting) ++report.truth.intersecting;
     if (inBand) ++report.truth.touchingBand;
     if (truth.intersecting && truth.minimumFaces > 1) ++report.truth.tiedMinimum;
 
-    const std::vector<Vec3> verticesA = WorldVertices(pair.a, pair.xfA);
-    const std::vector<Vec3> verticesB = WorldVertices(pair.b, pair.xfB);
     const BulletHullShape bulletA(hullA);
     const BulletHullShape bulletB(hullB);
     const PairContext context{.pair = &pair,
@@ -304,16 +368,26 @@ Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {
       } else if (inBand) {
         ++out.touchingBandDisagree;
       } else if (out.family == "talus") {
-        ++out.disagree;
+        if (out.disagree++ == 0)
+          report.failures.push_back(out.name + ": wrong verdict on pair " + std::to_string(pair.index) +
+                                    " (" + configuration + ", true distance " + Sci(truth.signedDistance) +
+                                    " m)");
         out.disagreements.push_back(base);
       } else {
         // A peer's wrong verdict is an oracle failure, listed all the same.
         ++out.oracleFailures;
         out.disagreements.push_back(base);
       }
+      const bool talus = out.family == "talus";
+      FamilySamples& familySample = sample.families[familyIndex];
       if (methods[m].givesDepth && answer.intersecting && truth.intersecting && !inBand) {
         const double depthError = std::abs(answer.depth - truth.Depth());
         sample.depthError.push_back(depthError);
+        familySample.depthError.push_back(depthError);
+        if (talus && depthError > depthBound && out.depthOverBound++ == 0)
+          report.failures.push_back(out.name + ": depth error " + Sci(depthError) + " m > bound " +
+                                    Sci(depthBound) + " m on pair " + std::to_string(pair.index) + " (" +
+                                    configuration + ")");
         CaseRecord worst = base;
         worst.value = depthError;
         KeepWorst(out.worstDepth, worst, settings.worstCases);
@@ -321,19 +395,52 @@ Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {
         const double overlap = MaxAlong(verticesB, n) + MaxAlong(verticesA, -n);
         result.normalExcess = overlap - truth.Depth();
         sample.normalExcess.push_back(std::max(result.normalExcess, 0.0));
+        familySample.normalExcess.push_back(std::max(result.normalExcess, 0.0));
+        if (talus && result.normalExcess > depthBound && out.normalOverBound++ == 0)
+          report.failures.push_back(out.name + ": normal excess " + Sci(result.normalExcess) + " m > bound " +
+                                    Sci(depthBound) + " m on pair " + std::to_string(pair.index) + " (" +
+                                    configuration + ")");
         worst.value = result.normalExcess;
         KeepWorst(out.worstNormal, worst, settings.worstCases);
-        if (truth.minimumFaces == 1)
-          sample.normalAngle.push_back(std::acos(std::clamp(n.dot(truth.normal), -1.0, 1.0)));
+        if (truth.minimumFaces == 1) {
+          const double angle = std::acos(std::clamp(n.dot(truth.normal), -1.0, 1.0));
+          sample.normalAngle.push_back(angle);
+          familySample.normalAngle.push_back(angle);
+        }
+      }
+      if (talus && answer.intersecting && !answer.pointDepths.empty()) {
+        // The deepest point carries the manifold's depth.
+        const double deepest = *std::max_element(answer.pointDepths.begin(), answer.pointDepths.end());
+        const double gap = std::abs(deepest - answer.depth);
+        if (gap > roundOff + kExactRelative * pair.size && out.deepestPointOff++ == 0)
+          report.failures.push_back(out.name + ": deepest point " + Sci(deepest) + " m, manifold depth " +
+                                    Sci(answer.depth) + " m on pair " + std::to_string(pair.index) + " (" +
+                                    configuration + ")");
       }
       if (methods[m].givesPoints && !inBand) {
         for (const Vec3& p : answer.points) {
-          const double outside = std::max(Outside(pair.a, pair.xfA, p), Outside(pair.b, pair.xfB, p));
+          const double outsideA = Outside(pair.a, pair.xfA, p);
+          const double outsideB = Outside(pair.b, pair.xfB, p);
+          const double outside = std::max(outsideA, outsideB);
           sample.pointOutside.push_back(outside);
+          familySample.pointOutside.push_back(outside);
           // Misplaced: farther out of either shape than the true depth
           // (a point midway between the surfaces of a contact patch is
           // within that of both) plus the tolerance.
-          if (outside > settings.pointTolerance + truth.Depth()) ++out.pointsOverTolerance;
+          if (outside > pointBound + truth.Depth()) ++out.pointsOverTolerance;
+          if (!talus) continue;
+          // Outside either shape: measured, not gated (the clipped points
+          // of nearly parallel faces still leave one shape by up to ~1.5e-9
+          // of the size; docs/collision-validation.md).
+          if (outside > pointBound) ++out.pointsOutsideEither;
+          // Outside both: gated. The write-up's rule takes vertices up to
+          // its tolerance (WriteUpTolerance) outside the other shape by design.
+          const double bothBound =
+              pointBound + (methods[m].writeUpPoints ? WriteUpTolerance(hullA, hullB) : 0.0);
+          if (std::min(outsideA, outsideB) > bothBound && out.pointsOutsideBoth++ == 0)
+            report.failures.push_back(out.name + ": a point " + Sci(std::min(outsideA, outsideB)) +
+                                      " m outside both shapes on pair " + std::to_string(pair.index) + " (" +
+                                      configuration + ")");
         }
       }
       record.results.push_back(result);
@@ -348,6 +455,14 @@ Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {
     out.normalExcess = Summarise(samples[m].normalExcess);
     out.pointOutside = Summarise(samples[m].pointOutside);
     out.timeNs = Summarise(samples[m].timeNs);
+    for (int f = 0; f < kFamilyCount; ++f) {
+      const FamilySamples& fs = samples[m].families[static_cast<std::size_t>(f)];
+      out.families.push_back({.family = ToString(static_cast<Family>(f)),
+                              .depthError = Summarise(fs.depthError),
+                              .normalAngle = Summarise(fs.normalAngle),
+                              .normalExcess = Summarise(fs.normalExcess),
+                              .pointOutside = Summarise(fs.pointOutside)});
+    }
   }
   return report;
 }

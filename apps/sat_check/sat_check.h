@@ -18,16 +18,37 @@
 
 namespace talus::validation {
 
+/// Most pairs one run accepts. Each pair keeps its record (one answer per
+/// method) for the JSON, about 2 kB; 1e6 pairs is 2 GB of report and
+/// hours of qhull checks, past any use; more is refused.
+inline constexpr int kMaxPairs = 1000000;
+
+/// The gate's exactness: the depth Talus reports for its chosen axis must
+/// be within this fraction of the pair's size (ShapePair::size) of the true
+/// minimum, beyond the SAT's stated preference band (issue 15).
+inline constexpr double kExactRelative = 1e-9;
+
+/// Round-off allowance in units of the largest world coordinate of the
+/// pair's vertices times machine epsilon. Every world vertex is rounded in
+/// the transform (3 products and sums, a few ulps of the coordinate); a
+/// depth or a plane distance is a difference of dot products of such
+/// vertices (a few ulps more), and the truth's own Minkowski hull adds a
+/// plane fit of the same order; 64 covers those with margin. Far from the
+/// origin this, not kExactRelative, is the bound: a 1 mm shape at 1e5 m has
+/// coordinates with an ulp of 1.5e-11 m, above 1e-9 of its size.
+inline constexpr double kRoundOffUlps = 64.0;
+
 /// What to run.
 struct SatCheckSettings {
-  int pairs = 2000;        ///< pairs generated, >= 1
+  int pairs = 2000;        ///< pairs generated, 1..kMaxPairs
   std::uint64_t seed = 1;  ///< generator seed
-  /// Pairs whose true |signed distance| is below this (metres) are in the
-  /// touching band: a verdict either way is acceptable there. 1e-6 m.
-  double touchingBand = 1e-6;
-  /// A contact point counts as misplaced when it lies farther than the
-  /// true depth plus this (metres) outside either shape. 1e-6 m.
-  double pointTolerance = 1e-6;
+  /// Pairs whose true |signed distance| is below this fraction of their
+  /// size (plus round-off) are in the touching band: a verdict either way
+  /// is acceptable there. 1e-9, the exactness asked of depths.
+  double touchingBand = 1e-9;
+  /// Contact points may lie outside a shape by this fraction of the pair's
+  /// size plus round-off (a point of the overlap is inside both). 1e-9.
+  double pointTolerance = 1e-9;
   int timingRepeats = 3;       ///< each timed query runs this many times (>= 1); 0 turns timing off
   bool checkWithQhull = true;  ///< cross-check each Minkowski difference with qhull
   int worstCases = 5;          ///< worst cases kept per method and measure
@@ -51,6 +72,15 @@ struct CaseRecord {
   double value = 0.0;  ///< the measure (error) that put it here
 };
 
+/// One method's distributions over the pairs of one family.
+struct FamilyReport {
+  std::string family;  ///< ToString(Family)
+  Distribution depthError;
+  Distribution normalAngle;
+  Distribution normalExcess;
+  Distribution pointOutside;
+};
+
 /// The results of one method over all pairs.
 struct MethodReport {
   std::string name;                       ///< e.g. "talus-pruned-clipped-cached", "ccd-gjk-penetration"
@@ -67,9 +97,17 @@ struct MethodReport {
   /// Overlap of the shapes along the reported normal minus the true depth
   /// (m, >= 0): how much worse the normal is than the best, robust to ties.
   Distribution normalExcess;
-  Distribution pointOutside;            ///< per contact point: distance outside the farther shape (m)
-  int pointsOverTolerance = 0;          ///< points farther out of a shape than true depth + pointTolerance
-  Distribution timeNs;                  ///< time per query (ns)
+  Distribution pointOutside;    ///< per contact point: distance outside the farther shape (m)
+  int pointsOverTolerance = 0;  ///< points farther out of a shape than true depth + pointTolerance
+  Distribution timeNs;          ///< time per query (ns)
+  // The gate (Talus methods; see docs/collision-validation.md): counts of
+  // pairs or points beyond the stated bounds.
+  int depthOverBound = 0;       ///< |depth - true| > preference band + exact + round-off
+  int normalOverBound = 0;      ///< normal excess > the same bound
+  int deepestPointOff = 0;      ///< deepest point's depth != manifold depth beyond round-off
+  int pointsOutsideEither = 0;  ///< points outside either shape beyond tolerance (measured, not gated)
+  int pointsOutsideBoth = 0;    ///< points outside both shapes beyond tolerance (WriteUp: + its 5 mm rule)
+  std::vector<FamilyReport> families;   ///< by Family
   std::vector<CaseRecord> worstDepth;   ///< largest depth errors
   std::vector<CaseRecord> worstNormal;  ///< largest normal excesses
 };
@@ -116,10 +154,14 @@ struct SatCheckReport {
   TruthReport truth;
   std::vector<MethodReport> methods;
   std::vector<PairRecord> pairs;
+  /// One line per Talus method and bound it breaks; empty when all pass.
+  std::vector<std::string> failures;
 };
 
-/// Runs the whole validation. Refuses bad settings (pairs < 1, negative
-/// tolerances or repeats) with a message naming the field.
+/// Runs the whole validation. Refuses bad settings (pairs outside
+/// 1..kMaxPairs, negative tolerances or repeats) with a message naming the
+/// field. A run that finds Talus beyond its bounds still returns a report,
+/// with `failures` filled.
 Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings);
 
 /// The closed-form answer for two boxes with the same rotation (face
@@ -132,5 +174,7 @@ double BoxPairSignedDistance(const Vec3& halfA, const Vec3& halfB, const Vec3& o
 std::string ReportToJson(const SatCheckReport& report);
 /// The report as a Markdown section (level-2 heading "SAT validation").
 std::string ReportToMarkdown(const SatCheckReport& report);
+/// One line: "PASS: ..." or "FAIL: n bounds broken: first failure".
+std::string SummaryLine(const SatCheckReport& report);
 
 }  // namespace talus::validation

@@ -29,6 +29,18 @@ Json ToJson(const std::vector<CaseRecord>& cases) {
   return out;
 }
 
+Json FamiliesToJson(const std::vector<FamilyReport>& families) {
+  Json out = Json::array();
+  for (const FamilyReport& f : families) {
+    out.push_back({{"family", f.family},
+                   {"depthError", ToJson(f.depthError)},
+                   {"normalAngle", ToJson(f.normalAngle)},
+                   {"normalExcess", ToJson(f.normalExcess)},
+                   {"pointOutside", ToJson(f.pointOutside)}});
+  }
+  return out;
+}
+
 std::string Format(const char* format, double value) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, format, value);
@@ -84,6 +96,13 @@ std::string ReportToJson(const SatCheckReport& report) {
                        {"normalExcess", ToJson(m.normalExcess)},
                        {"pointOutside", ToJson(m.pointOutside)},
                        {"pointsOverTolerance", m.pointsOverTolerance},
+                       {"gate",
+                        {{"depthOverBound", m.depthOverBound},
+                         {"normalOverBound", m.normalOverBound},
+                         {"deepestPointOff", m.deepestPointOff},
+                         {"pointsOutsideEither", m.pointsOutsideEither},
+                         {"pointsOutsideBoth", m.pointsOutsideBoth}}},
+                       {"families", FamiliesToJson(m.families)},
                        {"timeNs", ToJson(m.timeNs)},
                        {"timeVsAccuracy",
                         {{"medianTimeNs", m.timeNs.p50},
@@ -94,6 +113,8 @@ std::string ReportToJson(const SatCheckReport& report) {
                        {"worstNormal", ToJson(m.worstNormal)}});
   }
   json["methods"] = methods;
+  json["failures"] = report.failures;
+  json["passed"] = report.failures.empty();
   Json pairs = Json::array();
   for (const PairRecord& p : report.pairs) {
     Json results = Json::array();
@@ -152,6 +173,22 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
         << triple(m.normalExcess) << " | " << triple(m.pointOutside) << " | " << m.pointsOverTolerance
         << " | " << (m.timeNs.count ? Format("%.0f", m.timeNs.p50) : std::string("-")) << " |\n";
   }
+  out << "\n### By family (Talus modes)\n\n"
+         "Depth error and normal excess (m), p50 / max, per family of pairs (pair_generator.h).\n\n"
+         "| method | family | depth error | normal excess | point outside |\n|---|---|---|---|---|\n";
+  const auto pair = [](const Distribution& d) {
+    if (d.count == 0) return std::string("-");
+    return Format("%.1e", d.p50) + " / " + Format("%.1e", d.max);
+  };
+  for (const MethodReport& m : report.methods) {
+    if (m.family != "talus") continue;
+    for (const FamilyReport& f : m.families) {
+      out << "| " << m.name << " | " << f.family << " | " << pair(f.depthError) << " | "
+          << pair(f.normalExcess) << " | " << pair(f.pointOutside) << " |\n";
+    }
+  }
+  out << "\n### Gate\n\n" << SummaryLine(report) << "\n";
+  for (const std::string& line : report.failures) out << "- " << line << "\n";
   out << "\n### Worst cases\n\n";
   for (const MethodReport& m : report.methods) {
     if (m.disagreements.empty() && (m.worstDepth.empty() || m.worstDepth.front().value < 1e-6)) continue;
@@ -167,6 +204,20 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
     }
     out << "\n";
   }
+  return out.str();
+}
+
+std::string SummaryLine(const SatCheckReport& report) {
+  int talusMethods = 0;
+  for (const MethodReport& m : report.methods) talusMethods += m.family == "talus" ? 1 : 0;
+  std::ostringstream out;
+  if (report.failures.empty()) {
+    out << "PASS: " << talusMethods << " Talus modes on " << report.pairCount
+        << " pairs: verdicts, depths, normals and contact points within the stated bounds";
+    return out.str();
+  }
+  out << "FAIL: " << report.failures.size() << " bounds broken by Talus modes on " << report.pairCount
+      << " pairs; first: " << report.failures.front();
   return out.str();
 }
 

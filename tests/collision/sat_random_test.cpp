@@ -66,7 +66,7 @@ TEST(SatRandom, VerdictDepthAndNormalMatchBruteForceOverAllAxes) {
     ++overlapping;
     // Depth is the least overlap, up to the face preference bias.
     EXPECT_GE(sat.separation, -oracle - kRoundOff);
-    EXPECT_LE(-sat.separation, oracle + kAxisPreferenceTolerance + kRoundOff);
+    EXPECT_LE(-sat.separation, oracle + AxisPreferenceBand(p.a.GetHull(), p.b.GetHull()) + kRoundOff);
     // A along +normal and B along -normal: B's support along the normal
     // minus A's support against it is the depth.
     EXPECT_NEAR(test::BruteSupport(b, sat.normal) + test::BruteSupport(a, -sat.normal), -sat.separation,
@@ -83,7 +83,8 @@ TEST(SatRandom, DepthIsNoMoreThanTheOverlapAlongAnyDirection) {
     const PosedHull a = PosedHull::Make(p.a.GetHull(), p.xfA);
     const PosedHull b = PosedHull::Make(p.b.GetHull(), p.xfB);
     for (int i = 0; i < 200; ++i) {
-      EXPECT_GE(test::BruteOverlap(a, b, test::RandomUnit(rng)), -sat.separation - kAxisPreferenceTolerance);
+      EXPECT_GE(test::BruteOverlap(a, b, test::RandomUnit(rng)),
+                -sat.separation - AxisPreferenceBand(p.a.GetHull(), p.b.GetHull()));
     }
   }
 }
@@ -169,7 +170,7 @@ TEST(SatRandom, PrunedMinkowskiGapsAgreeWithFullProjectionsOnTouchingAndDeepPair
       if (g.axis.type == SatAxisType::EdgePair) ++edgeContacts;
       // Both report one axis measured the same way; round-off only.
       EXPECT_NEAR(f.separation, g.separation, kRoundOff);
-      EXPECT_NEAR(-g.separation, oracle, kAxisPreferenceTolerance + kRoundOff);
+      EXPECT_NEAR(-g.separation, oracle, AxisPreferenceBand(p.a.GetHull(), p.b.GetHull()) + kRoundOff);
     }
   }
   EXPECT_GT(edgeContacts, 10);

@@ -2,6 +2,8 @@
 // the structure of the reports the comparison document reads.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "collision/sat.h"
@@ -30,16 +32,47 @@ TEST(SatCheck, TalusVerdictsAgreeWithTruthOutsideTheTouchingBand) {
   }
 }
 
-TEST(SatCheck, TalusDepthAndNormalWithinAxisPreferenceTolerance) {
-  // The SAT may keep a face axis up to kAxisPreferenceTolerance shallower
-  // than the true minimum; add 1e-9 m of round-off.
-  const double tolerance = kAxisPreferenceTolerance + 1e-9;
+TEST(SatCheck, TalusDepthNormalAndPointsWithinTheStatedBounds) {
+  // The gate's per-pair bounds (sat_check.h): depth and normal excess within
+  // the SAT's preference band + 1e-9 of the size + round-off; the deepest
+  // point carries the depth; points inside both shapes.
   for (const MethodReport& m : SmallReport().methods) {
     if (m.family != "talus") continue;
     EXPECT_GT(m.depthError.count, 20) << m.name;
-    EXPECT_LE(m.depthError.max, tolerance) << m.name;
-    EXPECT_LE(m.normalExcess.max, tolerance) << m.name;
+    EXPECT_EQ(m.depthOverBound, 0) << m.name;
+    EXPECT_EQ(m.normalOverBound, 0) << m.name;
+    EXPECT_EQ(m.deepestPointOff, 0) << m.name;
+    EXPECT_EQ(m.pointsOutsideBoth, 0) << m.name;
+    ASSERT_EQ(m.families.size(), static_cast<std::size_t>(kFamilyCount)) << m.name;
   }
+  EXPECT_TRUE(SmallReport().failures.empty()) << SummaryLine(SmallReport());
+}
+
+TEST(SatCheck, EveryFamilyIsGenerated) {
+  const std::vector<ShapePair> pairs = GeneratePairs(2 * kFamilyCount, 3);
+  for (int i = 0; i < 2 * kFamilyCount; ++i)
+    EXPECT_EQ(static_cast<int>(pairs[static_cast<std::size_t>(i)].family), i % kFamilyCount);
+  // Scaled shapes span about 1 mm to 10 m across (a hull's points may miss
+  // the ellipsoid's widest part, so sizes can fall a little below 5e-4 m);
+  // far pairs sit 1e4-1e5 m out.
+  double smallest = 1e9;
+  double largest = 0.0;
+  for (const ShapePair& p : GeneratePairs(600, 3)) {
+    if (p.family == Family::Scaled) {
+      smallest = std::min(smallest, p.size);
+      largest = std::max(largest, p.size);
+      EXPECT_LE(p.size, 5.0 * 1.001);
+    }
+    if (p.family == Family::Far) {
+      EXPECT_GE(p.xfA.position.norm(), 1e4 * 0.999);
+      EXPECT_LE(p.xfA.position.norm(), 1e5 * 1.001);
+    }
+    if (p.family == Family::Identical) {
+      EXPECT_EQ(&p.a.GetHull(), &p.b.GetHull());
+    }
+  }
+  EXPECT_LT(smallest, 2e-3);
+  EXPECT_GT(largest, 2.0);
 }
 
 TEST(SatCheck, TruthAgreesWithQhullAndBoxClosedForms) {
@@ -66,6 +99,12 @@ TEST(SatCheck, RefusesBadSettings) {
   const auto result = RunSatCheck(settings);
   ASSERT_FALSE(result.Ok());
   EXPECT_NE(result.GetError().message.find("pairs"), std::string::npos);
+  // Past the stated limit: refused before anything is allocated, with the
+  // limit in the message.
+  settings.pairs = kMaxPairs + 1;
+  const auto huge = RunSatCheck(settings);
+  ASSERT_FALSE(huge.Ok());
+  EXPECT_NE(huge.GetError().message.find(std::to_string(kMaxPairs)), std::string::npos);
 }
 
 TEST(SatCheck, JsonAndMarkdownHaveTheDocumentedStructure) {

@@ -24,6 +24,7 @@
 #include "talus/mass_properties.h"
 #include "talus/math.h"
 #include "talus/narrow_phase.h"
+#include "talus/pair_query.h"
 #include "talus/result.h"
 #include "talus/shape.h"
 #include "talus/step_statistics.h"

@@ -28,7 +28,12 @@ bool Polyhedra(const Shape& a, const Transform& xfA, const Shape& b, const Trans
   SatCache* cache = settings.useSatCache ? context.cache : nullptr;
   const SatResult sat =
       RunSat(hullA, hullB, settings.satMode, settings.speculativeMargin, cache, context.stats);
-  if (sat.separated) return false;
+  if (sat.separated) {
+    out->normal = sat.normal;
+    out->depth = -sat.separation;
+    out->pointCount = 0;
+    return false;
+  }
   BuildPolyhedronManifold(hullA, hullB, sat, settings.manifoldMode, settings.speculativeMargin, out);
   return true;
 }
@@ -52,8 +57,9 @@ bool SphereHull(const Shape& a, const Transform& xfA, const Shape& b, const Tran
 template <CollideFunction Routine>
 bool Swapped(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
              const PairContext& context, ContactManifold* out) {
-  if (!Routine(b, xfB, a, xfA, context, out)) return false;
+  const bool touching = Routine(b, xfB, a, xfA, context, out);
   out->normal = -out->normal;
+  if (!touching) return false;
   for (int i = 0; i < out->pointCount; ++i) {
     auto& point = out->points[static_cast<std::size_t>(i)];
     point.featureId = SwapFeatureId(point.featureId);

@@ -20,7 +20,9 @@ namespace talus {
 /// fills `manifold` (normal from B towards A) when they touch or are within
 /// settings.speculativeMargin. `cache` (may be null) is the pair's SAT cache
 /// (used for polyhedron pairs when settings.useSatCache); `stats` (may be
-/// null) is added to.
+/// null) is added to. When it returns false, `manifold` holds the
+/// separating axis (normal, from B towards A) and minus the gap along it
+/// (depth < -margin), with no points.
 bool Collide(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
              const NarrowPhaseSettings& settings, SatCache* cache, NarrowPhaseStats* stats,
              ContactManifold* manifold);

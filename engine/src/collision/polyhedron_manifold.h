@@ -33,6 +33,22 @@ inline constexpr double kWriteUpPlaneTolerance = 0.005;
 /// and still count; the same reason and value as the plane tolerance.
 inline constexpr double kWriteUpInsideTolerance = 0.005;
 
+/// WriteUp: both tolerances are at most this fraction of the pair's length
+/// scale (SatLengthScale). A slop is a small fraction of the bodies: 5 mm
+/// is 1% of the write-up's half-metre boxes, and on a 1 mm hull an
+/// absolute 5 mm took vertices five sizes away.
+inline constexpr double kWriteUpRelative = 0.01;
+
+/// WriteUp: the plane and inside tolerances for a pair (metres):
+/// min(kWriteUpPlaneTolerance, kWriteUpRelative x SatLengthScale).
+double WriteUpTolerance(const Hull& a, const Hull& b);
+
+/// Clipped: a clipped point whose depth is within this many ulps of the
+/// plane's offset and coordinates of the SAT's depth carries it (unitless;
+/// the two are the same dot product, on vertices that tie in exact
+/// arithmetic, rounded differently).
+inline constexpr double kDepthRoundOffUlps = 64.0;
+
 /// Clipped: most points kept (4 span any contact polygon well enough for a
 /// stable solve; more only cost solver time).
 inline constexpr int kClippedMaxPoints = 4;

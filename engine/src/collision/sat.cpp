@@ -19,6 +19,7 @@
 // same axis gives bit-identical numbers in both.
 #include "collision/sat.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -308,7 +309,20 @@ int SupportingEdge(const PosedHull& p, const Vec3& direction, int edge) {
   return best;
 }
 
+// Half the diagonal of the hull's vertex bounding box (metres).
+double HalfDiagonal(const Hull& hull) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  for (const Vec3& v : hull.Vertices()) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  return 0.5 * (hi - lo).norm();
+}
+
 }  // namespace
+
+double SatLengthScale(const Hull& a, const Hull& b) { return std::min(HalfDiagonal(a), HalfDiagonal(b)); }
 
 bool IsMinkowskiFace(const Vec3& a, const Vec3& b, const Vec3& bxa, const Vec3& c, const Vec3& d,
                      const Vec3& dxc) {
@@ -399,14 +413,16 @@ SatResult RunSat(const PosedHull& a, const PosedHull& b, SatMode mode, double ma
   if (edge.separation > margin) return finish({SatAxisType::EdgePair, edge.edgeA, edge.edgeB}, true);
 
   // Least overlap, with a bias towards faces of A, then faces of B, then
-  // edges (see kAxisPreferenceTolerance).
+  // edges, inside a band relative to the pair's size (see
+  // kAxisPreferenceRelative).
+  const double band = AxisPreferenceBand(*a.hull, *b.hull);
   SatAxis axis{SatAxisType::FaceA, faceA.face, -1};
   double separation = faceA.separation;
-  if (faceB.separation > separation + kAxisPreferenceTolerance) {
+  if (faceB.separation > separation + band) {
     axis = {SatAxisType::FaceB, -1, faceB.face};
     separation = faceB.separation;
   }
-  if (edge.edgeA >= 0 && edge.separation > separation + kAxisPreferenceTolerance) {
+  if (edge.edgeA >= 0 && edge.separation > separation + band) {
     Vec3 normal = Vec3::Zero();
     EvaluateSatAxis(a, b, {SatAxisType::EdgePair, edge.edgeA, edge.edgeB}, &normal);
     axis = {SatAxisType::EdgePair, SupportingEdge(a, -normal, edge.edgeA),

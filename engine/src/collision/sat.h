@@ -66,12 +66,28 @@ struct SatResult {
 };
 
 /// A face axis beats a face of A (or an edge axis beats the best face) only
-/// if its separation is larger by more than this (metres). Faces of A win
-/// ties over faces of B, and faces over edges, which keeps the reference
-/// face stable from step to step in resting contact; the reported depth is
-/// then at most this much above the exact minimum. 10 micrometres: far
-/// below what a solver resolves, far above round-off for metre-sized shapes.
-inline constexpr double kAxisPreferenceTolerance = 1e-5;
+/// if its separation is larger by more than this fraction of the pair's
+/// length scale (SatLengthScale). Faces of A win ties over faces of B, and
+/// faces over edges, which keeps the reference face stable from step to
+/// step in resting contact; the reported depth is then at most this band
+/// above the exact minimum. 1e-7 of the size: 0.1 micrometre on a metre
+/// shape, four orders below a solver's slop (so no solver sees the
+/// difference), eight orders above round-off (so faces that tie in exact
+/// arithmetic, as parallel faces of stacked boxes do, keep their order).
+/// Relative, not absolute: the old 1e-5 m was 1% of a 1 mm hull.
+inline constexpr double kAxisPreferenceRelative = 1e-7;
+
+/// The pair's length scale for the SAT's relative tolerances (metres): the
+/// smaller of the two hulls' bounding-box half diagonals about their own
+/// frames' vertex bounds, so a tolerance never exceeds a fraction of the
+/// smaller shape.
+double SatLengthScale(const Hull& a, const Hull& b);
+
+/// The preference band of a pair in metres: kAxisPreferenceRelative x
+/// SatLengthScale.
+inline double AxisPreferenceBand(const Hull& a, const Hull& b) {
+  return kAxisPreferenceRelative * SatLengthScale(a, b);
+}
 
 /// Edge pairs whose directions are parallel to within this sine are
 /// skipped: their cross product has no reliable direction, and the face

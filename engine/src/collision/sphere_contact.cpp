@@ -20,8 +20,11 @@ struct ClosestFeature {
 bool Finish(const ClosestFeature& closest, double radius, const Transform& xfB, double margin,
             ContactManifold* out) {
   const double depth = radius - closest.distance;
-  if (depth < -margin) return false;
   const Vec3 normal = xfB.Rotate(closest.normal);
+  out->normal = normal;
+  out->depth = depth;
+  out->pointCount = 0;
+  if (depth < -margin) return false;
   // Midway between B's surface point and the sphere's deepest point.
   const Vec3 local = closest.point + 0.5 * (closest.distance - radius) * closest.normal;
   out->normal = normal;
@@ -160,8 +163,11 @@ bool CollideSphereSphere(const Shape& a, const Transform& xfA, const Shape& b, c
   const Vec3 delta = xfA.position - xfB.position;
   const double distance = delta.norm();
   const double depth = a.Radius() + b.Radius() - distance;
-  if (depth < -margin) return false;
   const Vec3 normal = distance > kSphereDirectionEpsilon ? Vec3(delta / distance) : Vec3::UnitY();
+  out->normal = normal;
+  out->depth = depth;
+  out->pointCount = 0;
+  if (depth < -margin) return false;
   // Midway between A's lowest point and B's highest point along the normal.
   const Vec3 surfaceA = xfA.position - a.Radius() * normal;
   const Vec3 surfaceB = xfB.position + b.Radius() * normal;

@@ -6,7 +6,8 @@
 // visible from the centre. A centre inside the box or hull is pushed out
 // through the face it is nearest (the deepest face). Every routine returns
 // at most one point, positioned midway between the two surfaces, with the
-// normal from B towards A.
+// normal from B towards A. A pair that does not touch still gets its
+// normal and depth (minus the exact gap) written, with no points.
 #pragma once
 
 #include "collision/contact_manifold.h"

@@ -1,9 +1,12 @@
 // Uses an installed Talus the way an application would: one include, a box
-// hull, then a 1 m cube dropped on a static ground box and stepped to rest.
+// hull, README's pair-query example (collide_two_boxes.h), then a 1 m cube
+// dropped on a static ground box and stepped to rest.
 #include <cmath>
 #include <cstdio>
 
 #include <talus/talus.h>
+
+#include "collide_two_boxes.h"
 
 namespace {
 
@@ -18,6 +21,10 @@ int main() {
   auto box = talus::Hull::Box({0.5, 1.0, 1.5});
   if (!box || box.Value().FaceCount() != 6 || box.Value().VertexCount() != 8)
     return Fail("box hull is wrong");
+
+  // README's example: the cube sinks 2 cm into the slab.
+  const double depth = CollideTwoBoxes();
+  if (!(std::abs(depth - 0.02) < 1e-12)) return Fail("pair query depth is not the 2 cm overlap");
 
   auto world = talus::World::Create(talus::WorldSettings{});
   auto ground = talus::Shape::CreateBox({10.0, 0.5, 10.0});
