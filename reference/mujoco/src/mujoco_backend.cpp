@@ -104,12 +104,14 @@ class MujocoBackend final : public harness::Backend {
   std::vector<harness::Setting> m_settings;
 };
 
-// mjData bytes mj_makeData would allocate (see kMujocoMaxDataBytes): the
-// stack, the constraint arrays sized by njmax and nv, the contact list.
-double DataBytes(const mjModel* model) {
-  const double njmax = model->njmax, nv = model->nv;
-  return 8.0 * model->nstack + njmax * (24.0 * nv + 12.0 * njmax) +
-         static_cast<double>(model->nconmax) * sizeof(mjContact);
+// A lower bound on the mjData bytes mj_makeData allocates (see
+// kMujocoMaxDataBytes), known before the model is compiled (the compiler
+// already makes one mjData): efc_AR and its column indices (12 njmax^2),
+// efc_J, efc_JT and their indices (24 njmax nv), and the stack, which 2.2.2
+// sizes at about 5 njmax^2 numbers (measured: 5.6 to 6.6 njmax^2).
+double DataBytes(const MjcfModel& mjcf, int degreesOfFreedom) {
+  const double njmax = mjcf.njmax, nv = degreesOfFreedom;
+  return (12.0 + 40.0) * njmax * njmax + 24.0 * njmax * nv;
 }
 
 Result<std::unique_ptr<harness::Backend>> MujocoBackend::Create(const Run& run,
@@ -131,20 +133,22 @@ Result<std::unique_ptr<harness::Backend>> MujocoBackend::Create(const Run& run,
   }
   auto mjcf = WriteMjcf(run, masses, profile);
   if (!mjcf) return mjcf.GetError();
+  int dynamicBodies = 0;
+  for (const BodySpec& spec : run.scenario.bodies) dynamicBodies += spec.motion == harness::Motion::Dynamic;
+  const double bytes = DataBytes(mjcf.Value(), 6 * dynamicBodies);
+  if (bytes > kMujocoMaxDataBytes) {
+    return Error{"mujoco: the world needs at least " + std::to_string(static_cast<long long>(bytes / 1e6)) +
+                 " MB of mjData (nconmax " + std::to_string(mjcf.Value().nconmax) + ", njmax " +
+                 std::to_string(mjcf.Value().njmax) + ", nv " + std::to_string(6 * dynamicBodies) +
+                 "; MuJoCo 2.2.2 preallocates njmax x njmax), above the " +
+                 std::to_string(static_cast<long long>(kMujocoMaxDataBytes / 1e6)) + " MB limit"};
+  }
   auto model = LoadMjcf(mjcf.Value().text);
   if (!model) return Error{"mujoco: " + model.GetError().message};
 
   std::unique_ptr<MujocoBackend> backend(new MujocoBackend());
   backend->m_profile = profile;
   backend->m_model = model.Value();  // freed by the destructor from here on
-  const double bytes = DataBytes(backend->m_model);
-  if (bytes > kMujocoMaxDataBytes) {
-    return Error{"mujoco: the world needs " + std::to_string(static_cast<long long>(bytes / 1e6)) +
-                 " MB of mjData (nconmax " + std::to_string(backend->m_model->nconmax) + ", njmax " +
-                 std::to_string(backend->m_model->njmax) + ", nv " + std::to_string(backend->m_model->nv) +
-                 "; MuJoCo 2.2.2 preallocates njmax x njmax), above the " +
-                 std::to_string(static_cast<long long>(kMujocoMaxDataBytes / 1e6)) + " MB limit"};
-  }
   auto data = GuardedMakeData(backend->m_model);
   if (!data) return Error{"mujoco: " + data.GetError().message};
   backend->m_data = data.Value();
