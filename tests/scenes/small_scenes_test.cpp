@@ -74,6 +74,8 @@ TEST(BenchRun, OdeStepOnTheFullPyramidIsSkippedWithAReason) {
   EXPECT_TRUE(BenchSkipReason("ode-quickstep", kOdeMaxBodies + 1).has_value());
   EXPECT_FALSE(BenchSkipReason("talus", 100000).has_value());
   EXPECT_FALSE(BenchSkipReason("bullet", 100000).has_value());
+  EXPECT_FALSE(BenchSkipReason("mujoco", kMujocoMaxBodies).has_value());
+  EXPECT_TRUE(BenchSkipReason("mujoco-tuned", kMujocoMaxBodies + 1).has_value());
 }
 
 TEST(BenchRun, UnknownEngineAndBadStepsAreErrors) {
