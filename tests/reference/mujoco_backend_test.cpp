@@ -258,6 +258,23 @@ TEST_P(MujocoProfiles, HullFramesAndCentresOfMassLandWhereTheSceneSays) {
   }
 }
 
+TEST(MujocoBackend, AWarningMidRunFailsTheWorldInsteadOfResettingIt) {
+  // A box thrown at 1e12 m/s passes MuJoCo's mjMAXVAL (1e10) in qpos after
+  // one step: MuJoCo warns (bad qpos) and silently resets the state to the
+  // initial one. The backend must not hand that back as a result: the world
+  // stops and every state is NaN, which fails the run.
+  harness::Run run = LoadRun("tumbling/box_free_fall.json");
+  run.scenario.bodies[0].linearVelocity = Vec3(1e12, 0.0, 0.0);
+  auto backend = Build("mujoco", run);
+  ASSERT_TRUE(backend);
+  backend->Step();
+  backend->Step();
+  const harness::BodyState state = backend->GetBodyState(0);
+  EXPECT_TRUE(std::isnan(state.centerOfMass.x()));
+  EXPECT_TRUE(std::isnan(state.linearVelocity.y()));
+  EXPECT_TRUE(backend->GetContacts().empty());
+}
+
 TEST(MujocoBackend, RefusesWhatMuJoCoCannotDoWithTheReason) {
   harness::Run run = LoadRun("tumbling/box_torque_free.json");
   run.scenario.world.gyroscopic = false;
