@@ -64,7 +64,8 @@ TEST_P(SmallHullPile, KeepsEveryBodyInsideTheWalls) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Engines, SmallHullPile,
-                         ::testing::Values("talus", "bullet", "ode-quickstep", "ode-step"));
+                         ::testing::Values("talus", "bullet", "ode-quickstep", "ode-step", "mujoco",
+                                           "mujoco-tuned"));
 
 TEST(BenchRun, OdeStepOnTheFullPyramidIsSkippedWithAReason) {
   const BenchReport report = RunScene("ode-step", "pyramid", 15, 600);
