@@ -19,7 +19,10 @@
 // through a virtual file system; MuJoCo's errors (mju_user_error) and
 // warnings (contact buffer full, bad qacc...) become a refused world or a
 // failed run, never an exit of the process (mujoco_guard.h). Worlds share
-// no state and step on one thread each; a run is deterministic.
+// no state and step on one thread each; a run is deterministic. MuJoCo's
+// loader swaps the process-wide mju_user_error while it compiles, so worlds
+// are built on one thread at a time: the runner's serial lane for the
+// "mujoco" family (both names) does that.
 #pragma once
 
 #include <memory>
