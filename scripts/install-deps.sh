@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev                     # engine math
   libbullet-dev libbullet-extras-dev # peer engine (reference/)
   libode-dev                        # peer engine (reference/)
+  libmujoco-dev                     # peer engine (reference/mujoco)
   libccd-dev                        # collision truth (GJK/MPR)
   libqhull-dev                      # hull truth (tests, benchmarks)
   nlohmann-json3-dev                # scenario files and reports

@@ -16,6 +16,7 @@
 #include "talus/harness/bench_run.h"
 #include "talus/harness/bench_scenes.h"
 #include "talus/reference/bullet_backend.h"
+#include "talus/reference/mujoco_backend.h"
 #include "talus/reference/ode_backend.h"
 #include "talus/reference/talus_backend.h"
 
@@ -54,6 +55,7 @@ int main(int argc, char** argv) {
   talus::reference::RegisterTalusBackends(registry);
   talus::reference::RegisterBulletBackends(registry);
   talus::reference::RegisterOdeBackends(registry);
+  talus::reference::RegisterMujocoBackends(registry);
 
   Options options;
   CLI::App app{"talus-scenes: the reference benchmark scenes (pyramid, hull_pile) on every engine"};

@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct StressOptions {
-  std::vector<std::string> backends{"talus", "bullet", "ode-step", "ode-quickstep"};
+  std::vector<std::string> backends{"talus", "bullet", "ode-step", "ode-quickstep", "mujoco", "mujoco-tuned"};
   std::vector<std::string> axes;
   std::vector<std::string> limits;  ///< "axis=value"
   bool full = false;

@@ -13,6 +13,7 @@
 #include "talus/harness/runner.h"
 #include "talus/harness/sweep.h"
 #include "talus/reference/bullet_backend.h"
+#include "talus/reference/mujoco_backend.h"
 #include "talus/reference/ode_backend.h"
 #include "talus/reference/talus_backend.h"
 #include "testbed_commands.h"
@@ -131,6 +132,7 @@ const harness::BackendRegistry& AllBackends() {
     reference::RegisterTalusBackends(r);
     reference::RegisterBulletBackends(r);
     reference::RegisterOdeBackends(r);
+    reference::RegisterMujocoBackends(r);
     return r;
   }();
   return registry;

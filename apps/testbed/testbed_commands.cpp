@@ -85,7 +85,8 @@ bool ReportRunErrors(const ResultsFile& file) {
 }  // namespace
 
 std::vector<std::string> DefaultBackends() {
-  return {"talus", "talus-writeup", "talus-split", "bullet", "ode-step", "ode-quickstep"};
+  return {"talus",    "talus-writeup", "talus-split", "bullet",
+          "ode-step", "ode-quickstep", "mujoco",      "mujoco-tuned"};
 }
 
 int RunCommand(const RunOptions& options) {

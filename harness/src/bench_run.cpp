@@ -68,6 +68,12 @@ std::optional<std::string> BenchSkipReason(std::string_view engine, int dynamicB
     return "the ODE backend's dSimpleSpace tests all n^2/2 pairs every step; " +
            std::to_string(dynamicBodies) + " bodies > " + std::to_string(kOdeMaxBodies) + " (kOdeMaxBodies)";
   }
+  if (engine.substr(0, 6) == "mujoco" && dynamicBodies > kMujocoMaxBodies) {
+    return "MuJoCo 2.2.2 preallocates its constraint arrays as njmax x njmax (memory ~ bodies^2, over 1 "
+           "GB); " +
+           std::to_string(dynamicBodies) + " bodies > " + std::to_string(kMujocoMaxBodies) +
+           " (kMujocoMaxBodies)";
+  }
   return std::nullopt;
 }
 

@@ -64,7 +64,8 @@ TEST_P(SmallHullPile, KeepsEveryBodyInsideTheWalls) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Engines, SmallHullPile,
-                         ::testing::Values("talus", "bullet", "ode-quickstep", "ode-step"));
+                         ::testing::Values("talus", "bullet", "ode-quickstep", "ode-step", "mujoco",
+                                           "mujoco-tuned"));
 
 TEST(BenchRun, OdeStepOnTheFullPyramidIsSkippedWithAReason) {
   const BenchReport report = RunScene("ode-step", "pyramid", 15, 600);
@@ -74,6 +75,8 @@ TEST(BenchRun, OdeStepOnTheFullPyramidIsSkippedWithAReason) {
   EXPECT_TRUE(BenchSkipReason("ode-quickstep", kOdeMaxBodies + 1).has_value());
   EXPECT_FALSE(BenchSkipReason("talus", 100000).has_value());
   EXPECT_FALSE(BenchSkipReason("bullet", 100000).has_value());
+  EXPECT_FALSE(BenchSkipReason("mujoco", kMujocoMaxBodies).has_value());
+  EXPECT_TRUE(BenchSkipReason("mujoco-tuned", kMujocoMaxBodies + 1).has_value());
 }
 
 TEST(BenchRun, UnknownEngineAndBadStepsAreErrors) {

@@ -1,9 +1,10 @@
 // Every backend the testbed ships (Talus's variants, Bullet, both ODE
-// steppers) in one registry, shared by the testbed suites.
+// steppers, MuJoCo's two configurations) in one registry, shared by the testbed suites.
 #pragma once
 
 #include "talus/harness/backend.h"
 #include "talus/reference/bullet_backend.h"
+#include "talus/reference/mujoco_backend.h"
 #include "talus/reference/ode_backend.h"
 #include "talus/reference/talus_backend.h"
 
@@ -15,6 +16,7 @@ inline const BackendRegistry& AllBackends() {
     reference::RegisterTalusBackends(r);
     reference::RegisterBulletBackends(r);
     reference::RegisterOdeBackends(r);
+    reference::RegisterMujocoBackends(r);
     return r;
   }();
   return registry;

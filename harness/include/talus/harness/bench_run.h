@@ -38,6 +38,17 @@ inline constexpr int kOdeStepMaxBodies = 40;
 /// reason printed.
 inline constexpr int kOdeMaxBodies = 5000;
 
+/// MuJoCo 2.2.2 sizes its constraint arrays for the worst case at
+/// mj_makeData (efc_AR is njmax x njmax, the stack about 5 njmax^2), and the
+/// MuJoCo backend gives each dynamic body 16 contact slots, so memory grows
+/// with the square of the body count: above this many dynamic bodies the
+/// world would need more than its 1 GB limit (kMujocoMaxDataBytes; pyramid
+/// H = 10 would need 34 GB), so MuJoCo runs are skipped with that reason.
+/// 63 is where the default (pyramidal, 4 rows a contact) configuration
+/// reaches the limit; pyramid H = 5 (55 cubes) and hull_pile L = 2 (40)
+/// run.
+inline constexpr int kMujocoMaxBodies = 63;
+
 /// One line of a benchmark report.
 struct BenchReport {
   std::string engine;     ///< backend name, e.g. "bullet"
@@ -67,7 +78,7 @@ struct BenchReport {
 };
 
 /// Why `engine` is not run on a scene of `dynamicBodies` bodies, or nothing
-/// when it is (see kOdeStepMaxBodies, kOdeMaxBodies).
+/// when it is (see kOdeStepMaxBodies, kOdeMaxBodies, kMujocoMaxBodies).
 std::optional<std::string> BenchSkipReason(std::string_view engine, int dynamicBodies);
 
 /// Called after every step with the step number (1-based) and the total;

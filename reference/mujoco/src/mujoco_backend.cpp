@@ -1,0 +1,366 @@
+// MuJoCo behind the Backend interface (see talus/reference/mujoco_backend.h).
+//
+// Frames: each dynamic body's MJCF frame is its centre of mass on principal
+// axes (mjcf_writer.h), so a free joint's qpos is that frame's position and
+// quaternion, its qvel the centre of mass's world velocity followed by the
+// angular velocity in that frame. Reading back inverts the frame change as
+// the Bullet and ODE backends do: R = R_com P^T, p = X_com - R c.
+//
+// One step: mj_step (collision, constraint solve, integration) under the
+// error guard; any MuJoCo error or warning (full contact buffer, bad
+// numbers) marks the world failed. A failed world stops stepping and
+// reports NaN states, which the runner's checks flag as a failed run.
+#include "talus/reference/mujoco_backend.h"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "mjcf_writer.h"
+#include "mujoco_guard.h"
+#include "talus/reference/body_mass.h"
+
+namespace talus::reference {
+namespace {
+
+using harness::BodySpec;
+using harness::Run;
+
+std::string Format(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+
+const char* IntegratorName(int integrator) {
+  switch (integrator) {
+    case mjINT_EULER:
+      return "Euler (semi-implicit: v += h a, then x += h v)";
+    case mjINT_RK4:
+      return "RK4";
+    case mjINT_IMPLICIT:
+      return "implicit (in velocity: Coriolis, centrifugal and gyroscopic derivatives)";
+    default:
+      return "unknown";
+  }
+}
+
+const char* SolverName(int solver) {
+  switch (solver) {
+    case mjSOL_PGS:
+      return "PGS (dual)";
+    case mjSOL_CG:
+      return "CG (primal)";
+    case mjSOL_NEWTON:
+      return "Newton (primal)";
+    default:
+      return "unknown";
+  }
+}
+
+// "value" when it is MuJoCo's default, else "value (MuJoCo default: x)".
+std::string AgainstDefault(const std::string& value, const std::string& defaultValue, bool isDefault) {
+  return isDefault ? value + " (MuJoCo default)" : value + " (MuJoCo default: " + defaultValue + ")";
+}
+
+class MujocoBackend final : public harness::Backend {
+ public:
+  static Result<std::unique_ptr<harness::Backend>> Create(const Run& run, const MujocoProfile& profile);
+  ~MujocoBackend() override;
+
+  [[nodiscard]] std::string Name() const override { return m_profile.name; }
+  void Step() override;
+  [[nodiscard]] int BodyCount() const override { return static_cast<int>(m_bodies.size()); }
+  [[nodiscard]] harness::BodyState GetBodyState(int index) const override;
+  [[nodiscard]] std::vector<harness::ContactPoint> GetContacts() const override;
+  [[nodiscard]] std::vector<harness::Setting> Settings() const override { return m_settings; }
+  [[nodiscard]] std::vector<harness::StepCounter> StepCounters() const override;
+
+ private:
+  struct Body {
+    BodyMass mass;
+    bool dynamic = false;
+    int qposAddress = -1;  // free joint: 3 position, 4 quaternion (w x y z)
+    int dofAddress = -1;   // free joint: 3 linear (world), 3 angular (body frame)
+    Vec3 fixedPosition = Vec3::Zero();
+    Quat fixedOrientation = Quat::Identity();
+  };
+
+  MujocoBackend() = default;
+  Result<bool> MapBodies(const Run& run, std::vector<BodyMass> masses);
+  void SetInitialVelocities(const Run& run);
+  void AddSettings(const Run& run, const MjcfModel& mjcf);
+
+  MujocoProfile m_profile;
+  mjModel* m_model = nullptr;
+  mjData* m_data = nullptr;
+  std::vector<Body> m_bodies;
+  std::vector<int> m_geomBody;  // MuJoCo geom id -> scenario body index
+  std::string m_failure;        // first MuJoCo error or warning; the world is dead after it
+  std::vector<harness::Setting> m_settings;
+};
+
+// A lower bound on the mjData bytes mj_makeData allocates (see
+// kMujocoMaxDataBytes), known before the model is compiled (the compiler
+// already makes one mjData): efc_AR and its column indices (12 njmax^2),
+// efc_J, efc_JT and their indices (24 njmax nv), and the stack, which 2.2.2
+// sizes at about 5 njmax^2 numbers (measured: 5.6 to 6.6 njmax^2).
+double DataBytes(const MjcfModel& mjcf, int degreesOfFreedom) {
+  const double njmax = mjcf.njmax, nv = degreesOfFreedom;
+  return (12.0 + 40.0) * njmax * njmax + 24.0 * njmax * nv;
+}
+
+Result<std::unique_ptr<harness::Backend>> MujocoBackend::Create(const Run& run,
+                                                                const MujocoProfile& profile) {
+  if (mj_version() != mjVERSION_HEADER) {
+    return Error{"mujoco: the library is version " + std::to_string(mj_version()) + " but the headers are " +
+                 std::to_string(mjVERSION_HEADER)};
+  }
+  if (!run.scenario.world.gyroscopic) {
+    return Error{
+        "mujoco: the scenario turns the gyroscopic term off; MuJoCo has no such switch (a free "
+        "joint's Coriolis and centrifugal bias forces always include it)"};
+  }
+  std::vector<BodyMass> masses;
+  for (const BodySpec& spec : run.scenario.bodies) {
+    auto mass = ComputeBodyMass(spec);
+    if (!mass) return Error{"mujoco: " + mass.GetError().message};
+    masses.push_back(mass.Value());
+  }
+  auto mjcf = WriteMjcf(run, masses, profile);
+  if (!mjcf) return mjcf.GetError();
+  int dynamicBodies = 0;
+  for (const BodySpec& spec : run.scenario.bodies) dynamicBodies += spec.motion == harness::Motion::Dynamic;
+  const double bytes = DataBytes(mjcf.Value(), 6 * dynamicBodies);
+  if (bytes > kMujocoMaxDataBytes) {
+    return Error{"mujoco: the world needs at least " + std::to_string(static_cast<long long>(bytes / 1e6)) +
+                 " MB of mjData (nconmax " + std::to_string(mjcf.Value().nconmax) + ", njmax " +
+                 std::to_string(mjcf.Value().njmax) + ", nv " + std::to_string(6 * dynamicBodies) +
+                 "; MuJoCo 2.2.2 preallocates njmax x njmax), above the " +
+                 std::to_string(static_cast<long long>(kMujocoMaxDataBytes / 1e6)) + " MB limit"};
+  }
+  auto model = LoadMjcf(mjcf.Value().text);
+  if (!model) return Error{"mujoco: " + model.GetError().message};
+
+  std::unique_ptr<MujocoBackend> backend(new MujocoBackend());
+  backend->m_profile = profile;
+  backend->m_model = model.Value();  // freed by the destructor from here on
+  auto data = GuardedMakeData(backend->m_model);
+  if (!data) return Error{"mujoco: " + data.GetError().message};
+  backend->m_data = data.Value();
+  auto mapped = backend->MapBodies(run, std::move(masses));
+  if (!mapped) return mapped.GetError();
+  backend->SetInitialVelocities(run);
+  backend->AddSettings(run, mjcf.Value());
+  return std::unique_ptr<harness::Backend>(std::move(backend));
+}
+
+MujocoBackend::~MujocoBackend() {
+  if (m_data != nullptr) mj_deleteData(m_data);
+  if (m_model != nullptr) mj_deleteModel(m_model);
+}
+
+Result<bool> MujocoBackend::MapBodies(const Run& run, std::vector<BodyMass> masses) {
+  m_geomBody.assign(static_cast<size_t>(m_model->ngeom), -1);
+  for (size_t i = 0; i < run.scenario.bodies.size(); ++i) {
+    const BodySpec& spec = run.scenario.bodies[i];
+    const std::string id = std::to_string(i);
+    const int body = mj_name2id(m_model, mjOBJ_BODY, ("b" + id).c_str());
+    const int geom = mj_name2id(m_model, mjOBJ_GEOM, ("g" + id).c_str());
+    if (body < 0 || geom < 0) return Error{"mujoco: body \"" + spec.name + "\" is missing from the model"};
+    m_geomBody[static_cast<size_t>(geom)] = static_cast<int>(i);
+    Body entry;
+    entry.mass = masses[i];
+    entry.dynamic = spec.motion == harness::Motion::Dynamic;
+    if (entry.dynamic) {
+      const int joint = m_model->body_jntadr[body];
+      entry.qposAddress = m_model->jnt_qposadr[joint];
+      entry.dofAddress = m_model->jnt_dofadr[joint];
+    } else {
+      entry.fixedPosition = spec.position;
+      entry.fixedOrientation = spec.orientation;
+    }
+    m_bodies.push_back(entry);
+  }
+  return true;
+}
+
+void MujocoBackend::SetInitialVelocities(const Run& run) {
+  for (size_t i = 0; i < m_bodies.size(); ++i) {
+    const Body& body = m_bodies[i];
+    if (!body.dynamic) continue;
+    const BodySpec& spec = run.scenario.bodies[i];
+    const mjtNum* q = m_data->qpos + body.qposAddress + 3;
+    const Mat3 rotation = Quat(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+    const Vec3 localOmega = rotation.transpose() * spec.angularVelocity;
+    mjtNum* v = m_data->qvel + body.dofAddress;
+    for (int k = 0; k < 3; ++k) {
+      v[k] = spec.linearVelocity[k];
+      v[3 + k] = localOmega[k];
+    }
+  }
+}
+
+void MujocoBackend::Step() {
+  if (!m_failure.empty()) return;
+  m_failure = GuardedStep(m_model, m_data);
+  if (m_failure.empty()) m_failure = FirstWarning(m_data);
+}
+
+harness::BodyState MujocoBackend::GetBodyState(int index) const {
+  const Body& body = m_bodies.at(static_cast<size_t>(index));
+  harness::BodyState state;
+  if (!m_failure.empty()) {
+    // A failed world has no state; NaN makes every check on it fail.
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    state.centerOfMass = state.origin = state.linearVelocity = state.angularVelocity = Vec3::Constant(nan);
+    state.orientation = Quat(nan, nan, nan, nan);
+    state.mass = body.dynamic ? body.mass.mass : 0.0;
+    return state;
+  }
+  if (!body.dynamic) {
+    state.orientation = body.fixedOrientation;
+    state.origin = body.fixedPosition;
+    state.centerOfMass = body.fixedPosition + body.fixedOrientation.toRotationMatrix() * body.mass.centroid;
+    return state;
+  }
+  const mjtNum* x = m_data->qpos + body.qposAddress;
+  const mjtNum* v = m_data->qvel + body.dofAddress;
+  const Quat comOrientation = Quat(x[3], x[4], x[5], x[6]).normalized();
+  state.centerOfMass = Vec3(x[0], x[1], x[2]);
+  state.orientation = (comOrientation * body.mass.principalRotation.conjugate()).normalized();
+  const Mat3 rotation = state.orientation.toRotationMatrix();
+  state.origin = state.centerOfMass - rotation * body.mass.centroid;
+  state.linearVelocity = Vec3(v[0], v[1], v[2]);
+  state.angularVelocity = comOrientation.toRotationMatrix() * Vec3(v[3], v[4], v[5]);
+  state.mass = body.mass.mass;
+  state.worldInertia = rotation * body.mass.inertia * rotation.transpose();
+  return state;
+}
+
+std::vector<harness::ContactPoint> MujocoBackend::GetContacts() const {
+  // MuJoCo's frame[0..2] points from geom1 to geom2, so A = geom2's body and
+  // B = geom1's; dist is negative when penetrating. Excluded contacts (in
+  // the margin gap) carry no force and are not reported.
+  std::vector<harness::ContactPoint> contacts;
+  if (!m_failure.empty()) return contacts;
+  for (int c = 0; c < m_data->ncon; ++c) {
+    const mjContact& contact = m_data->contact[c];
+    if (contact.exclude != 0) continue;
+    contacts.push_back({m_geomBody[static_cast<size_t>(contact.geom2)],
+                        m_geomBody[static_cast<size_t>(contact.geom1)],
+                        Vec3(contact.pos[0], contact.pos[1], contact.pos[2]),
+                        Vec3(contact.frame[0], contact.frame[1], contact.frame[2]), -contact.dist});
+  }
+  return contacts;
+}
+
+std::vector<harness::StepCounter> MujocoBackend::StepCounters() const {
+  return {{"contact points", static_cast<double>(m_data->ncon)},
+          {"constraint rows", static_cast<double>(m_data->nefc)},
+          {"solver iterations", static_cast<double>(m_data->solver_iter)}};
+}
+
+void MujocoBackend::AddSettings(const Run& run, const MjcfModel& mjcf) {
+  const mjOption& opt = m_model->opt;
+  const bool tuned = m_profile.name != "mujoco";
+  // The contact spring MuJoCo actually uses: refsafe keeps the time
+  // constant at least two steps.
+  const double timeConstant = std::max(kMujocoDefaultTimeConstant, 2.0 * run.timeStep);
+  m_settings = {
+      {"engine", std::string("MuJoCo ") + mj_versionString() + " (Debian libmujoco-dev, mjtNum double)"},
+      {"configuration", tuned ? "tuned: MuJoCo's documented best practice for rigid contact (see the options "
+                                "below that name their default)"
+                              : "defaults: every engine option as a new MuJoCo user gets it"},
+      {"model", "MJCF written in memory (mjVFS), one body with a free joint per dynamic body"},
+      {"time step (s)", Format(opt.timestep)},
+      {"integrator", AgainstDefault(IntegratorName(opt.integrator), "Euler", opt.integrator == mjINT_EULER)},
+      {"friction cone", AgainstDefault(opt.cone == mjCONE_ELLIPTIC ? "elliptic" : "pyramidal", "pyramidal",
+                                       opt.cone == mjCONE_PYRAMIDAL)},
+      {"solver", AgainstDefault(SolverName(opt.solver), "Newton", opt.solver == mjSOL_NEWTON)},
+      {"solver iterations",
+       std::to_string(opt.iterations) + (run.iterations > 0 ? " (the scenario's)" : " (MuJoCo default)")},
+      {"solver tolerance", Format(opt.tolerance)},
+      {"noslip iterations",
+       AgainstDefault(std::to_string(opt.noslip_iterations), "0 (off)", opt.noslip_iterations == 0)},
+      {"impratio", AgainstDefault(Format(opt.impratio), "1", opt.impratio == 1.0)},
+      {"multi-point convex collision (multiccd)",
+       AgainstDefault((opt.enableflags & mjENBL_MULTICCD) != 0 ? "on" : "off", "off",
+                      (opt.enableflags & mjENBL_MULTICCD) == 0)},
+      {"constraint Jacobian", "auto (dense below 60 degrees of freedom, sparse above; MuJoCo default)"},
+      {"contact softness",
+       "solref 0.02 1, solimp 0.9 0.95 0.001 0.5 2, margin 0 (MuJoCo defaults); time constant used " +
+           Format(timeConstant) + " s (refsafe: at least 2 steps)"},
+      {"restitution", "no coefficient in MuJoCo: a contact of e > 0 gets solref (-1/t^2, -2 z(e)/t), t = " +
+                          Format(timeConstant) +
+                          " s, z(e) = -ln e / sqrt(pi^2 + ln^2 e); e = 0 keeps the default solref"},
+      {"friction", "condim 3 (sliding friction only; torsional and rolling off), one coefficient per geom"},
+      {"friction combine", std::string(harness::CombineRuleName(run.scenario.world.frictionCombine)) +
+                               " (MuJoCo mixes by max: explicit <pair> where that differs)"},
+      {"restitution combine", std::string(harness::CombineRuleName(run.scenario.world.restitutionCombine)) +
+                                  " (MuJoCo averages solref: explicit <pair> where that differs)"},
+      {"explicit contact pairs", std::to_string(mjcf.explicitPairs)},
+      {"contact buffers", "nconmax " + std::to_string(m_model->nconmax) + ", njmax " +
+                              std::to_string(m_model->njmax) + " (a full buffer fails the run)"},
+      {"gyroscopic term", opt.integrator == mjINT_EULER
+                              ? "always on (free-joint bias forces), explicit with the Euler integrator"
+                              : "always on (free-joint bias forces)"},
+      {"damping", "linear 0, angular 0 (no joint damping, no medium)"},
+      {"sleeping", "none (MuJoCo 2.2.2 has no sleeping)"},
+      {"box-box collision", "MuJoCo's native box-box test"},
+      {"hull shapes",
+       "mesh of the scenario's points: MuJoCo's compiler hull (qhull); convex collision by MPR "
+       "(libccd), one point per pair without multiccd"},
+      {"mass properties",
+       "from talus::reference::ComputeBodyMass (exact), explicit <inertial> on principal axes "
+       "(inertiafromgeom false)"},
+  };
+}
+
+}  // namespace
+
+double MujocoDampRatioForRestitution(double e) {
+  if (e <= 0.0) return 1.0;
+  if (e >= 1.0) return 0.0;
+  const double logE = std::log(e);
+  return -logE / std::sqrt(M_PI * M_PI + logE * logE);
+}
+
+MujocoSolref MujocoSolrefForRestitution(double e, double timeStep) {
+  if (e <= 0.0) return {};
+  const double t = std::max(kMujocoDefaultTimeConstant, 2.0 * timeStep);
+  return {-1.0 / (t * t), -2.0 * MujocoDampRatioForRestitution(e) / t};
+}
+
+MujocoProfile MujocoDefaultsProfile() {
+  MujocoProfile profile;
+  profile.name = "mujoco";
+  return profile;
+}
+
+MujocoProfile MujocoTunedProfile() {
+  MujocoProfile profile;
+  profile.name = "mujoco-tuned";
+  profile.contactFreeIntegrator = "RK4";
+  profile.cone = "elliptic";
+  profile.multiccd = true;
+  return profile;
+}
+
+Result<std::unique_ptr<harness::Backend>> CreateMujocoBackend(const Run& run, const MujocoProfile& profile) {
+  return MujocoBackend::Create(run, profile);
+}
+
+void RegisterMujocoBackends(harness::BackendRegistry& registry) {
+  registry.Register("mujoco", "MuJoCo 2.2.2 (double): its defaults (Euler, pyramidal cones, Newton)",
+                    [](const Run& run) { return MujocoBackend::Create(run, MujocoDefaultsProfile()); });
+  registry.Register("mujoco-tuned",
+                    "MuJoCo 2.2.2 (double): tuned (elliptic cones, multiccd, RK4 without contact)",
+                    [](const Run& run) { return MujocoBackend::Create(run, MujocoTunedProfile()); });
+}
+
+}  // namespace talus::reference
