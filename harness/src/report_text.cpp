@@ -221,12 +221,15 @@ std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras)
       if (!m->reason.empty() && notes.insert(m->reason).second) out << "\nTolerance: " << m->reason << "\n";
     }
     for (const auto& [backend, result] : group.byBackend) {
+      // One line per reason: FAILS when any of its metrics fails.
+      std::map<std::string, bool> failsByReason;
       for (const MetricResult& m : result->metrics) {
-        if (!m.ungated.empty() && notes.insert(Concat({backend, m.ungated})).second) {
-          out << "\n"
-              << backend << " is not gated on this truth (" << (m.pass ? "passes" : "FAILS")
-              << "): " << m.ungated << "\n";
-        }
+        if (!m.ungated.empty()) failsByReason[m.ungated] = failsByReason[m.ungated] || !m.pass;
+      }
+      for (const auto& [reason, fails] : failsByReason) {
+        out << "\n"
+            << backend << " is not gated on this truth (" << (fails ? "FAILS" : "passes") << "): " << reason
+            << "\n";
       }
     }
     out << "\n";
