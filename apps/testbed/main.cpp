@@ -52,11 +52,14 @@ int main(int argc, char** argv) {
 
   CheckOptions check;
   CLI::App* checkCommand =
-      app.add_subcommand("check", "check Talus's metrics against the scenario tolerances");
+      app.add_subcommand("check", "check every Talus variant's metrics against the scenario tolerances");
   checkCommand->add_option("scenarios", check.scenarios, "scenario files or folders (default: scenarios/)");
   checkCommand->add_option("-r,--results", check.results, "check this results.json instead of running");
-  checkCommand->add_option("-b,--backend", check.backend, "backend whose metrics are checked")
-      ->capture_default_str();
+  checkCommand
+      ->add_option(
+          "-b,--backend", check.backends,
+          "backends whose metrics are checked (repeat or comma-separate; default: every Talus variant)")
+      ->delimiter(',');
   checkCommand->add_option("-j,--jobs", check.jobs, "threads (0 = every core)")
       ->check(CLI::NonNegativeNumber);
   checkCommand->add_flag("-q,--quiet", check.quiet, "no progress on stderr");

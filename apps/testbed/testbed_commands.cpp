@@ -167,6 +167,7 @@ int ReportCommand(const ReportOptions& options) {
 }
 
 int CheckCommand(const CheckOptions& options) {
+  std::vector<std::string> backends = options.backends;
   ResultsFile file;
   if (!options.results.empty()) {
     if (!options.scenarios.empty()) {
@@ -179,20 +180,38 @@ int CheckCommand(const CheckOptions& options) {
       return kExitBadInput;
     }
     file = std::move(read).Value();
+    // By default every Talus variant the results (and so their report) show.
+    if (backends.empty()) backends = harness::TalusVariants(file.backends);
   } else {
-    auto ran = LoadAndRun(options.scenarios, {options.backend}, options.jobs, true, options.quiet);
+    // By default every registered Talus variant.
+    if (backends.empty()) backends = harness::TalusVariants(AllBackends().Names());
+    auto ran = LoadAndRun(options.scenarios, backends, options.jobs, true, options.quiet);
     if (!ran) return kExitBadInput;
     file = std::move(*ran);
   }
-  const harness::CheckOutcome outcome = harness::CheckResults(file, options.backend);
-  if (!outcome.Ok()) {
-    std::cout << "check FAILED for " << options.backend << ": " << outcome.problems.size() << " problem(s)\n";
-    for (const std::string& problem : outcome.problems) std::cout << "  " << problem << "\n";
-    return kExitFailed;
+  if (backends.empty()) {
+    std::cerr << "talus-testbed: no Talus variant to check (name one with --backend)\n";
+    return kExitBadInput;
   }
-  std::cout << "check passed for " << options.backend << ": " << outcome.checkedMetrics << " metrics in "
-            << outcome.runs << " runs within tolerance\n";
-  return kExitOk;
+  // Every backend is checked and reported, so one failing variant does not
+  // hide another's verdict.
+  bool ok = true;
+  for (const std::string& backend : backends) {
+    const harness::CheckOutcome outcome = harness::CheckResults(file, backend);
+    if (!outcome.Ok()) {
+      ok = false;
+      std::cout << "check FAILED for " << backend << ": " << outcome.problems.size() << " problem(s)\n";
+      for (const std::string& problem : outcome.problems) std::cout << "  " << problem << "\n";
+    } else {
+      std::cout << "check passed for " << backend << ": " << outcome.checkedMetrics << " metrics in "
+                << outcome.runs << " runs within tolerance\n";
+    }
+    if (!outcome.ungated.empty()) {
+      std::cout << "  " << outcome.ungated.size() << " metric(s) of " << backend << " outside the gate:\n";
+      for (const std::string& line : outcome.ungated) std::cout << "    " << line << "\n";
+    }
+  }
+  return ok ? kExitOk : kExitFailed;
 }
 
 }  // namespace talus::testbed

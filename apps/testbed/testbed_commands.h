@@ -46,7 +46,7 @@ int ReportCommand(const ReportOptions& options);
 struct CheckOptions {
   std::vector<std::string> scenarios;  ///< as for run, when no results file is given
   std::string results;                 ///< check this results.json instead of running
-  std::string backend = "talus";       ///< whose metrics are checked
+  std::vector<std::string> backends;   ///< whose metrics are checked; empty = every Talus variant
   int jobs = 0;                        ///< 0 = every core
   bool quiet = false;
 };

@@ -18,6 +18,11 @@ CheckOutcome CheckResults(const ResultsFile& file, std::string_view backend) {
       continue;
     }
     for (const MetricResult& m : result.metrics) {
+      if (!m.ungated.empty()) {
+        outcome.ungated.push_back(
+            Concat({result.runId, " ", m.name, ": ", m.pass ? "ok" : "FAIL", " (ungated: ", m.ungated, ")"}));
+        continue;
+      }
       if (!m.checked) continue;
       ++outcome.checkedMetrics;
       if (m.pass) continue;
@@ -40,6 +45,14 @@ CheckOutcome CheckResults(const ResultsFile& file, std::string_view backend) {
     outcome.problems.push_back(Concat({"no results for backend \"", backend, "\""}));
   }
   return outcome;
+}
+
+std::vector<std::string> TalusVariants(const std::vector<std::string>& registered) {
+  std::vector<std::string> variants;
+  for (const std::string& name : registered) {
+    if (name == "talus" || name.rfind("talus-", 0) == 0) variants.push_back(name);
+  }
+  return variants;
 }
 
 }  // namespace talus::harness

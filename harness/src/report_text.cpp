@@ -53,6 +53,8 @@ std::string Cell(const RunResult* r, const std::string& metric) {
   if (m == nullptr) return "-";
   std::string_view sign = std::isnan(m->measured) || m->error < 0.0 ? "" : "+";
   const std::string value = std::isnan(m->measured) ? std::string("not measured") : FormatNumber(m->error, 3);
+  // A truth ungated for this backend is still judged and shown so.
+  if (!m->ungated.empty()) return Concat({sign, value, m->pass ? " ok (ungated)" : " FAIL (ungated)"});
   std::string_view mark = !m->checked ? "" : m->pass ? " ok" : " FAIL";
   return Concat({sign, value, mark});
 }
@@ -68,7 +70,7 @@ std::string Expected(const MetricResult& m) {
 }
 
 std::string ToleranceText(const MetricResult& m) {
-  if (!m.checked) return "-";
+  if (!m.checked && m.ungated.empty()) return "-";
   std::string text;
   if (m.tolerance.absolute > 0.0) text.append(FormatNumber(m.tolerance.absolute)).append(" ").append(m.unit);
   if (m.tolerance.relative > 0.0) {
@@ -191,7 +193,7 @@ std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras)
         const RunResult* r = it == group.byBackend.end() ? nullptr : it->second;
         const MetricResult* own = r == nullptr ? nullptr : FindMetric(*r, m->name);
         // Measured values for unchecked metrics (drift, penetration); errors for truths.
-        if (own != nullptr && !own->checked && r->error.empty()) {
+        if (own != nullptr && !own->checked && own->ungated.empty() && r->error.empty()) {
           row.push_back(FormatNumber(own->measured, 3));
         } else {
           row.push_back(Cell(r, m->name));
@@ -212,6 +214,23 @@ std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras)
     Row(out, time);
     for (const auto& [backend, result] : group.byBackend) {
       if (!result->error.empty()) out << "\n" << backend << " refused the run: " << result->error << "\n";
+    }
+    // Why each tolerance has its size, and why a backend is outside the gate.
+    std::set<std::string> notes;
+    for (const MetricResult* m : metrics) {
+      if (!m->reason.empty() && notes.insert(m->reason).second) out << "\nTolerance: " << m->reason << "\n";
+    }
+    for (const auto& [backend, result] : group.byBackend) {
+      // One line per reason: FAILS when any of its metrics fails.
+      std::map<std::string, bool> failsByReason;
+      for (const MetricResult& m : result->metrics) {
+        if (!m.ungated.empty()) failsByReason[m.ungated] = failsByReason[m.ungated] || !m.pass;
+      }
+      for (const auto& [reason, fails] : failsByReason) {
+        out << "\n"
+            << backend << " is not gated on this truth (" << (fails ? "FAILS" : "passes") << "): " << reason
+            << "\n";
+      }
     }
     out << "\n";
   }

@@ -26,9 +26,11 @@ Json MetricToJson(const MetricResult& m) {
   j["truth"] = Number(m.truth);
   j["truthIntegrator"] = Number(m.truthIntegrator);
   j["error"] = Number(m.error);
-  j["tolerance"] = {{"absolute", m.tolerance.absolute}, {"relative", m.tolerance.relative}};
+  j["tolerance"] = {
+      {"absolute", m.tolerance.absolute}, {"relative", m.tolerance.relative}, {"reason", m.reason}};
   j["checked"] = m.checked;
   j["pass"] = m.pass;
+  j["ungated"] = m.ungated;
   return j;
 }
 
@@ -130,8 +132,12 @@ MetricResult MetricFromJson(const Json& j, const std::string& where) {
   const Json& tolerance = Field(j, "tolerance", where);
   m.tolerance.absolute = GetNumber(tolerance, "absolute", Place(where, "tolerance"));
   m.tolerance.relative = GetNumber(tolerance, "relative", Place(where, "tolerance"));
+  // The reason and the ungated note came with the per-backend gate; files
+  // written before them have neither.
+  if (tolerance.contains("reason")) m.reason = GetString(tolerance, "reason", Place(where, "tolerance"));
   m.checked = GetBool(j, "checked", where);
   m.pass = GetBool(j, "pass", where);
+  if (j.contains("ungated")) m.ungated = GetString(j, "ungated", where);
   return m;
 }
 

@@ -113,7 +113,6 @@ std::vector<MetricResult> CompareWithReference(const Truth& truth, const Traject
   positionMetric.measured = matched > 0 ? position : kNaN;
   positionMetric.truth = 0.0;
   Judge(positionMetric, truth.tolerance);
-  positionMetric.checked = positionMetric.checked && truth.gate;  // see Truth::gate
   MetricResult angleMetric = Reported("converged_reference.orientation", "rad", matched > 0 ? angle : kNaN);
   return {positionMetric, angleMetric};
 }

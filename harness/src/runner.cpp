@@ -264,12 +264,13 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
           *reference.Value(), fine, fine.steps, fine.timeStep,
           [&](int step) { return step % divisor == 0 && IsSampled(step / divisor, run.steps, stride); },
           nullptr);
-      for (MetricResult& metric : CompareWithReference(truth, trajectory, referenceTrajectory)) {
-        result.metrics.push_back(std::move(metric));
-      }
+      std::vector<MetricResult> metrics = CompareWithReference(truth, trajectory, referenceTrajectory);
+      ApplyGate(truth, backendName, metrics);
+      for (MetricResult& metric : metrics) result.metrics.push_back(std::move(metric));
     } else {
-      for (MetricResult& metric : EvaluateTruth(run, truth, trajectory))
-        result.metrics.push_back(std::move(metric));
+      std::vector<MetricResult> metrics = EvaluateTruth(run, truth, trajectory);
+      ApplyGate(truth, backendName, metrics);
+      for (MetricResult& metric : metrics) result.metrics.push_back(std::move(metric));
     }
   }
   const bool closed = IsClosedSystem(run);

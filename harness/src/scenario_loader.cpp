@@ -243,7 +243,11 @@ Result<TruthKind> MapStackRest(const TruthContext& c) {
 }
 
 // The resting face must be a face of the body's hull, and a stable one: a
-// truth naming an unstable face could never be met.
+// truth naming an unstable face could never be met. The engine's hull
+// builder only validates the file here; the answer (the face normal and the
+// height) is the file's own, computed independently of the engine (qhull
+// and the divergence theorem, checked by tests/reference), so a broken hull
+// or mass code in the engine cannot move the truth with it.
 Result<TruthKind> MapHullRest(const TruthContext& c) {
   const auto* hull = std::get_if<HullShape>(&c.bodies[c.body].shape);
   if (hull == nullptr) return FieldError(c.file, c.pointer + "/body", "hull_rest needs a hull body");
@@ -267,9 +271,9 @@ Result<TruthKind> MapHullRest(const TruthContext& c) {
                       "names an unstable face (the centroid projects outside it)");
   }
   HullRestTruth truth;
-  truth.faceNormal = face.normal;
+  truth.faceNormal = normal.normalized();
   truth.floor = c.entry["floor"].get<double>();
-  truth.height = face.height;
+  truth.height = c.entry["height"].get<double>();
   truth.maxFaceAngle = c.entry.value("maxFaceAngle", truth.maxFaceAngle);
   return TruthKind(truth);
 }
@@ -307,12 +311,67 @@ Result<TruthKind> MapSpin(const TruthContext& c, bool flip) {
   return TruthKind(FlipPeriodTruth{inertia, omega});
 }
 
+// The tolerance (required by the schema) must allow something: a truth
+// whose tolerance is zero could never be met and would be judged by
+// round-off. Then the gate: on for every backend unless "gate" is false or
+// the backend is in "ungated" (each backend once, each with its reason).
+Result<bool> MapGate(const json& entry, std::string_view file, const std::string& pointer, Truth& truth) {
+  const json& tolerance = entry["tolerance"];
+  truth.tolerance.absolute = tolerance.value("absolute", 0.0);
+  truth.tolerance.relative = tolerance.value("relative", 0.0);
+  truth.toleranceReason = tolerance.value("reason", "");
+  if (truth.tolerance.absolute <= 0.0 && truth.tolerance.relative <= 0.0) {
+    return FieldError(file, pointer + "/tolerance",
+                      "needs absolute or relative > 0 (a truth without a tolerance is never judged)");
+  }
+  truth.gate = entry.value("gate", true);
+  if (!entry.contains("ungated")) return true;
+  for (size_t i = 0; i < entry["ungated"].size(); ++i) {
+    const json& item = entry["ungated"][i];
+    UngatedBackend ungated{item["backend"].get<std::string>(), item["reason"].get<std::string>()};
+    const std::string where = pointer + "/ungated/" + std::to_string(i);
+    for (const UngatedBackend& other : truth.ungated) {
+      if (other.backend == ungated.backend) {
+        return FieldError(file, where + "/backend", "backend \"" + ungated.backend + "\" is listed twice");
+      }
+    }
+    if (ungated.reason.empty()) return FieldError(file, where + "/reason", "must say why");
+    truth.ungated.push_back(std::move(ungated));
+  }
+  return true;
+}
+
+// An incline_tip angle must sit further than the tolerance (radians) from
+// the rigid-body tipping threshold atan(width / height) and from the
+// sliding threshold atan(mu): closer, a real engine's contact (resting
+// penetration, rounded margins) decides the outcome, not the physics.
+Result<TruthKind> MapInclineTip(const TruthContext& c) {
+  const json& truth = c.entry;
+  InclineTipTruth tip{truth["angle"].get<double>(), truth["mu"].get<double>(), truth["width"].get<double>(),
+                      truth["height"].get<double>()};
+  tip.tiltThreshold = truth.value("tiltThreshold", tip.tiltThreshold);
+  const double margin = truth["tolerance"].value("absolute", 0.0);
+  const double tipping = std::atan(tip.width / tip.height);
+  const double sliding = std::atan(tip.mu);
+  for (const double threshold : {tipping, sliding}) {
+    if (std::abs(tip.angle - threshold) < margin) {
+      std::ostringstream problem;
+      problem << "lies " << std::abs(tip.angle - threshold) * 180.0 / std::numbers::pi
+              << " degrees from the threshold " << threshold * 180.0 / std::numbers::pi
+              << " degrees, within the tolerance: the outcome is not decided by the physics";
+      return FieldError(c.file, c.pointer + "/angle", problem.str());
+    }
+  }
+  return TruthKind(tip);
+}
+
 Result<TruthKind> MapTruthKind(const TruthContext& c) {
   const json& truth = c.entry;
   const std::string kind = truth["kind"].get<std::string>();
   if (kind == "free_fall") {
-    return TruthKind(
-        FreeFallTruth{truth["y0"].get<double>(), truth["v0"].get<double>(), truth["g"].get<double>()});
+    FreeFallTruth fall{truth["y0"].get<double>(), truth["v0"].get<double>(), truth["g"].get<double>()};
+    fall.until = truth.value("until", fall.until);
+    return TruthKind(fall);
   }
   if (kind == "sliding_stop") return MapSlidingStop(c);
   if (kind == "rest_height") {
@@ -329,12 +388,7 @@ Result<TruthKind> MapTruthKind(const TruthContext& c) {
     return TruthKind(
         InclineSlideTruth{truth["angle"].get<double>(), truth["mu"].get<double>(), truth["g"].get<double>()});
   }
-  if (kind == "incline_tip") {
-    InclineTipTruth tip{truth["angle"].get<double>(), truth["mu"].get<double>(), truth["width"].get<double>(),
-                        truth["height"].get<double>()};
-    tip.tiltThreshold = truth.value("tiltThreshold", tip.tiltThreshold);
-    return TruthKind(tip);
-  }
+  if (kind == "incline_tip") return MapInclineTip(c);
   if (kind == "torque_free") return MapSpin(c, false);
   if (kind == "flip_period") return MapSpin(c, true);
   return TruthKind(ConvergedReferenceTruth{truth["timeStepDivisor"].get<int>()});
@@ -386,11 +440,8 @@ Result<Scenario> MapScenario(const json& doc, std::string_view file) {
       auto kind = MapTruthKind({entry, scenario.bodies, scenario.world, file, pointer, truth.body});
       if (!kind) return kind.GetError();
       truth.kind = std::move(kind).Value();
-      if (entry.contains("tolerance")) {
-        truth.tolerance.absolute = entry["tolerance"].value("absolute", 0.0);
-        truth.tolerance.relative = entry["tolerance"].value("relative", 0.0);
-      }
-      truth.gate = entry.value("gate", true);
+      auto gated = MapGate(entry, file, pointer, truth);
+      if (!gated) return gated.GetError();
       scenario.truths.push_back(truth);
     }
   }

@@ -63,11 +63,25 @@ std::vector<MetricResult> EvaluateTruth(const Run& run, const Truth& truth, cons
         }
       },
       truth.kind);
-  // A truth outside the gate is judged and reported but never fails the check.
-  if (!truth.gate) {
-    for (MetricResult& metric : metrics) metric.checked = false;
-  }
   return metrics;
+}
+
+void ApplyGate(const Truth& truth, std::string_view backend, std::vector<MetricResult>& metrics) {
+  for (MetricResult& metric : metrics) {
+    if (metric.checked) metric.reason = truth.toleranceReason;
+  }
+  std::string reason;
+  if (!truth.gate) reason = "gate false for every backend (the scenario's description says why)";
+  for (const UngatedBackend& entry : truth.ungated) {
+    if (entry.backend == backend) reason = entry.reason;
+  }
+  if (reason.empty()) return;
+  // Judged and reported, but it never fails the check for this backend.
+  for (MetricResult& metric : metrics) {
+    if (!metric.checked) continue;
+    metric.checked = false;
+    metric.ungated = reason;
+  }
 }
 
 int SampleStride(int steps, int maxSamples) {

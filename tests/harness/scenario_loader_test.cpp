@@ -158,6 +158,38 @@ TEST(ScenarioLoader, TruthNamingAMissingBodyIsRefused) {
   EXPECT_NE(message.find("/truths/0/body: no body named \"crate\""), std::string::npos) << message;
 }
 
+// No truth without a tolerance: a truth without one used to be silently
+// left out of the gate. The tolerance needs its physical reason beside it
+// and must allow something; each refusal names the file and the field.
+TEST(ScenarioLoader, TruthWithoutToleranceIsRefused) {
+  const std::string message = LoadError("truth_without_tolerance.json");
+  EXPECT_NE(message.find("truth_without_tolerance.json: /truths/0: missing required field \"tolerance\""),
+            std::string::npos)
+      << message;
+}
+
+TEST(ScenarioLoader, ToleranceWithoutReasonIsRefused) {
+  const std::string message = LoadError("tolerance_without_reason.json");
+  EXPECT_NE(
+      message.find("tolerance_without_reason.json: /truths/0/tolerance: missing required field \"reason\""),
+      std::string::npos)
+      << message;
+}
+
+TEST(ScenarioLoader, ZeroToleranceIsRefused) {
+  const std::string message = LoadError("tolerance_zero.json");
+  EXPECT_NE(message.find("tolerance_zero.json: /truths/0/tolerance: needs absolute or relative > 0"),
+            std::string::npos)
+      << message;
+}
+
+TEST(ScenarioLoader, BackendUngatedTwiceIsRefused) {
+  const std::string message = LoadError("ungated_backend_twice.json");
+  EXPECT_NE(message.find("/truths/0/ungated/1/backend: backend \"talus-writeup\" is listed twice"),
+            std::string::npos)
+      << message;
+}
+
 TEST(ScenarioLoader, SweepTargetThatIsNotAFieldIsRefused) {
   const std::string message = LoadError("sweep_missing_target.json");
   EXPECT_NE(message.find("/sweeps/0/targets/0: \"/bodies/0/friction\" does not name a field"),

@@ -196,7 +196,8 @@ json SlideDoc() {
                 "angularVelocity": [0.01, 3, 0.01], "density": 1000},
                {"name": "hull", "shape": {"kind": "hull", "points": [[0, 0, 0], [3, 0, 0], [4, 1, 0], [0, 0, 1], [3, 0, 1], [4, 1, 1]]},
                 "motion": "dynamic", "position": [0, 0, 3], "density": 1000}],
-    "truths": [{"kind": "sliding_stop", "body": "box", "v0": 1, "mu": 0.5, "g": 9.81}]})");
+    "truths": [{"kind": "sliding_stop", "body": "box", "v0": 1, "mu": 0.5, "g": 9.81,
+                "tolerance": {"relative": 0.01, "reason": "a friction coefficient 1% off"}}]})");
 }
 
 std::string Refusal(const json& doc) {
@@ -205,9 +206,16 @@ std::string Refusal(const json& doc) {
   return runs ? std::string() : runs.GetError().message;
 }
 
+// Every truth needs a tolerance with its reason; the truths below are about
+// other fields, so they get one when they have none.
+json WithTolerance(json truth) {
+  if (!truth.contains("tolerance")) truth["tolerance"] = {{"absolute", 0.01}, {"reason", "one slop"}};
+  return truth;
+}
+
 void ExpectRefused(const json& truth, const std::string& expected) {
   json doc = SlideDoc();
-  doc["truths"][0] = truth;
+  doc["truths"][0] = WithTolerance(truth);
   const std::string message = Refusal(doc);
   EXPECT_NE(message.find(expected), std::string::npos) << message;
 }
@@ -241,7 +249,11 @@ TEST(ScenarioSet, BadStackLayersAreRefused) {
 }
 
 TEST(ScenarioSet, HullRestNeedsAStableFaceOfAHullBody) {
-  json truth = {{"kind", "hull_rest"}, {"body", "box"}, {"faceNormal", {0, -1, 0}}, {"floor", 0}};
+  json truth = {{"kind", "hull_rest"},
+                {"body", "box"},
+                {"faceNormal", {0, -1, 0}},
+                {"floor", 0},
+                {"height", 1.0 / 3.0}};
   ExpectRefused(truth, "/truths/0/body: hull_rest needs a hull body");
   truth["body"] = "hull";
   truth["faceNormal"] = {1, -0.5, 0};
@@ -255,10 +267,13 @@ TEST(ScenarioSet, HullRestNeedsAStableFaceOfAHullBody) {
   ExpectRefused(truth, "/truths/0/maxFaceAngle: must be >= 0");
   truth.erase("maxFaceAngle");
   json doc = SlideDoc();
-  doc["truths"][0] = truth;
+  doc["truths"][0] = WithTolerance(truth);
   auto runs = ParseScenarioText(doc.dump(), "t.json");
   ASSERT_TRUE(runs) << runs.GetError().message;
-  EXPECT_NEAR(std::get<HullRestTruth>(runs.Value()[0].scenario.truths[0].kind).height, 1.0 / 3.0, 1e-12);
+  // The height is the file's (computed without the engine), not the loader's.
+  EXPECT_EQ(std::get<HullRestTruth>(runs.Value()[0].scenario.truths[0].kind).height, 1.0 / 3.0);
+  truth.erase("height");
+  ExpectRefused(truth, "/truths/0: missing required field \"height\"");
 }
 
 TEST(ScenarioSet, BadInclineFieldsAreRefused) {
@@ -273,6 +288,16 @@ TEST(ScenarioSet, BadInclineFieldsAreRefused) {
   tip["width"] = 0.2;
   tip["tiltThreshold"] = 0;
   ExpectRefused(tip, "/truths/0/tiltThreshold: must be > 0");
+  // An angle within the tolerance of the tipping threshold atan(0.2) = 11.3
+  // degrees is not decided by the physics.
+  tip.erase("tiltThreshold");
+  tip["angle"] = 0.2;
+  tip["tolerance"] = {{"absolute", 0.0087}, {"reason", "half a degree"}};
+  ExpectRefused(tip, "/truths/0/angle: lies 0.149");
+  tip["angle"] = 0.3;
+  json doc = SlideDoc();
+  doc["truths"][0] = tip;
+  EXPECT_TRUE(ParseScenarioText(doc.dump(), "t.json"));
 }
 
 TEST(ScenarioSet, SpinTruthsMustMatchTheirBox) {
@@ -290,7 +315,7 @@ TEST(ScenarioSet, SpinTruthsMustMatchTheirBox) {
   truth["body"] = "box";
   truth["kind"] = "flip_period";
   json doc = SlideDoc();
-  doc["truths"][0] = truth;
+  doc["truths"][0] = WithTolerance(truth);
   EXPECT_TRUE(ParseScenarioText(doc.dump(), "t.json"));
   doc["bodies"][1]["angularVelocity"] = {3, 0.01, 0.01};
   doc["truths"][0]["omega"] = {3, 0.01, 0.01};

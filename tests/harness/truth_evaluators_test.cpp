@@ -231,9 +231,23 @@ TEST(TruthEvaluators, TruthsOutsideTheGateAreJudgedButNotChecked) {
   trajectory.samples.push_back(MakeSample(run, 1, {state}));
   for (const bool gate : {false, true}) {
     truth.gate = gate;
-    for (const MetricResult& metric : EvaluateTruth(run, truth, trajectory)) {
+    std::vector<MetricResult> metrics = EvaluateTruth(run, truth, trajectory);
+    ApplyGate(truth, "talus", metrics);
+    for (const MetricResult& metric : metrics) {
       EXPECT_EQ(metric.checked, gate) << metric.name;
+      EXPECT_EQ(metric.ungated.empty(), gate) << metric.name;
       EXPECT_FALSE(metric.pass) << metric.name;
+    }
+  }
+  // Ungated for one backend only: unchecked there, with that reason; checked elsewhere.
+  truth.ungated = {{"talus-writeup", "a known failure"}};
+  for (const char* backend : {"talus", "talus-writeup"}) {
+    std::vector<MetricResult> metrics = EvaluateTruth(run, truth, trajectory);
+    ApplyGate(truth, backend, metrics);
+    const bool writeup = std::string(backend) == "talus-writeup";
+    for (const MetricResult& metric : metrics) {
+      EXPECT_EQ(metric.checked, !writeup) << metric.name;
+      EXPECT_EQ(metric.ungated, writeup ? "a known failure" : "") << metric.name;
     }
   }
 }

@@ -2,7 +2,8 @@
 // parabola y0 + v0 t - g t^2 / 2 and against the symplectic-Euler sequence
 // (truths.h). The metric is taken at the recorded sample where the height
 // strays furthest from the integrator's answer, so a deviation anywhere in
-// the run is reported, not only at its end.
+// the run is reported, not only at its end. Samples after `until` (a
+// landing) are not judged.
 #include <cassert>
 #include <cmath>
 
@@ -18,6 +19,7 @@ std::vector<MetricResult> EvaluateFreeFall(const Run& run, const Truth& truth, c
   MetricResult metric = MakeMetric("free_fall.height", "m");
   double worst = -1.0;
   for (const Sample& sample : trajectory.samples) {
+    if (sample.time > kind.until) break;
     const double height = sample.bodies[static_cast<std::size_t>(truth.body)].centerOfMass.dot(up);
     const double exact =
         FreeFallHeightSymplecticEuler(kind.y0, kind.v0, kind.g, trajectory.timeStep, sample.step);

@@ -4,9 +4,12 @@
 // through the centroid falls inside the support polygon).
 //
 // The hull and its volume centroid come from the engine's own geometry
-// (BuildHull, ComputeMassProperties); the peers compute theirs separately
-// (reference/common), so a backend that misplaces the centre of mass
-// disagrees with this truth by the offset.
+// (BuildHull, ComputeMassProperties), so this analysis only validates a
+// hull_rest truth in the loader (the named face exists and is stable). The
+// truth's answer, the face normal and the height, is written in the
+// scenario file and checked against qhull and a divergence-theorem centroid
+// that share no code with the engine (tests/reference/hull_rest_truth_test.cpp;
+// the harness cannot link qhull: harness <- reference).
 #pragma once
 
 #include <span>

@@ -17,14 +17,23 @@ namespace talus::harness {
 
 struct CheckOutcome {
   int runs = 0;                       ///< results of the backend looked at
-  int checkedMetrics = 0;             ///< metrics with a tolerance
+  int checkedMetrics = 0;             ///< metrics with a tolerance, gated for the backend
   int failedMetrics = 0;              ///< of those, failing
   std::vector<std::string> problems;  ///< one line each, in results order
+  /// Judged metrics outside the gate for this backend (a truth's "ungated"
+  /// entry or gate false), one line each with the verdict and the reason, so
+  /// a known failure stays in sight.
+  std::vector<std::string> ungated;
   /// Whether nothing regressed.
   [[nodiscard]] bool Ok() const { return problems.empty(); }
 };
 
 /// Checks every result of `backend` in `file`.
 CheckOutcome CheckResults(const ResultsFile& file, std::string_view backend);
+
+/// The backends `talus-testbed check` gates when none is named: every
+/// Talus variant among `registered` (the name `talus` or `talus-...`), in
+/// registry order.
+std::vector<std::string> TalusVariants(const std::vector<std::string>& registered);
 
 }  // namespace talus::harness

@@ -9,6 +9,7 @@
 // here.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <variant>
 #include <vector>
@@ -83,7 +84,10 @@ struct BodySpec {
 enum class Quantity { Position, Orientation, Velocity, Energy, Momentum, Contacts, Penetration };
 
 /// How close a measurement must be to its truth: it passes when
-/// |measured - truth| <= absolute + relative * |truth|.
+/// |measured - truth| <= absolute + relative * |truth|. Every truth of a
+/// scenario file has one (the loader refuses a truth without, or with both
+/// parts zero), with the physical reason for its size beside it
+/// (Truth::toleranceReason).
 struct Tolerance {
   double absolute = 0.0;  ///< in the truth's unit
   double relative = 0.0;  ///< fraction
@@ -93,6 +97,9 @@ struct Tolerance {
 /// (metres, along the up axis) with vertical speed v0 (m/s) and g (m/s^2).
 struct FreeFallTruth {
   double y0 = 0.0, v0 = 0.0, g = 9.81;
+  /// Seconds: only samples up to this time are judged (the flight before a
+  /// landing); infinity = the whole run.
+  double until = std::numeric_limits<double>::infinity();
 };
 /// A body launched at v0 (m/s) on a floor with friction mu stops after
 /// v0^2 / (2 mu g) metres and v0 / (mu g) seconds, on the straight line
@@ -127,12 +134,14 @@ struct StackRestTruth {
 /// A hull body comes to rest on the face with outward body-frame normal
 /// `faceNormal`, a stable face (its centroid projects inside it), with its
 /// centre of mass at floor + `height`, the centroid's distance to that face's
-/// plane. The loader computes `height` from the hull (BuildHull,
-/// ComputeMassProperties) and refuses a normal that names no stable face.
+/// plane. Both `faceNormal` and `height` are the file's, computed without the
+/// engine (qhull facets and a divergence-theorem centroid; tests/reference
+/// checks the shipped numbers); the loader only refuses a normal that names
+/// no stable face of the hull.
 struct HullRestTruth {
-  Vec3 faceNormal = -Vec3::UnitY();  ///< unit, body frame, the face's exact normal after loading
+  Vec3 faceNormal = -Vec3::UnitY();  ///< unit, body frame (the file's, normalised)
   double floor = 0.0;                ///< metres, top of the floor along the up axis
-  double height = 0.0;               ///< metres, computed by the loader
+  double height = 0.0;               ///< metres, from the file
   double maxFaceAngle = 0.05;        ///< radians: face normal vs down at the end, in [0, pi]
 };
 /// A block released at rest on an incline of `angle` radians slides
@@ -143,6 +152,10 @@ struct InclineSlideTruth {
 /// A box of `width` x `height` (metres, along the slope and its normal)
 /// released on an incline stays, slides or tips as InclineBoxOutcome says;
 /// "tipped" means turned more than tiltThreshold radians from its start.
+/// The truth's tolerance (radians, absolute) is how far a real engine's
+/// tipping or sliding threshold may sit from the rigid-body one: the loader
+/// refuses an angle closer than that to either threshold, where the
+/// outcome is not decided by the physics.
 struct InclineTipTruth {
   double angle = 0.0, mu = 0.5, width = 1.0, height = 1.0;
   double tiltThreshold = 0.5;  ///< radians, in (0, pi]
@@ -169,14 +182,29 @@ using TruthKind = std::variant<FreeFallTruth, SlidingStopTruth, RestHeightTruth,
                                ConvergedReferenceTruth, StackRestTruth, HullRestTruth, InclineSlideTruth,
                                InclineTipTruth, TorqueFreeTruth, FlipPeriodTruth>;
 
+/// A backend for which a truth is a known failure, with the physical reason
+/// (the file's "ungated" list): its metrics are still measured, judged and
+/// reported, but do not fail `talus-testbed check` for that backend.
+struct UngatedBackend {
+  std::string backend;  ///< registry name, e.g. "talus-writeup"
+  std::string reason;   ///< why it fails, with the measured figure
+};
+
 struct Truth {
   TruthKind kind;
   int body = -1;  ///< index into Scenario::bodies, -1 when the truth is about the whole world
   Tolerance tolerance;
-  /// Whether the truth's metrics count in the CI check (MetricResult::checked).
-  /// False for a known shortfall of the engine under test: still measured,
-  /// judged and reported, but not failing the gate. Default true.
+  /// Why the tolerance has its size: the physics it allows for (time-step
+  /// error, slop, solver convergence); the file's tolerance "reason".
+  std::string toleranceReason{};
+  /// Whether the truth's metrics count in the CI check (MetricResult::checked)
+  /// for every backend. False for a known shortfall of every engine: still
+  /// measured, judged and reported, but not failing the gate; the
+  /// scenario's description says why. Default true.
   bool gate = true;
+  /// Backends for which this truth is outside the gate, each with its
+  /// reason (no repeats). Default none.
+  std::vector<UngatedBackend> ungated{};
 };
 
 /// One scenario, fully resolved (sweeps already applied).

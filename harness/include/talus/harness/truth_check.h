@@ -11,6 +11,7 @@
 
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "talus/harness/scenario.h"
@@ -31,9 +32,16 @@ struct MetricResult {
   /// is defined (it removes the integrator error every engine shares at this
   /// step and leaves the solver's) and truth otherwise; NaN when measured is.
   double error = 0.0;
-  Tolerance tolerance;   ///< from the scenario file
-  bool checked = false;  ///< the file gave a tolerance (absolute or relative > 0)
-  bool pass = false;     ///< |error| <= absolute + relative |truth| (judged even when not checked)
+  Tolerance tolerance;  ///< from the scenario file
+  std::string reason;   ///< the tolerance's physical reason (Truth::toleranceReason)
+  /// Counted in the accuracy gate for this run's backend: the metric has a
+  /// tolerance and its truth is not ungated for the backend (Truth::gate,
+  /// Truth::ungated).
+  bool checked = false;
+  bool pass = false;  ///< |error| <= absolute + relative |truth| (judged even when not checked)
+  /// Why a judged metric is outside the gate for this backend (the file's
+  /// reason); empty when it is gated or is a reported-only quantity.
+  std::string ungated;
 };
 
 /// A metric with its name and unit set and every number still unset.
@@ -45,6 +53,12 @@ void Judge(MetricResult& metric, const Tolerance& tolerance);
 /// The metrics of `truth` measured on `trajectory` (a run of `run`); empty
 /// for a converged reference. The trajectory must hold at least one sample.
 std::vector<MetricResult> EvaluateTruth(const Run& run, const Truth& truth, const Trajectory& trajectory);
+
+/// Gives the metrics `truth` produced on `backend` the tolerance's reason and
+/// applies the truth's gate: when the truth is ungated (Truth::gate false, or
+/// `backend` in Truth::ungated) each judged metric becomes unchecked and
+/// carries the reason in `ungated`.
+void ApplyGate(const Truth& truth, std::string_view backend, std::vector<MetricResult>& metrics);
 
 /// The unit "up" direction of a run: -gravity normalised, or +y when there
 /// is no gravity. Heights in truths are measured along it.
