@@ -211,7 +211,7 @@ std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras)
     }
     Row(out, time);
     for (const auto& [backend, result] : group.byBackend) {
-      if (!result->error.empty()) out << "\n" << backend << " refused the run: " << result->error << "\n";
+      if (!result->error.empty()) out << "\n" << backend << " stopped the run: " << result->error << "\n";
     }
     out << "\n";
   }

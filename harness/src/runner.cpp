@@ -28,6 +28,13 @@ namespace fs = std::filesystem;
 // median, bounded for runs of a billion steps.
 constexpr std::size_t kMaxTimedSteps = std::size_t{1} << 20;
 
+// Serialises every call of RunnerOptions::progress (job lines and the
+// long-job lines), so lines never interleave.
+std::mutex& ProgressMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 bool Measures(const Run& run, Quantity quantity) {
   const auto& list = run.scenario.measure;
   return std::find(list.begin(), list.end(), quantity) != list.end();
@@ -249,7 +256,8 @@ Result<std::vector<Run>> ExpandStepping(const std::vector<Run>& runs, const std:
 }
 
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
-                  const std::function<bool(int)>& record, std::vector<double>* stepSeconds, bool detail) {
+                  const std::function<bool(int)>& record, std::vector<double>* stepSeconds, bool detail,
+                  const std::function<void(int)>& tick) {
   Trajectory trajectory;
   trajectory.timeStep = timeStep;
   const auto sample = [&](int step) {
@@ -292,6 +300,7 @@ Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
       }
     }
     if (step == steps || record(step)) sample(step);
+    if (tick && step % 1024 == 0) tick(step);
   }
   if (trajectory.samples.size() > 1) trajectory.stride = trajectory.samples[1].step;
   return trajectory;
@@ -320,9 +329,22 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
   const int stride = SampleStride(run.steps, options.maxSamples);
   std::vector<double> stepSeconds;
   const bool replay = IsReplaySelected(run, options.replay);
+  // Long jobs say how far they are, every options.progressSeconds.
+  const auto begun = std::chrono::steady_clock::now();
+  double nextReport = options.progressSeconds;
+  const auto tick = [&](int step) {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - begun).count();
+    if (elapsed < nextReport) return;
+    nextReport = elapsed + options.progressSeconds;
+    char line[96];
+    std::snprintf(line, sizeof line, "step %d of %d (%.0f%%), %.1f s", step, run.steps,
+                  100.0 * step / run.steps, elapsed);
+    std::lock_guard lock(ProgressMutex());
+    options.progress(Concat({run.id, " ", backendName, ": ", line}));
+  };
   const Trajectory trajectory = Record(
       backend, run, run.steps, run.timeStep, [&](int step) { return IsSampled(step, run.steps, stride); },
-      &stepSeconds, replay);
+      &stepSeconds, replay, options.progress ? std::function<void(int)>(tick) : std::function<void(int)>());
   if (!trajectory.failure.empty()) {
     // The run stops at its first failed step: no metrics, but the plot up
     // to that step and the reason, which the report and the check show.
@@ -437,14 +459,13 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
     for (const std::string& line : notices) options.notice(line);
   }
   std::vector<RunResult> results(jobs.size());
-  std::mutex progressMutex;
   std::size_t done = 0;
   const auto execute = [&](std::size_t index) {
     const auto start = std::chrono::steady_clock::now();
     results[index] = RunOne(registry, *jobs[index].run, jobs[index].backend, options);
     if (options.progress) {
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::lock_guard lock(progressMutex);
+      std::lock_guard lock(ProgressMutex());
       ++done;
       char line[64];
       std::snprintf(line, sizeof line, " %.2f s", seconds);

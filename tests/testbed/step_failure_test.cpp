@@ -168,6 +168,18 @@ TEST(StepFailure, StepTimesStayBoundedForLongRuns) {
   EXPECT_LE(stepSeconds.capacity(), std::size_t{1} << 21);
 }
 
+TEST(StepFailure, LongJobsReportTheirProgress) {
+  RunnerOptions options = Options({"fake"});
+  std::vector<std::string> lines;
+  options.progress = [&](const std::string& line) { lines.push_back(line); };
+  options.progressSeconds = 0.0;  // every 1024 steps
+  const RunResult result = RunOne(FakeRegistry(), FakeRun("long", 5000), "fake", options);
+  EXPECT_EQ(result.error, "");
+  ASSERT_EQ(lines.size(), 4u);  // steps 1024, 2048, 3072, 4096
+  EXPECT_EQ(lines[0].rfind("long fake: step 1024 of 5000 (20%), ", 0), 0u) << lines[0];
+  EXPECT_EQ(lines[3].rfind("long fake: step 4096 of 5000 (82%), ", 0), 0u) << lines[3];
+}
+
 TEST(Counts, SampleStrideDoesNotOverflowAtIntMax) {
   EXPECT_EQ(SampleStride(INT_MAX, 2000), 1073742);  // ceil(2147483647 / 2000)
   EXPECT_EQ(SampleStride(4000, 2000), 2);
