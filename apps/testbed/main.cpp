@@ -29,6 +29,10 @@ int main(int argc, char** argv) {
   runCommand->add_option("-o,--out", run.out, "output folder for results.json")->capture_default_str();
   runCommand->add_option("-j,--jobs", run.jobs, "threads (0 = every core)")
       ->check(CLI::Range(0, harness::kMaxJobs));
+  runCommand
+      ->add_option("--budget", run.budget,
+                   "wall-clock seconds per job; a job past it stops with the reason (0 = no budget)")
+      ->check(CLI::NonNegativeNumber);
   runCommand->add_flag("--deterministic", run.deterministic, "zero wall times so reruns are byte-identical");
   runCommand->add_flag("-q,--quiet", run.quiet, "no progress on stderr");
   runCommand

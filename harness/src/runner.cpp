@@ -257,7 +257,7 @@ Result<std::vector<Run>> ExpandStepping(const std::vector<Run>& runs, const std:
 
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
                   const std::function<bool(int)>& record, std::vector<double>* stepSeconds, bool detail,
-                  const std::function<void(int)>& tick) {
+                  const std::function<std::string(int)>& tick) {
   Trajectory trajectory;
   trajectory.timeStep = timeStep;
   const auto sample = [&](int step) {
@@ -300,7 +300,12 @@ Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
       }
     }
     if (step == steps || record(step)) sample(step);
-    if (tick && step % 1024 == 0) tick(step);
+    if (tick && step % 1024 == 0) {
+      if (std::string stop = tick(step); !stop.empty()) {
+        trajectory.failure = Concat({"step ", std::to_string(step), ": ", backend.Name(), ": ", stop});
+        break;
+      }
+    }
   }
   if (trajectory.samples.size() > 1) trajectory.stride = trajectory.samples[1].step;
   return trajectory;
@@ -332,19 +337,23 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
   // Long jobs say how far they are, every options.progressSeconds.
   const auto begun = std::chrono::steady_clock::now();
   double nextReport = options.progressSeconds;
-  const auto tick = [&](int step) {
+  const auto tick = [&](int step) -> std::string {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - begun).count();
-    if (elapsed < nextReport) return;
+    if (options.budgetSeconds > 0.0 && elapsed > options.budgetSeconds) {
+      return Concat({"wall-clock budget of ", FormatNumber(options.budgetSeconds), " s spent"});
+    }
+    if (!options.progress || elapsed < nextReport) return {};
     nextReport = elapsed + options.progressSeconds;
     char line[96];
     std::snprintf(line, sizeof line, "step %d of %d (%.0f%%), %.1f s", step, run.steps,
                   100.0 * step / run.steps, elapsed);
     std::lock_guard lock(ProgressMutex());
     options.progress(Concat({run.id, " ", backendName, ": ", line}));
+    return {};
   };
   const Trajectory trajectory = Record(
       backend, run, run.steps, run.timeStep, [&](int step) { return IsSampled(step, run.steps, stride); },
-      &stepSeconds, replay, options.progress ? std::function<void(int)>(tick) : std::function<void(int)>());
+      &stepSeconds, replay, tick);
   if (!trajectory.failure.empty()) {
     // The run stops at its first failed step: no metrics, but the plot up
     // to that step and the reason, which the report and the check show.
@@ -427,6 +436,10 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
   if (options.jobs < 1 || options.jobs > kMaxJobs) {
     return Error{
         Concat({"jobs must be 1 to ", std::to_string(kMaxJobs), ", got ", std::to_string(options.jobs)})};
+  }
+  if (!(options.budgetSeconds >= 0.0 && std::isfinite(options.budgetSeconds))) {
+    return Error{
+        Concat({"budget ", FormatNumber(options.budgetSeconds), " s must be finite and >= 0 (0 = none)"})};
   }
   if (options.maxSamples < 1) return Error{"maxSamples must be >= 1"};
   if (options.plotPoints < 2) return Error{"plotPoints must be >= 2"};

@@ -180,6 +180,18 @@ TEST(StepFailure, LongJobsReportTheirProgress) {
   EXPECT_EQ(lines[3].rfind("long fake: step 4096 of 5000 (82%), ", 0), 0u) << lines[3];
 }
 
+TEST(StepFailure, AJobPastItsWallClockBudgetStopsWithTheReason) {
+  RunnerOptions options = Options({"fake"});
+  options.budgetSeconds = 1e-9;  // spent before step 1024 is reached
+  const RunResult result = RunOne(FakeRegistry(), FakeRun("long", 5000), "fake", options);
+  EXPECT_EQ(result.error, "step 1024: fake: wall-clock budget of 1e-09 s spent");
+  options.budgetSeconds = -1.0;
+  auto refused = RunAll(FakeRegistry(), {FakeRun("long", 5)}, options);
+  ASSERT_FALSE(refused);
+  EXPECT_TRUE(Has(refused.GetError().message, "budget -1 s must be finite and >= 0"))
+      << refused.GetError().message;
+}
+
 TEST(Counts, SampleStrideDoesNotOverflowAtIntMax) {
   EXPECT_EQ(SampleStride(INT_MAX, 2000), 1073742);  // ceil(2147483647 / 2000)
   EXPECT_EQ(SampleStride(4000, 2000), 2);

@@ -80,6 +80,10 @@ struct RunnerOptions {
   /// as "box_slide bullet: step 120000 of 1000000 (12%), 10.0 s" every
   /// this many seconds (serialised with the other lines).
   double progressSeconds = 10.0;
+  /// Wall-clock budget of one job's recorded run, seconds; 0 = none. A job
+  /// past it stops like a failed step: "step 3072: talus: wall-clock budget
+  /// of 60 s spent" (checked every 1024 steps).
+  double budgetSeconds = 0.0;
   /// Called on the calling thread, before any job runs, once per run that
   /// runs on no backend because its scenario's `backends` and `backends`
   /// above have no name in common (such a run has no RunResult), e.g.
@@ -127,11 +131,11 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
 /// which `record(step)` holds (step 0 and the last always) and, when
 /// `stepSeconds` is not null, the wall time of every step. With `detail`,
 /// each sample also keeps its contacts and the backend's step counters.
-/// `tick`, when set, is called with the step number every 1024 steps. The
-/// first failed step or non-finite body state stops the recording
-/// (Trajectory::failure).
+/// `tick`, when set, is called with the step number every 1024 steps; a
+/// non-empty answer stops the recording with that reason. The first failed
+/// step or non-finite body state stops it too (Trajectory::failure).
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
                   const std::function<bool(int)>& record, std::vector<double>* stepSeconds,
-                  bool detail = false, const std::function<void(int)>& tick = {});
+                  bool detail = false, const std::function<std::string(int)>& tick = {});
 
 }  // namespace talus::harness
