@@ -61,7 +61,9 @@ int main(int argc, char** argv) {
   CLI::App app{"talus-scenes: the reference benchmark scenes (pyramid, hull_pile) on every engine"};
   app.add_option("--scene", options.scene, "pyramid or hull_pile (with --series: only that scene's series)")
       ->check(CLI::IsMember({"pyramid", "hull_pile"}));
-  app.add_option("--param", options.parameter, "H for pyramid (default 15), L for hull_pile (default 10)");
+  // 0 is "not given" inside the program, so a given 0 (or a negative) is refused by the range.
+  app.add_option("--param", options.parameter, "H for pyramid (default 15), L for hull_pile (default 10)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--engines", options.engines, "comma-separated backends (default: every registered one)");
   app.add_option("--steps", options.steps, "steps per run")->check(CLI::Range(1, 1000000));
   app.add_option("--format", options.format, "csv or jsonl")->check(CLI::IsMember({"csv", "jsonl"}));
@@ -79,6 +81,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::vector<std::string> engines = options.engines.empty() ? registry.Names() : SplitList(options.engines);
+  if (engines.empty()) {
+    std::cerr << "talus-scenes: --engines \"" << options.engines << "\" names no engine\n";
+    return 2;
+  }
   for (const std::string& engine : engines) {
     if (!registry.Has(engine)) {
       std::cerr << "talus-scenes: --engines: unknown engine \"" << engine << "\"; known:";

@@ -1,12 +1,16 @@
 // talus-testbed: the command line of the testbed. Parses arguments with
 // CLI11 and hands them to the subcommands (testbed_commands.h).
 #include <CLI/CLI.hpp>
+#include <iostream>
+#include <string>
 
 #include "sweep_commands.h"
+#include "talus/harness/scenario_limits.h"
 #include "testbed_commands.h"
 
 int main(int argc, char** argv) {
   using namespace talus::testbed;
+  namespace harness = talus::harness;
   CLI::App app{"Talus testbed: runs scenarios through Talus, Bullet and ODE, reports and checks accuracy"};
   app.require_subcommand(1);
 
@@ -23,7 +27,12 @@ int main(int argc, char** argv) {
                    "run each scenario with these solver iterations (0 = default)")
       ->delimiter(',');
   runCommand->add_option("-o,--out", run.out, "output folder for results.json")->capture_default_str();
-  runCommand->add_option("-j,--jobs", run.jobs, "threads (0 = every core)")->check(CLI::NonNegativeNumber);
+  runCommand->add_option("-j,--jobs", run.jobs, "threads (0 = every core)")
+      ->check(CLI::Range(0, harness::kMaxJobs));
+  runCommand
+      ->add_option("--budget", run.budget,
+                   "wall-clock seconds per job; a job past it stops with the reason (0 = no budget)")
+      ->check(CLI::NonNegativeNumber);
   runCommand->add_flag("--deterministic", run.deterministic, "zero wall times so reruns are byte-identical");
   runCommand->add_flag("-q,--quiet", run.quiet, "no progress on stderr");
   runCommand
@@ -61,7 +70,7 @@ int main(int argc, char** argv) {
           "backends whose metrics are checked (repeat or comma-separate; default: every Talus variant)")
       ->delimiter(',');
   checkCommand->add_option("-j,--jobs", check.jobs, "threads (0 = every core)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, harness::kMaxJobs));
   checkCommand->add_flag("-q,--quiet", check.quiet, "no progress on stderr");
 
   CommandAction chosen;
@@ -69,6 +78,19 @@ int main(int argc, char** argv) {
   AddMergeCommand(app, chosen);
   AddStressCommand(app, chosen);
 
+  // CLI11 would only say the word "was not expected": name it as a subcommand.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string known;
+    bool found = false;
+    for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+      found = found || command->get_name() == argv[1];
+      known.append(known.empty() ? "" : ", ").append(command->get_name());
+    }
+    if (!found) {
+      std::cerr << "talus-testbed: unknown subcommand \"" << argv[1] << "\" (known: " << known << ")\n";
+      return kExitBadInput;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -9,8 +9,10 @@
 #include <thread>
 
 #include "sweep_commands.h"
+#include "talus/harness/atomic_file.h"
 #include "talus/harness/results_file.h"
 #include "talus/harness/runner.h"
+#include "talus/harness/scenario_limits.h"
 #include "talus/harness/sweep.h"
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/mujoco_backend.h"
@@ -119,11 +121,9 @@ int Sweep(const SweepOptions& options) {
 bool WriteText(const fs::path& path, const std::string& text) {
   std::error_code error;
   if (!path.parent_path().empty()) fs::create_directories(path.parent_path(), error);
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) std::cerr << "talus-testbed: " << path.string() << ": cannot write\n";
-  return static_cast<bool>(out);
+  auto written = harness::WriteFileAtomically(path, text);
+  if (!written) std::cerr << "talus-testbed: " << written.GetError().message << "\n";
+  return static_cast<bool>(written);
 }
 
 const harness::BackendRegistry& AllBackends() {
@@ -152,7 +152,8 @@ void AddSweepCommand(CLI::App& app, CommandAction& chosen) {
       ->capture_default_str();
   command->add_option("--shard", options->shard, "run only shard i of n (i/n), into a shard file for merge");
   command->add_option("-o,--out", options->out, "output folder")->capture_default_str();
-  command->add_option("-j,--jobs", options->jobs, "threads (0 = every core)")->check(CLI::NonNegativeNumber);
+  command->add_option("-j,--jobs", options->jobs, "threads (0 = every core)")
+      ->check(CLI::Range(0, harness::kMaxJobs));
   command->add_flag("--deterministic", options->deterministic, "zero wall times (costs become 0)");
   command->add_flag("-q,--quiet", options->quiet, "no progress on stderr");
   command->callback([options, &chosen] { chosen = [options] { return Sweep(*options); }; });

@@ -40,7 +40,7 @@ std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
                                       const std::vector<std::string>& backends, int jobs, bool deterministic,
                                       bool quiet, const std::vector<double>& timeSteps = {},
                                       const std::vector<int>& iterations = {},
-                                      const std::vector<std::string>& replay = {}) {
+                                      const std::vector<std::string>& replay = {}, double budget = 0.0) {
   auto loaded = harness::LoadScenarios(ScenarioPaths(scenarios));
   if (!loaded) {
     std::cerr << "talus-testbed: " << loaded.GetError().message << "\n";
@@ -56,6 +56,7 @@ std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
   options.jobs = Jobs(jobs);
   options.deterministic = deterministic;
   options.replay = replay;
+  options.budgetSeconds = budget;
   if (!quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   // Shown even with --quiet: a run that ran nowhere must not vanish unseen.
   options.notice = [](const std::string& line) { std::cout << "talus-testbed: " << line << "\n"; };
@@ -92,7 +93,7 @@ std::vector<std::string> DefaultBackends() {
 int RunCommand(const RunOptions& options) {
   const std::vector<std::string> backends = options.backends.empty() ? DefaultBackends() : options.backends;
   auto file = LoadAndRun(options.scenarios, backends, options.jobs, options.deterministic, options.quiet,
-                         options.timeSteps, options.iterations, options.replay);
+                         options.timeSteps, options.iterations, options.replay, options.budget);
   if (!file) return kExitBadInput;
   std::error_code error;
   fs::create_directories(options.out, error);

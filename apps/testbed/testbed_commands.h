@@ -28,6 +28,7 @@ struct RunOptions {
   bool deterministic = false;          ///< zero wall times
   bool quiet = false;                  ///< no progress lines
   std::vector<std::string> replay;     ///< runs to record for the 3D replay: ids, scenario names or "all"
+  double budget = 0.0;                 ///< wall-clock seconds per job before it is stopped; 0 = none
 };
 int RunCommand(const RunOptions& options);
 

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "report_html_replay.h"
+#include "talus/harness/atomic_file.h"
 #include "talus/harness/bench_summary.h"
 #include "talus/harness/report.h"
 #include "talus/harness/sat_check_results.h"
@@ -196,14 +197,6 @@ addChart('median wall time per step (us)', {type:'bar', data:timeBars,
   options:{scales:{y:{type:'logarithmic',title:{display:true,text:'us'}}}}});
 )";
 
-Result<std::monostate> WriteText(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) return Error{Concat({path.string(), ": cannot write"})};
-  return std::monostate{};
-}
-
 }  // namespace
 
 std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, std::string_view threeLibrary,
@@ -259,7 +252,7 @@ Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesyste
       {"report.html", ReportHtml(file, js.str(), three.str(), extras)},
   };
   for (const auto& [name, text] : files) {
-    auto written = WriteText(folder / name, text);
+    auto written = WriteFileAtomically(folder / name, text);
     if (!written) return written;
   }
   return std::monostate{};

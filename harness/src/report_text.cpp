@@ -213,7 +213,7 @@ std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras)
     }
     Row(out, time);
     for (const auto& [backend, result] : group.byBackend) {
-      if (!result->error.empty()) out << "\n" << backend << " refused the run: " << result->error << "\n";
+      if (!result->error.empty()) out << "\n" << backend << " stopped the run: " << result->error << "\n";
     }
     // Why each tolerance has its size, and why a backend is outside the gate.
     std::set<std::string> notes;

@@ -3,6 +3,8 @@
 // place; the walk throws a local exception that never leaves this file.
 #include "talus/harness/results_file.h"
 
+#include "talus/harness/atomic_file.h"
+
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -230,11 +232,7 @@ Result<ResultsFile> ResultsFromJson(std::string_view text) {
 }
 
 Result<std::monostate> WriteResultsFile(const std::filesystem::path& path, const ResultsFile& file) {
-  std::ofstream out(path, std::ios::binary);
-  out << ResultsToJson(file);
-  out.close();
-  if (!out) return Error{Concat({path.string(), ": cannot write"})};
-  return std::monostate{};
+  return WriteFileAtomically(path, ResultsToJson(file));
 }
 
 Result<ResultsFile> ReadResultsFile(const std::filesystem::path& path) {

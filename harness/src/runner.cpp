@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "talus/harness/run_metrics.h"
+#include "talus/harness/scenario_limits.h"
 #include "talus/harness/scenario_loader.h"
 #include "text_util.h"
 
@@ -22,6 +23,17 @@ namespace talus::harness {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The most per-step wall times a run keeps (8 MB): enough for a stable
+// median, bounded for runs of a billion steps.
+constexpr std::size_t kMaxTimedSteps = std::size_t{1} << 20;
+
+// Serialises every call of RunnerOptions::progress (job lines and the
+// long-job lines), so lines never interleave.
+std::mutex& ProgressMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
 
 bool Measures(const Run& run, Quantity quantity) {
   const auto& list = run.scenario.measure;
@@ -86,6 +98,44 @@ std::string NothingToRunNotice(const Run& run, const std::vector<std::string>& a
                  ") have none in common"});
 }
 
+// The first body whose state is not finite after a step, as "body \"ball\":
+// non-finite position (nan, nan, nan)"; empty when every state is finite.
+// Generic over backends: whatever engine produced the state, a NaN or an
+// infinity ends the run here, naming the body.
+std::string NonFiniteBody(const Backend& backend, const Run& run) {
+  const auto describe = [](const char* what, const auto& v) {
+    std::string values;
+    for (Eigen::Index i = 0; i < v.size(); ++i) {
+      char number[32];
+      std::snprintf(number, sizeof number, "%g", v[i]);  // "nan", "inf", "-inf" as printf writes them
+      values.append(i == 0 ? "" : ", ").append(number);
+    }
+    return Concat({"non-finite ", what, " (", values, ")"});
+  };
+  for (int b = 0; b < backend.BodyCount(); ++b) {
+    const BodyState state = backend.GetBodyState(b);
+    std::string problem;
+    if (!state.origin.allFinite()) {
+      problem = describe("position", state.origin);
+    } else if (!state.centerOfMass.allFinite()) {
+      problem = describe("centre of mass", state.centerOfMass);
+    } else if (!state.orientation.coeffs().allFinite()) {
+      problem = describe("orientation (x, y, z, w)", state.orientation.coeffs());
+    } else if (!state.linearVelocity.allFinite()) {
+      problem = describe("linear velocity", state.linearVelocity);
+    } else if (!state.angularVelocity.allFinite()) {
+      problem = describe("angular velocity", state.angularVelocity);
+    }
+    if (!problem.empty()) {
+      const auto index = static_cast<std::size_t>(b);
+      const std::string name =
+          index < run.scenario.bodies.size() ? run.scenario.bodies[index].name : std::to_string(b);
+      return Concat({"body \"", name, "\": ", problem});
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
 Result<std::vector<std::string>> BackendsForRun(const BackendRegistry& registry, const Run& run,
@@ -120,6 +170,10 @@ Result<std::vector<Run>> LoadScenarios(const std::vector<fs::path>& paths) {
         }
       }
       if (error) return Error{Concat({path.string(), ": ", error.message()})};
+      if (found.empty()) {
+        return Error{
+            Concat({path.string(), ": no scenario files (*.json other than schema.json) in this folder"})};
+      }
       std::sort(found.begin(), found.end());
       files.insert(files.end(), found.begin(), found.end());
     } else if (fs::is_regular_file(path, error)) {
@@ -130,9 +184,18 @@ Result<std::vector<Run>> LoadScenarios(const std::vector<fs::path>& paths) {
   }
   if (files.empty()) return Error{"no scenario files found"};
   std::vector<Run> runs;
+  std::map<std::string, std::string> fileOfScenario;  // two files must not share a scenario name
   for (const fs::path& file : files) {
     auto loaded = LoadScenarioFile(file);
     if (!loaded) return loaded.GetError();
+    if (!loaded.Value().empty()) {
+      const std::string& name = loaded.Value().front().scenario.name;
+      const auto [it, added] = fileOfScenario.emplace(name, file.string());
+      if (!added) {
+        return Error{Concat({file.string(), ": scenario name \"", name, "\" is already used by ", it->second,
+                             " (run ids and results are keyed by it)"})};
+      }
+    }
     for (Run& run : loaded.Value()) runs.push_back(std::move(run));
   }
   return runs;
@@ -147,6 +210,13 @@ Result<std::vector<Run>> ExpandStepping(const std::vector<Run>& runs, const std:
     if (n < 0) return Error{Concat({"iterations ", std::to_string(n), " is negative (0 = engine default)"})};
   }
   if (timeSteps.empty() && iterations.empty()) return runs;
+  const std::size_t perRun =
+      std::max<std::size_t>(1, timeSteps.size()) * std::max<std::size_t>(1, iterations.size());
+  if (perRun > kMaxRuns || runs.size() > kMaxRuns / perRun) {
+    return Error{Concat({std::to_string(runs.size()), " runs x ", std::to_string(perRun),
+                         " (time step, iterations) pairs is more than the limit of ",
+                         std::to_string(kMaxRuns), " runs"})};
+  }
   std::vector<Run> expanded;
   for (const Run& run : runs) {
     const std::vector<double> hs = timeSteps.empty() ? std::vector<double>{run.timeStep} : timeSteps;
@@ -158,7 +228,13 @@ Result<std::vector<Run>> ExpandStepping(const std::vector<Run>& runs, const std:
         std::string suffix;
         if (!timeSteps.empty()) {
           copy.timeStep = h;
-          copy.steps = std::max(1, static_cast<int>(std::lround(duration / h)));
+          const double steps = std::max(1.0, std::round(duration / h));
+          if (!(steps <= static_cast<double>(kMaxSteps))) {
+            return Error{
+                Concat({run.id, ": ", FormatNumber(duration), " s at h = ", FormatNumber(h), " s is ",
+                        FormatNumber(steps), " steps, more than the limit of ", std::to_string(kMaxSteps)})};
+          }
+          copy.steps = static_cast<int>(steps);
           copy.sweepValues.push_back({"h", FormatNumber(h, 17)});
           suffix = Concat({"h=", FormatNumber(h, 17)});
         }
@@ -180,7 +256,8 @@ Result<std::vector<Run>> ExpandStepping(const std::vector<Run>& runs, const std:
 }
 
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
-                  const std::function<bool(int)>& record, std::vector<double>* stepSeconds, bool detail) {
+                  const std::function<bool(int)>& record, std::vector<double>* stepSeconds, bool detail,
+                  const std::function<std::string(int)>& tick) {
   Trajectory trajectory;
   trajectory.timeStep = timeStep;
   const auto sample = [&](int step) {
@@ -200,14 +277,35 @@ Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
     trajectory.samples.push_back(std::move(s));
   };
   sample(0);
-  if (stepSeconds != nullptr) stepSeconds->reserve(static_cast<std::size_t>(steps));
+  // Wall times of evenly spaced steps, at most kMaxTimedSteps of them: when
+  // the list fills, every other entry goes and the spacing doubles, so the
+  // memory stays bounded however long the run is.
+  int timedEvery = 1;
   for (int step = 1; step <= steps; ++step) {
     const auto start = std::chrono::steady_clock::now();
     backend.Step();
-    if (stepSeconds != nullptr) {
-      stepSeconds->push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    const auto end = std::chrono::steady_clock::now();
+    std::string failure = backend.StepFailure();
+    if (failure.empty()) failure = NonFiniteBody(backend, run);
+    if (!failure.empty()) {
+      trajectory.failure = Concat({"step ", std::to_string(step), ": ", backend.Name(), ": ", failure});
+      break;
+    }
+    if (stepSeconds != nullptr && (step - 1) % timedEvery == 0) {
+      stepSeconds->push_back(std::chrono::duration<double>(end - start).count());
+      if (stepSeconds->size() >= kMaxTimedSteps) {
+        for (std::size_t i = 0; 2 * i < stepSeconds->size(); ++i) (*stepSeconds)[i] = (*stepSeconds)[2 * i];
+        stepSeconds->resize((stepSeconds->size() + 1) / 2);
+        timedEvery *= 2;
+      }
     }
     if (step == steps || record(step)) sample(step);
+    if (tick && step % 1024 == 0) {
+      if (std::string stop = tick(step); !stop.empty()) {
+        trajectory.failure = Concat({"step ", std::to_string(step), ": ", backend.Name(), ": ", stop});
+        break;
+      }
+    }
   }
   if (trajectory.samples.size() > 1) trajectory.stride = trajectory.samples[1].step;
   return trajectory;
@@ -236,9 +334,33 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
   const int stride = SampleStride(run.steps, options.maxSamples);
   std::vector<double> stepSeconds;
   const bool replay = IsReplaySelected(run, options.replay);
+  // Long jobs say how far they are, every options.progressSeconds.
+  const auto begun = std::chrono::steady_clock::now();
+  double nextReport = options.progressSeconds;
+  const auto tick = [&](int step) -> std::string {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - begun).count();
+    if (options.budgetSeconds > 0.0 && elapsed > options.budgetSeconds) {
+      return Concat({"wall-clock budget of ", FormatNumber(options.budgetSeconds), " s spent"});
+    }
+    if (!options.progress || elapsed < nextReport) return {};
+    nextReport = elapsed + options.progressSeconds;
+    char line[96];
+    std::snprintf(line, sizeof line, "step %d of %d (%.0f%%), %.1f s", step, run.steps,
+                  100.0 * step / run.steps, elapsed);
+    std::lock_guard lock(ProgressMutex());
+    options.progress(Concat({run.id, " ", backendName, ": ", line}));
+    return {};
+  };
   const Trajectory trajectory = Record(
       backend, run, run.steps, run.timeStep, [&](int step) { return IsSampled(step, run.steps, stride); },
-      &stepSeconds, replay);
+      &stepSeconds, replay, tick);
+  if (!trajectory.failure.empty()) {
+    // The run stops at its first failed step: no metrics, but the plot up
+    // to that step and the reason, which the report and the check show.
+    result.error = trajectory.failure;
+    result.series = MakeSeries(run, trajectory, options.plotPoints);
+    return result;
+  }
   if (replay) {
     auto made = MakeReplay(run, trajectory, options.replayFrames);
     if (!made) {
@@ -252,9 +374,16 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
     if (const auto* converged = std::get_if<ConvergedReferenceTruth>(&truth.kind)) {
       // The same backend at h / divisor; its samples fall on our sample times.
       const int divisor = converged->timeStepDivisor;
+      const long long fineSteps = static_cast<long long>(run.steps) * divisor;
+      if (fineSteps > kMaxSteps) {
+        result.error = Concat({"converged reference: ", std::to_string(run.steps), " steps x divisor ",
+                               std::to_string(divisor), " = ", std::to_string(fineSteps),
+                               " steps, more than the limit of ", std::to_string(kMaxSteps)});
+        return result;
+      }
       Run fine = run;
       fine.timeStep = run.timeStep / divisor;
-      fine.steps = run.steps * divisor;
+      fine.steps = static_cast<int>(fineSteps);
       auto reference = registry.Create(backendName, fine);
       if (!reference) {
         result.error = Concat({"converged reference: ", reference.GetError().message});
@@ -264,6 +393,10 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
           *reference.Value(), fine, fine.steps, fine.timeStep,
           [&](int step) { return step % divisor == 0 && IsSampled(step / divisor, run.steps, stride); },
           nullptr);
+      if (!referenceTrajectory.failure.empty()) {
+        result.error = Concat({"converged reference: ", referenceTrajectory.failure});
+        return result;
+      }
       std::vector<MetricResult> metrics = CompareWithReference(truth, trajectory, referenceTrajectory);
       ApplyGate(truth, backendName, metrics);
       for (MetricResult& metric : metrics) result.metrics.push_back(std::move(metric));
@@ -301,10 +434,26 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
       return Error{Concat({"unknown backend \"", name, "\" (known: ", KnownBackends(registry), ")"})};
     }
   }
-  if (options.jobs < 1) return Error{Concat({"jobs must be >= 1, got ", std::to_string(options.jobs)})};
+  if (options.jobs < 1 || options.jobs > kMaxJobs) {
+    return Error{
+        Concat({"jobs must be 1 to ", std::to_string(kMaxJobs), ", got ", std::to_string(options.jobs)})};
+  }
+  if (!(options.budgetSeconds >= 0.0 && std::isfinite(options.budgetSeconds))) {
+    return Error{
+        Concat({"budget ", FormatNumber(options.budgetSeconds), " s must be finite and >= 0 (0 = none)"})};
+  }
   if (options.maxSamples < 1) return Error{"maxSamples must be >= 1"};
   if (options.plotPoints < 2) return Error{"plotPoints must be >= 2"};
   if (options.replayFrames < 2) return Error{"replayFrames must be >= 2"};
+
+  for (const std::string& entry : options.replay) {
+    if (entry == "all") continue;
+    if (std::none_of(runs.begin(), runs.end(),
+                     [&](const Run& run) { return run.id == entry || run.scenario.name == entry; })) {
+      return Error{
+          Concat({"replay: \"", entry, "\" names no run id or scenario name of this run (or give all)"})};
+    }
+  }
 
   // Jobs in output order; each writes only its own slot. Every scenario's
   // list is checked before anything runs.
@@ -324,14 +473,13 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
     for (const std::string& line : notices) options.notice(line);
   }
   std::vector<RunResult> results(jobs.size());
-  std::mutex progressMutex;
   std::size_t done = 0;
   const auto execute = [&](std::size_t index) {
     const auto start = std::chrono::steady_clock::now();
     results[index] = RunOne(registry, *jobs[index].run, jobs[index].backend, options);
     if (options.progress) {
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::lock_guard lock(progressMutex);
+      std::lock_guard lock(ProgressMutex());
       ++done;
       char line[64];
       std::snprintf(line, sizeof line, " %.2f s", seconds);
@@ -363,8 +511,10 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
       for (std::size_t index : lane) execute(index);
     });
   }
-  const int workers = std::max(1, options.jobs - static_cast<int>(lanes.size()));
-  for (int w = 0; w < workers; ++w) {
+  // No more workers than free jobs: a thread with nothing to do is waste.
+  const auto workers = std::min<std::size_t>(
+      freeJobs.size(), static_cast<std::size_t>(std::max(1, options.jobs - static_cast<int>(lanes.size()))));
+  for (std::size_t w = 0; w < workers; ++w) {
     threads.emplace_back([&] {
       for (std::size_t k = next++; k < freeJobs.size(); k = next++) execute(freeJobs[k]);
     });

@@ -14,11 +14,15 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "scenario_schema_text.h"
 #include "talus/harness/hull_rest.h"
 #include "talus/harness/json_schema.h"
+#include "talus/harness/scenario_limits.h"
 #include "talus/harness/torque_free.h"
+#include "text_util.h"
 
 namespace talus::harness {
 namespace {
@@ -58,6 +62,19 @@ Error FieldError(std::string_view file, const std::string& pointer, const std::s
                problem};
 }
 
+// |v| without overflow or underflow for any finite v (1e300 or 1e-300
+// components): the largest component is factored out first.
+double ScaleSafeNorm(const Vec3& v) {
+  const double scale = v.cwiseAbs().maxCoeff();
+  return scale > 0.0 ? scale * (v / scale).norm() : 0.0;
+}
+
+// v / |v| computed as above; zero for a zero vector.
+Vec3 ScaleSafeNormalized(const Vec3& v) {
+  const double scale = v.cwiseAbs().maxCoeff();
+  return scale > 0.0 ? Vec3((v / scale).normalized()) : Vec3::Zero();
+}
+
 Vec3 ReadVec3(const json& value) {
   return Vec3(value[0].get<double>(), value[1].get<double>(), value[2].get<double>());
 }
@@ -90,18 +107,30 @@ std::optional<std::string> FindNonFinite(const json& value, const std::string& p
 Result<WorldSettings> MapWorld(const json& world, std::string_view file) {
   WorldSettings settings;
   if (world.contains("gravity")) settings.gravity = ReadVec3(world["gravity"]);
+  if (const double g = ScaleSafeNorm(settings.gravity); g > kMaxGravity) {
+    return FieldError(file, "/world/gravity",
+                      Concat({"magnitude ", FormatNumber(g), " m/s^2 is more than the limit of ",
+                              FormatNumber(kMaxGravity), " m/s^2"}));
+  }
   settings.timeStep = world["timeStep"].get<double>();
   if (world.contains("iterations") && world["iterations"].is_number()) {
     settings.iterations = world["iterations"].get<int>();
   }
   const json& duration = world["duration"];
+  const std::string limit = std::to_string(kMaxSteps);
   if (duration.contains("steps")) {
-    settings.steps = duration["steps"].get<int>();
+    // Read as a double first: a count past the int range must not wrap.
+    const double steps = duration["steps"].get<double>();
+    if (steps > static_cast<double>(kMaxSteps)) {
+      return FieldError(file, "/world/duration/steps",
+                        Concat({FormatNumber(steps, 17), " steps is more than the limit of ", limit}));
+    }
+    settings.steps = static_cast<int>(steps);
   } else {
     const double steps = std::round(duration["seconds"].get<double>() / settings.timeStep);
-    if (steps < 1.0 || steps > 1e9) {
+    if (!(steps >= 1.0 && steps <= static_cast<double>(kMaxSteps))) {
       return FieldError(file, "/world/duration/seconds",
-                        "gives " + std::to_string(steps) + " steps; need 1 to 1e9");
+                        Concat({"gives ", FormatNumber(steps, 17), " steps; need 1 to ", limit}));
     }
     settings.steps = static_cast<int>(steps);
   }
@@ -125,8 +154,8 @@ Result<Quat> MapOrientation(const json& orientation, std::string_view file, cons
     return quat.normalized();
   }
   const Vec3 axis = ReadVec3(orientation["axis"]);
-  if (axis.norm() < 1e-12) return FieldError(file, pointer + "/axis", "axis has zero length");
-  return Quat(Eigen::AngleAxisd(orientation["angle"].get<double>(), axis.normalized()));
+  if (ScaleSafeNorm(axis) < 1e-12) return FieldError(file, pointer + "/axis", "axis has zero length");
+  return Quat(Eigen::AngleAxisd(orientation["angle"].get<double>(), ScaleSafeNormalized(axis)));
 }
 
 Result<Shape> MapShape(const json& shape) {
@@ -136,6 +165,59 @@ Result<Shape> MapShape(const json& shape) {
   HullShape hull;
   for (const json& point : shape["points"]) hull.points.push_back(ReadVec3(point));
   return Shape(std::move(hull));
+}
+
+// The body's sizes, position and speeds against scenario_limits.h, each
+// refusal naming the body, the field and the limit.
+std::optional<Error> CheckMagnitudes(const BodySpec& spec, std::string_view file,
+                                     const std::string& pointer) {
+  const auto refuse = [&](const std::string& field, const std::string& problem) {
+    return FieldError(file, pointer + field, Concat({"body \"", spec.name, "\": ", problem}));
+  };
+  const auto length = [](double value) { return FormatNumber(value) + " m"; };
+  double extent = 0.0;  // the body's farthest point from its frame origin
+  if (const auto* box = std::get_if<BoxShape>(&spec.shape)) {
+    for (int i = 0; i < 3; ++i) {
+      const double e = box->halfExtents[i];
+      if (e < kMinLength || e > kMaxLength) {
+        return refuse(Concat({"/shape/halfExtents/", std::to_string(i)}),
+                      Concat({"half extent ", length(e), " is outside ", length(kMinLength), " to ",
+                              length(kMaxLength)}));
+      }
+    }
+    extent = ScaleSafeNorm(box->halfExtents);
+  } else if (const auto* sphere = std::get_if<SphereShape>(&spec.shape)) {
+    if (sphere->radius < kMinLength || sphere->radius > kMaxLength) {
+      return refuse("/shape/radius", Concat({"radius ", length(sphere->radius), " is outside ",
+                                             length(kMinLength), " to ", length(kMaxLength)}));
+    }
+    extent = sphere->radius;
+  } else {
+    const auto& points = std::get<HullShape>(spec.shape).points;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double far = points[i].cwiseAbs().maxCoeff();
+      if (far > kMaxLength) {
+        return refuse(Concat({"/shape/points/", std::to_string(i)}),
+                      Concat({"coordinate ", length(far), " is beyond the limit of ", length(kMaxLength)}));
+      }
+      extent = std::max(extent, ScaleSafeNorm(points[i]));
+    }
+  }
+  if (const double far = spec.position.cwiseAbs().maxCoeff(); far > kMaxLength) {
+    return refuse("/position",
+                  Concat({"coordinate ", length(far), " is beyond the limit of ", length(kMaxLength)}));
+  }
+  const std::string speedLimit = FormatNumber(kMaxSpeed) + " m/s (the speed of light)";
+  if (const double speed = ScaleSafeNorm(spec.linearVelocity); speed > kMaxSpeed) {
+    return refuse("/linearVelocity",
+                  Concat({"speed ", FormatNumber(speed), " m/s is more than ", speedLimit}));
+  }
+  if (const double rim = ScaleSafeNorm(spec.angularVelocity) * extent; rim > kMaxSpeed) {
+    return refuse("/angularVelocity", Concat({"spin ", FormatNumber(ScaleSafeNorm(spec.angularVelocity)),
+                                              " rad/s moves the body's farthest point at ", FormatNumber(rim),
+                                              " m/s, more than ", speedLimit}));
+  }
+  return std::nullopt;
 }
 
 Result<BodySpec> MapBody(const json& body, std::string_view file, const std::string& pointer) {
@@ -168,6 +250,7 @@ Result<BodySpec> MapBody(const json& body, std::string_view file, const std::str
   }
   if (body.contains("friction")) spec.friction = body["friction"].get<double>();
   if (body.contains("restitution")) spec.restitution = body["restitution"].get<double>();
+  if (auto problem = CheckMagnitudes(spec, file, pointer)) return *problem;
   return spec;
 }
 
@@ -181,18 +264,20 @@ Quantity MapQuantity(const std::string& name) {
   return Quantity::Position;
 }
 
+// Body indices by name, built once per scenario so look-ups stay linear.
+using BodyIndex = std::unordered_map<std::string, int>;
+
 // Looks up a body by name; -1 when there is none.
-int FindBody(const std::vector<BodySpec>& bodies, const std::string& name) {
-  for (size_t b = 0; b < bodies.size(); ++b) {
-    if (bodies[b].name == name) return static_cast<int>(b);
-  }
-  return -1;
+int FindBody(const BodyIndex& index, const std::string& name) {
+  const auto found = index.find(name);
+  return found == index.end() ? -1 : found->second;
 }
 
 // Where one truth entry sits, for messages and look-ups.
 struct TruthContext {
   const json& entry;
   const std::vector<BodySpec>& bodies;
+  const BodyIndex& bodyIndex;
   const WorldSettings& world;
   std::string_view file;
   std::string pointer;  // "/truths/<i>"
@@ -204,10 +289,11 @@ Result<TruthKind> MapSlidingStop(const TruthContext& c) {
                          c.entry["g"].get<double>()};
   if (c.entry.contains("direction")) {
     const Vec3 direction = ReadVec3(c.entry["direction"]);
-    const double length = direction.norm();
-    if (length < 1e-12) return FieldError(c.file, c.pointer + "/direction", "direction has zero length");
-    truth.direction = direction / length;
-    if (std::abs(truth.direction.dot(c.world.gravity.normalized())) > kPerpendicularTolerance) {
+    if (ScaleSafeNorm(direction) < 1e-12) {
+      return FieldError(c.file, c.pointer + "/direction", "direction has zero length");
+    }
+    truth.direction = ScaleSafeNormalized(direction);
+    if (std::abs(truth.direction.dot(ScaleSafeNormalized(c.world.gravity))) > kPerpendicularTolerance) {
       return FieldError(c.file, c.pointer + "/direction", "must be perpendicular to gravity");
     }
   }
@@ -220,21 +306,21 @@ Result<TruthKind> MapStackRest(const TruthContext& c) {
   truth.floor = c.entry["floor"].get<double>();
   truth.layerHeight = c.entry["layerHeight"].get<double>();
   truth.maxDrift = c.entry.value("maxDrift", truth.maxDrift);
-  std::vector<int> seen;
+  std::unordered_set<int> seen;
   for (size_t l = 0; l < c.entry["layers"].size(); ++l) {
     std::vector<int> layer;
     for (size_t k = 0; k < c.entry["layers"][l].size(); ++k) {
       const std::string where = c.pointer + "/layers/" + std::to_string(l) + "/" + std::to_string(k);
       const std::string name = c.entry["layers"][l][k].get<std::string>();
-      const int body = FindBody(c.bodies, name);
+      const int body = FindBody(c.bodyIndex, name);
       if (body < 0) return FieldError(c.file, where, "no body named \"" + name + "\"");
-      if (std::find(seen.begin(), seen.end(), body) != seen.end()) {
+      if (seen.count(body) != 0) {
         return FieldError(c.file, where, "body \"" + name + "\" is listed twice");
       }
       if (c.bodies[body].motion != Motion::Dynamic) {
         return FieldError(c.file, where, "body \"" + name + "\" is static");
       }
-      seen.push_back(body);
+      seen.insert(body);
       layer.push_back(body);
     }
     truth.layers.push_back(std::move(layer));
@@ -251,8 +337,8 @@ Result<TruthKind> MapStackRest(const TruthContext& c) {
 Result<TruthKind> MapHullRest(const TruthContext& c) {
   const auto* hull = std::get_if<HullShape>(&c.bodies[c.body].shape);
   if (hull == nullptr) return FieldError(c.file, c.pointer + "/body", "hull_rest needs a hull body");
-  const Vec3 normal = ReadVec3(c.entry["faceNormal"]);
-  if (normal.norm() < 1e-12) return FieldError(c.file, c.pointer + "/faceNormal", "normal has zero length");
+  const Vec3 normal = ScaleSafeNormalized(ReadVec3(c.entry["faceNormal"]));
+  if (normal.isZero()) return FieldError(c.file, c.pointer + "/faceNormal", "normal has zero length");
   auto analysis = AnalyseHullRest(hull->points);
   if (!analysis) {
     return FieldError(c.file, "/bodies/" + std::to_string(c.body) + "/shape/points",
@@ -391,7 +477,14 @@ Result<TruthKind> MapTruthKind(const TruthContext& c) {
   if (kind == "incline_tip") return MapInclineTip(c);
   if (kind == "torque_free") return MapSpin(c, false);
   if (kind == "flip_period") return MapSpin(c, true);
-  return TruthKind(ConvergedReferenceTruth{truth["timeStepDivisor"].get<int>()});
+  const int divisor = truth["timeStepDivisor"].get<int>();
+  if (static_cast<long long>(c.world.steps) * divisor > kMaxSteps) {
+    return FieldError(
+        c.file, c.pointer + "/timeStepDivisor",
+        Concat({"the finer run takes ", std::to_string(c.world.steps), " x ", std::to_string(divisor),
+                " steps, more than the limit of ", std::to_string(kMaxSteps)}));
+  }
+  return TruthKind(ConvergedReferenceTruth{divisor});
 }
 
 // Maps a schema-valid document to a Scenario, adding the semantic checks.
@@ -404,14 +497,13 @@ Result<Scenario> MapScenario(const json& doc, std::string_view file) {
   auto world = MapWorld(doc["world"], file);
   if (!world) return world.GetError();
   scenario.world = world.Value();
+  BodyIndex names;  // linear in the body count (100,000 bodies load at once)
   for (size_t i = 0; i < doc["bodies"].size(); ++i) {
     const std::string pointer = "/bodies/" + std::to_string(i);
     auto body = MapBody(doc["bodies"][i], file, pointer);
     if (!body) return body.GetError();
-    for (const BodySpec& other : scenario.bodies) {
-      if (other.name == body.Value().name) {
-        return FieldError(file, pointer + "/name", "duplicate body name \"" + other.name + "\"");
-      }
+    if (!names.emplace(body.Value().name, static_cast<int>(i)).second) {
+      return FieldError(file, pointer + "/name", "duplicate body name \"" + body.Value().name + "\"");
     }
     scenario.bodies.push_back(std::move(body).Value());
   }
@@ -434,10 +526,10 @@ Result<Scenario> MapScenario(const json& doc, std::string_view file) {
       Truth truth;
       if (entry.contains("body")) {
         const std::string name = entry["body"].get<std::string>();
-        truth.body = FindBody(scenario.bodies, name);
+        truth.body = FindBody(names, name);
         if (truth.body < 0) return FieldError(file, pointer + "/body", "no body named \"" + name + "\"");
       }
-      auto kind = MapTruthKind({entry, scenario.bodies, scenario.world, file, pointer, truth.body});
+      auto kind = MapTruthKind({entry, scenario.bodies, names, scenario.world, file, pointer, truth.body});
       if (!kind) return kind.GetError();
       truth.kind = std::move(kind).Value();
       auto gated = MapGate(entry, file, pointer, truth);
@@ -487,6 +579,13 @@ Result<std::vector<Sweep>> ReadSweeps(const json& doc, std::string_view file) {
         return FieldError(file, "/sweeps/" + std::to_string(i) + "/labels",
                           "needs one label per value (" + std::to_string(sweep.values.size()) + ")");
       }
+      std::unordered_set<std::string> seen;
+      for (size_t l = 0; l < sweep.labels.size(); ++l) {
+        if (!seen.insert(sweep.labels[l]).second) {
+          return FieldError(file, "/sweeps/" + std::to_string(i) + "/labels/" + std::to_string(l),
+                            "duplicate label \"" + sweep.labels[l] + "\"");
+        }
+      }
     }
     for (size_t v = 0; sweep.perTarget && v < sweep.values.size(); ++v) {
       if (!sweep.values[v].is_array() || sweep.values[v].size() != sweep.targets.size()) {
@@ -507,7 +606,37 @@ const nlohmann::json& ScenarioSchema() {
   return schema;
 }
 
-Result<std::vector<Run>> ParseScenarioText(std::string_view text, std::string_view fileName) {
+namespace {
+
+// Deepest nesting of `doc`, walked with an explicit stack (the document may
+// be nested deeper than the call stack allows); stops counting past `limit`.
+int NestingDepth(const json& doc, int limit) {
+  int deepest = 0;
+  std::vector<std::pair<const json*, int>> pending{{&doc, 0}};
+  while (!pending.empty()) {
+    const auto [value, depth] = pending.back();
+    pending.pop_back();
+    deepest = std::max(deepest, depth);
+    if (deepest > limit) return deepest;
+    if (value->is_structured()) {
+      for (const json& child : *value) pending.emplace_back(&child, depth + 1);
+    }
+  }
+  return deepest;
+}
+
+// The number of runs the sweep grid makes, or nothing when it passes `limit`
+// (computed from the sizes, before any run is built).
+std::optional<std::size_t> GridSize(const std::vector<Sweep>& sweeps, std::size_t limit) {
+  std::size_t runs = 1;
+  for (const Sweep& sweep : sweeps) {
+    if (sweep.values.empty() || runs > limit / sweep.values.size()) return std::nullopt;
+    runs *= sweep.values.size();
+  }
+  return runs;
+}
+
+Result<std::vector<Run>> ParseScenarioDocument(std::string_view text, std::string_view fileName) {
   json doc;
   try {
     doc = json::parse(text);
@@ -525,11 +654,25 @@ Result<std::vector<Run>> ParseScenarioText(std::string_view text, std::string_vi
     if (bracket != std::string::npos) what = what.substr(bracket + 2);
     return Error{std::string(fileName) + ": " + what};
   }
+  if (NestingDepth(doc, kMaxJsonDepth) > kMaxJsonDepth) {
+    return Error{Concat({fileName, ": nested more than ", std::to_string(kMaxJsonDepth),
+                         " arrays or objects deep (the limit)"})};
+  }
   if (auto violation = ValidateAgainstSchema(ScenarioSchema(), doc)) {
     return FieldError(fileName, violation->pointer, violation->problem);
   }
   auto sweeps = ReadSweeps(doc, fileName);
   if (!sweeps) return sweeps.GetError();
+  if (!GridSize(sweeps.Value(), kMaxRuns)) {
+    std::string sizes;
+    for (const Sweep& sweep : sweeps.Value()) {
+      sizes.append(sizes.empty() ? "" : " x ").append(std::to_string(sweep.values.size()));
+    }
+    return FieldError(fileName, "/sweeps",
+                      Concat({"the grid (", sizes, " values) makes more than the limit of ",
+                              std::to_string(kMaxRuns), " runs"}));
+  }
+  std::unordered_set<std::string> runIds;
 
   // Odometer over the sweep grid, the last sweep fastest.
   std::vector<size_t> index(sweeps.Value().size(), 0);
@@ -566,12 +709,25 @@ Result<std::vector<Run>> ParseScenarioText(std::string_view text, std::string_vi
     run.timeStep = run.scenario.world.timeStep;
     run.iterations = run.scenario.world.iterations;
     run.steps = run.scenario.world.steps;
+    if (!runIds.insert(run.id).second) {
+      return FieldError(
+          fileName, "/sweeps",
+          Concat({"two runs are both named \"", run.id, "\" (a sweep repeats a value or label)"}));
+    }
     runs.push_back(std::move(run));
 
     size_t s = index.size();
     while (s > 0 && ++index[s - 1] == sweeps.Value()[s - 1].values.size()) index[--s] = 0;
     if (s == 0) break;
   }
+  return runs;
+}
+
+}  // namespace
+
+Result<std::vector<Run>> ParseScenarioText(std::string_view text, std::string_view fileName) {
+  auto runs = ParseScenarioDocument(text, fileName);
+  if (!runs) return Error{TidyMessage(runs.GetError().message)};
   return runs;
 }
 

@@ -34,9 +34,11 @@ Result<Trajectory> Simulate(const BackendRegistry& registry, const std::string& 
   auto built = registry.Create(backend, run);
   if (!built) return built.GetError();
   const int stride = SampleStride(run.steps, 2000);
-  return Record(
+  Trajectory trajectory = Record(
       *built.Value(), run, run.steps, run.timeStep,
       [&](int step) { return IsSampled(step, run.steps, stride); }, nullptr);
+  if (!trajectory.failure.empty()) return Error{trajectory.failure};
+  return trajectory;
 }
 
 // Largest horizontal and vertical displacement of the dynamic bodies from

@@ -33,6 +33,13 @@ std::string MarkdownToHtml(const std::string& markdown);
 /// end its <script> element early (text_util.cpp).
 std::string ScriptSafe(std::string text);
 
+/// `message` made safe and short to print: control bytes (NUL included)
+/// written \xNN, an invisible byte-order mark written \uFEFF, and every
+/// quoted span ("..." or ": '...'") longer than `maxQuoted` bytes cut to its
+/// start, "...", and its length ("(4194304 bytes)"), never inside a UTF-8
+/// character (text_util.cpp).
+std::string TidyMessage(std::string_view message, std::size_t maxQuoted = 64);
+
 /// The whole file as bytes, or an Error "<path>: cannot read <what>"
 /// (text_util.cpp).
 Result<std::string> ReadTextFile(const std::filesystem::path& path, std::string_view what);

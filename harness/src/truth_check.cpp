@@ -27,9 +27,11 @@ void Judge(MetricResult& metric, const Tolerance& tolerance) {
 }
 
 Vec3 UpAxis(const Run& run) {
+  // Scaled by the largest component first: |g| of 1e300 would overflow to
+  // inf and make the axis zero (every height 0), 1e-300 underflow to 0.
   const Vec3& gravity = run.scenario.world.gravity;
-  const double norm = gravity.norm();
-  return norm > 0.0 ? Vec3(-gravity / norm) : Vec3::UnitY();
+  const double scale = gravity.cwiseAbs().maxCoeff();
+  return scale > 0.0 ? Vec3(-(gravity / scale).normalized()) : Vec3::UnitY();
 }
 
 std::vector<MetricResult> EvaluateTruth(const Run& run, const Truth& truth, const Trajectory& trajectory) {
@@ -87,7 +89,7 @@ void ApplyGate(const Truth& truth, std::string_view backend, std::vector<MetricR
 int SampleStride(int steps, int maxSamples) {
   assert(maxSamples >= 1);
   if (steps <= maxSamples) return 1;
-  return (steps + maxSamples - 1) / maxSamples;
+  return 1 + (steps - 1) / maxSamples;  // ceil(steps / maxSamples) without steps + maxSamples overflowing
 }
 
 bool IsSampled(int step, int steps, int stride) { return step % stride == 0 || step == steps; }

@@ -2,7 +2,10 @@
 #include "talus/reference/body_mass.h"
 
 #include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
 #include <numbers>
+#include <sstream>
 
 namespace talus::reference {
 namespace {
@@ -78,6 +81,21 @@ Result<BodyMass> ComputeBodyMass(const harness::BodySpec& body) {
     const double density = body.mass > 0.0 ? body.mass / mass.volume : body.density;
     mass.mass = density * mass.volume;
     mass.inertia = density * unitInertia;
+    // Overflow (density 1e300 over a large body) or underflow must be a
+    // refusal naming the body, not an inf or 0 that a peer turns into NaN.
+    const double smallest = mass.inertia.diagonal().minCoeff();
+    if (!std::isfinite(mass.mass) || !(mass.mass >= std::numeric_limits<double>::min())) {
+      std::ostringstream problem;
+      problem << "body \"" << body.name << "\": mass " << mass.mass << " kg (density " << density
+              << " kg/m^3 over volume " << mass.volume << " m^3) is not a finite positive number";
+      return Error{problem.str()};
+    }
+    if (!mass.inertia.allFinite() || !(smallest >= std::numeric_limits<double>::min())) {
+      std::ostringstream problem;
+      problem << "body \"" << body.name << "\": moment of inertia " << smallest << " kg m^2 (mass "
+              << mass.mass << " kg) is not a finite positive number";
+      return Error{problem.str()};
+    }
   }
   Diagonalise(mass);
   return mass;

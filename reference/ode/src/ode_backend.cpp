@@ -14,9 +14,14 @@
 
 #include <ode/ode.h>
 
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 
+#include "talus/harness/scenario_limits.h"
 #include "talus/reference/body_mass.h"
 
 namespace talus::reference {
@@ -30,6 +35,44 @@ std::string Format(double value) {
   out.precision(17);
   out << value;
   return out.str();
+}
+
+// ODE's error reporting. dError and dDebug (its internal assertions, such
+// as dxNormalize4's "zero length quaternion") must not return: ODE aborts
+// if the handler does, and unwinding a C++ exception or a longjmp through
+// ODE's frames would leave its step memory arena and the world half
+// updated, so neither can be made a recoverable run failure soundly. The
+// backend instead keeps ODE from reaching them (OdeBackend::Step refuses to
+// step a world holding a non-finite or out-of-bounds state, the loader and
+// ComputeBodyMass refuse extreme sizes, speeds and masses), and these
+// handlers name the run before the abort that remains the last resort.
+// dMessage (warnings such as "LCP internal error") may return: the last one
+// is kept per thread and added to a failed step's reason.
+thread_local const std::string* tCurrentRun = nullptr;
+thread_local std::string tLastMessage;
+
+std::string FormatOdeMessage(int number, const char* format, va_list arguments) {
+  char text[512];
+  std::vsnprintf(text, sizeof text, format, arguments);
+  return "ODE message " + std::to_string(number) + ": " + text;
+}
+
+[[noreturn]] void OdeFatal(const char* kind, int number, const char* format, va_list arguments) {
+  std::fprintf(stderr, "ode: run %s: ODE %s %d: ", tCurrentRun != nullptr ? tCurrentRun->c_str() : "(none)",
+               kind, number);
+  std::vfprintf(stderr, format, arguments);
+  std::fprintf(stderr, "\node: ODE cannot continue after an internal error; aborting\n");
+  std::abort();
+}
+
+void OdeError(int number, const char* format, va_list arguments) {
+  OdeFatal("error", number, format, arguments);
+}
+void OdeDebug(int number, const char* format, va_list arguments) {
+  OdeFatal("internal assertion", number, format, arguments);
+}
+void OdeMessage(int number, const char* format, va_list arguments) {
+  tLastMessage = FormatOdeMessage(number, format, arguments);
 }
 
 // ODE's library-wide state: initialised on first use, closed at exit.
@@ -46,6 +89,9 @@ class OdeLibrary {
   OdeLibrary() {
     dInitODE2(0);
     dAllocateODEDataForThread(dAllocateMaskAll);
+    dSetErrorHandler(&OdeError);
+    dSetDebugHandler(&OdeDebug);
+    dSetMessageHandler(&OdeMessage);
     m_configuration = dGetConfiguration();
     m_double = dCheckConfiguration("ODE_double_precision") != 0;
   }
@@ -69,10 +115,12 @@ class OdeBackend final : public harness::Backend {
   [[nodiscard]] harness::BodyState GetBodyState(int index) const override;
   [[nodiscard]] std::vector<harness::ContactPoint> GetContacts() const override { return m_contacts; }
   [[nodiscard]] std::vector<harness::Setting> Settings() const override { return m_settings; }
+  [[nodiscard]] std::string StepFailure() const override { return m_failure; }
 
  private:
   struct Body {
     int index = -1;
+    std::string name;
     double friction = 0.0;
     double restitution = 0.0;
     BodyMass mass;
@@ -89,8 +137,11 @@ class OdeBackend final : public harness::Backend {
   void Collide(dGeomID geom1, dGeomID geom2);
   Result<bool> AddBody(const BodySpec& spec, const BodyMass& mass, int index);
   void AddSettings(const Run& run);
+  [[nodiscard]] std::string UnsafeState() const;
 
   Stepper m_stepper = Stepper::Step;
+  std::string m_runId;    // named by the fatal-error handlers
+  std::string m_failure;  // why the last Step failed; empty when it ran
   double m_timeStep = 0.0;
   harness::WorldSettings m_worldSettings;
   dWorldID m_world = nullptr;
@@ -108,6 +159,7 @@ class OdeBackend final : public harness::Backend {
 Result<bool> OdeBackend::AddBody(const BodySpec& spec, const BodyMass& mass, int index) {
   auto body = std::make_unique<Body>();
   body->index = index;
+  body->name = spec.name;
   body->friction = spec.friction;
   body->restitution = spec.restitution;
   body->mass = mass;
@@ -184,6 +236,7 @@ Result<std::unique_ptr<harness::Backend>> OdeBackend::Create(const Run& run, Ste
   }
   std::unique_ptr<OdeBackend> backend(new OdeBackend());
   backend->m_stepper = stepper;
+  backend->m_runId = run.id;
   backend->m_timeStep = run.timeStep;
   backend->m_worldSettings = run.scenario.world;
   backend->m_world = dWorldCreate();
@@ -243,17 +296,52 @@ void OdeBackend::Collide(dGeomID geom1, dGeomID geom2) {
   }
 }
 
+// The first dynamic body whose state ODE must not be stepped with: a
+// non-finite value, or a position beyond kMaxLength (the bound Talus's
+// World refuses at too), where ODE's collision arithmetic overflows into
+// the NaN quaternions its internal assertions abort on. Empty when none.
+std::string OdeBackend::UnsafeState() const {
+  for (const auto& body : m_bodies) {
+    if (body->body == nullptr) continue;
+    const dReal* p = dBodyGetPosition(body->body);
+    const dReal* q = dBodyGetQuaternion(body->body);
+    const dReal* v = dBodyGetLinearVel(body->body);
+    const dReal* w = dBodyGetAngularVel(body->body);
+    bool finite = true;
+    for (int i = 0; i < 4; ++i) finite = finite && std::isfinite(q[i]);
+    for (int i = 0; i < 3; ++i)
+      finite = finite && std::isfinite(p[i]) && std::isfinite(v[i]) && std::isfinite(w[i]);
+    if (!finite) return "body \"" + body->name + "\" has a non-finite state; not stepped (ODE would abort)";
+    if (Vec3(p[0], p[1], p[2]).cwiseAbs().maxCoeff() > harness::kMaxLength) {
+      return "body \"" + body->name + "\" is beyond " + Format(harness::kMaxLength) +
+             " m from the origin; not stepped (ODE's collision arithmetic overflows there)";
+    }
+  }
+  return {};
+}
+
 void OdeBackend::Step() {
   m_contacts.clear();
+  m_failure = UnsafeState();
+  if (!m_failure.empty()) return;
+  tCurrentRun = &m_runId;
+  tLastMessage.clear();
   dSpaceCollide(m_space, this, &OdeBackend::NearCallback);
   dRandSetSeed(m_randomSeed);
-  if (m_stepper == Stepper::Step) {
-    dWorldStep(m_world, m_timeStep);
-  } else {
-    dWorldQuickStep(m_world, m_timeStep);
-  }
+  // 0 when ODE could not take the step (it could not allocate its step
+  // memory: a dense contact cluster asks for m^2 LCP entries).
+  const int stepped =
+      m_stepper == Stepper::Step ? dWorldStep(m_world, m_timeStep) : dWorldQuickStep(m_world, m_timeStep);
   m_randomSeed = dRandGetSeed();
+  const std::size_t joints = m_contacts.size();
   dJointGroupEmpty(m_contactGroup);
+  tCurrentRun = nullptr;
+  if (stepped == 0) {
+    m_failure = std::string(m_stepper == Stepper::Step ? "dWorldStep" : "dWorldQuickStep") +
+                " failed (ODE could not allocate its step memory; " + std::to_string(m_bodies.size()) +
+                " bodies, " + std::to_string(joints) + " contact joints)" +
+                (tLastMessage.empty() ? "" : "; last " + tLastMessage);
+  }
 }
 
 harness::BodyState OdeBackend::GetBodyState(int index) const {

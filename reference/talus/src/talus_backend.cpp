@@ -108,6 +108,7 @@ class TalusBackend final : public harness::Backend {
   [[nodiscard]] std::vector<harness::ContactPoint> GetContacts() const override;
   [[nodiscard]] std::vector<harness::Setting> Settings() const override { return m_settings; }
   [[nodiscard]] std::vector<harness::StepCounter> StepCounters() const override;
+  [[nodiscard]] std::string StepFailure() const override { return m_failure; }
 
  private:
   TalusBackend(World world, Variant variant) : m_world(std::move(world)), m_variant(variant) {}
@@ -121,6 +122,7 @@ class TalusBackend final : public harness::Backend {
   std::vector<BodyMass> m_masses;            // by scenario index
   std::vector<harness::Setting> m_settings;  // fixed at creation
   StepStatistics m_lastStep;                 // counters of the last Step (zero before the first)
+  std::string m_failure;                     // World::Step's refusal of the last step; empty when it ran
 };
 
 const char* PositionCorrectionName(PositionCorrection correction) {
@@ -211,12 +213,16 @@ Result<std::unique_ptr<harness::Backend>> TalusBackend::Create(const Run& run, V
 }
 
 void TalusBackend::Step() {
-  // The run's time step was validated by the loader ((0, 1] seconds), so a
-  // refusal here is a programmer error. The counters feed the report's
-  // broad-phase figure.
-  const auto stats = m_world.Step(m_timeStep);
-  assert(stats);
-  if (stats) m_lastStep = stats.Value();
+  // World::Step refuses a step it cannot take (a body beyond its 1e9 m
+  // bound, reached by a huge speed or gravity): the refusal ends the run
+  // through StepFailure. The counters feed the report's broad-phase figure.
+  auto stats = m_world.Step(m_timeStep);
+  if (!stats) {
+    m_failure = stats.GetError().message;
+    return;
+  }
+  m_failure.clear();
+  m_lastStep = stats.Value();
 }
 
 // The write-up's figure 2 funnel, in order: bodies, pairs the broad phase's

@@ -64,6 +64,13 @@ class Backend {
   [[nodiscard]] virtual std::string Name() const = 0;
   /// Advances the world by one time step of the run.
   virtual void Step() = 0;
+  /// Why the last Step failed: the engine refused the step or reported an
+  /// error (Talus's World::Step refusal, ODE's dWorldStep returning 0).
+  /// Empty (the default) when it went well. The runner stops a run at the
+  /// first failed step and records this reason; a backend whose engine
+  /// cannot fail leaves it at the default. Non-finite states need no
+  /// override: the runner checks every body after every step.
+  [[nodiscard]] virtual std::string StepFailure() const { return {}; }
   [[nodiscard]] virtual int BodyCount() const = 0;
   /// State of scenario body `index` (0 <= index < BodyCount()).
   [[nodiscard]] virtual BodyState GetBodyState(int index) const = 0;

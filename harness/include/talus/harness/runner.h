@@ -38,17 +38,17 @@ struct PlotSeries {
 
 /// Everything one (run, backend) job produced.
 struct RunResult {
-  std::string scenario;                   ///< scenario name
-  std::string file;                       ///< scenario file as given
-  std::string runId;                      ///< e.g. "box_slide[mu=0.3,v0=1]"
-  std::string backend;                    ///< registry name
-  std::vector<SweepValue> sweepValues;    ///< the run's sweep values
-  double timeStep = 0.0;                  ///< seconds
-  int iterations = 0;                     ///< as asked (0 = engine default; the settings say what it was)
-  int steps = 0;                          ///< steps taken
-  std::vector<std::string> bodyNames;     ///< scenario order
-  std::vector<Setting> settings;          ///< the backend's, in its order
-  std::string error;                      ///< non-empty when the backend refused the run (no metrics then)
+  std::string scenario;                 ///< scenario name
+  std::string file;                     ///< scenario file as given
+  std::string runId;                    ///< e.g. "box_slide[mu=0.3,v0=1]"
+  std::string backend;                  ///< registry name
+  std::vector<SweepValue> sweepValues;  ///< the run's sweep values
+  double timeStep = 0.0;                ///< seconds
+  int iterations = 0;                   ///< as asked (0 = engine default; the settings say what it was)
+  int steps = 0;                        ///< steps taken
+  std::vector<std::string> bodyNames;   ///< scenario order
+  std::vector<Setting> settings;        ///< the backend's, in its order
+  std::string error;  ///< why it failed: refused, or "step N: engine: reason"; no metrics then
   std::vector<MetricResult> metrics;      ///< truths first (file order), then drift, penetration, contacts
   double wallSecondsPerStepMedian = 0.0;  ///< seconds; 0 in deterministic mode
   double wallSecondsPerStepMean = 0.0;    ///< seconds; 0 in deterministic mode
@@ -76,6 +76,14 @@ struct RunnerOptions {
   /// Called (serialised) after each job with a line such as
   /// "[3/24] box_slide[mu=0.3,v0=1] bullet 0.12 s"; may be empty.
   std::function<void(const std::string&)> progress;
+  /// While a job runs longer than this, `progress` also gets a line such
+  /// as "box_slide bullet: step 120000 of 1000000 (12%), 10.0 s" every
+  /// this many seconds (serialised with the other lines).
+  double progressSeconds = 10.0;
+  /// Wall-clock budget of one job's recorded run, seconds; 0 = none. A job
+  /// past it stops like a failed step: "step 3072: talus: wall-clock budget
+  /// of 60 s spent" (checked every 1024 steps).
+  double budgetSeconds = 0.0;
   /// Called on the calling thread, before any job runs, once per run that
   /// runs on no backend because its scenario's `backends` and `backends`
   /// above have no name in common (such a run has no RunResult), e.g.
@@ -123,8 +131,11 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
 /// which `record(step)` holds (step 0 and the last always) and, when
 /// `stepSeconds` is not null, the wall time of every step. With `detail`,
 /// each sample also keeps its contacts and the backend's step counters.
+/// `tick`, when set, is called with the step number every 1024 steps; a
+/// non-empty answer stops the recording with that reason. The first failed
+/// step or non-finite body state stops it too (Trajectory::failure).
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
                   const std::function<bool(int)>& record, std::vector<double>* stepSeconds,
-                  bool detail = false);
+                  bool detail = false, const std::function<std::string(int)>& tick = {});
 
 }  // namespace talus::harness

@@ -9,6 +9,7 @@
 // time and never assume a stride of 1: long runs are thinned.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "talus/harness/backend.h"
@@ -34,6 +35,11 @@ struct Trajectory {
   double timeStep = 0.0;        ///< seconds per step
   int stride = 1;               ///< steps between recorded samples (>= 1); the last step is always recorded
   std::vector<Sample> samples;  ///< see the invariants above
+  /// Why recording stopped before the last step, e.g. "step 12: bullet:
+  /// body \"ball\": non-finite position (nan, nan, nan)"; empty when every
+  /// step ran. When set, the samples end at the last good step and the
+  /// invariants above about the last step do not hold.
+  std::string failure;
 };
 
 /// The stride that keeps a run of `steps` steps to at most `maxSamples`
