@@ -17,6 +17,7 @@
 
 #include "geometry/hull_check.h"
 #include "talus/hull_builder.h"
+#include "talus/mass_properties.h"
 #include "talus/math.h"
 
 namespace talus {
@@ -112,6 +113,23 @@ TEST(HullBuilderHostile, BoxesAtTheExtremeScalesStillBuild) {
   ASSERT_FALSE(refused);
   EXPECT_NE(refused.GetError().message.find("the points span only 1e-150 m"), std::string::npos)
       << refused.GetError().message;
+}
+
+// A box the builder accepts at either extreme has a volume (L^3) and an
+// inertia (L^5) outside the double range: a clear refusal, not inf or 0
+// (nor, with asserts on, an assertion).
+TEST(HullBuilderHostile, MassPropertiesOfExtremeHullsAreRefusedNotInfinite) {
+  for (double size : {1e149, 1e-139}) {
+    auto hull = Hull::Box(Vec3(size, size, size));
+    ASSERT_TRUE(hull) << size;
+    auto mass = ComputeMassProperties(hull.Value(), 1000.0);
+    ASSERT_FALSE(mass) << size;
+    EXPECT_NE(mass.GetError().message.find("out of the double range"), std::string::npos)
+        << mass.GetError().message;
+  }
+  auto dense = ComputeMassProperties(Hull::Box(Vec3(1, 1, 1)).Value(), 1e308);
+  ASSERT_FALSE(dense);
+  EXPECT_NE(dense.GetError().message.find("density too high"), std::string::npos) << dense.GetError().message;
 }
 
 // One random hostile set: `kind` picks the shape, the draw its scale and
