@@ -149,7 +149,9 @@ TEST(PointFileHostile, NulAndOtherControlBytesAreEscaped) {
   ASSERT_FALSE(file);
   EXPECT_EQ(file.GetError().message, DataPath("nul_byte.xyz") + ":3: '1\\x00' is not a number");
   EXPECT_EQ(QuoteToken("a\\b\x7f\xff"), "'a\\x5cb\\x7f\\xff'");
-  EXPECT_EQ(ParseError("1 2 \xef\xbb\xbf" "3\n"), "points.xyz:1: '\\xef\\xbb\\xbf3' is not a number");
+  EXPECT_EQ(ParseError("1 2 \xef\xbb\xbf"
+                       "3\n"),
+            "points.xyz:1: '\\xef\\xbb\\xbf3' is not a number");
 }
 
 // Editors on some systems start a text file with a UTF-8 byte-order mark:
