@@ -132,6 +132,21 @@ TEST(HullBuilderHostile, MassPropertiesOfExtremeHullsAreRefusedNotInfinite) {
   EXPECT_NE(dense.GetError().message.find("density too high"), std::string::npos) << dense.GetError().message;
 }
 
+// A requested tolerance below the rounding of plane distances cannot be
+// honoured: it is raised to the derived one, so exactly coplanar points (a
+// grid-snapped sphere) still build, instead of collapsing and being
+// refused as flat at a widened 0.6 m.
+TEST(HullBuilderHostile, ToleranceBelowTheRoundingFloorIsRaisedToIt) {
+  std::vector<Vec3> points;
+  for (const Vec3& p : test::SpherePoints(14, 2000)) points.push_back((p * 8.0).array().round() / 8.0);
+  for (double requested : {1e-300, 1e-20}) {
+    auto hull = BuildHull(points, {.tolerance = requested});
+    ASSERT_TRUE(hull) << requested << ": " << hull.GetError().message;
+    EXPECT_EQ(hull.Value().Tolerance(), Hull::DefaultTolerance(points)) << requested;
+    EXPECT_TRUE(test::CheckHull(hull.Value(), points)) << requested;
+  }
+}
+
 // One random hostile set: `kind` picks the shape, the draw its scale and
 // offset. Every coordinate stays finite and within the coordinate limit.
 std::vector<Vec3> HostileSet(std::uint64_t seed) {

@@ -21,7 +21,9 @@ struct HullBuildSettings {
 
   /// Distance tolerance in metres below which a point counts as on a plane;
   /// 0 (default) derives it from the input's extent with
-  /// Hull::DefaultTolerance, which is what nearly every caller wants. This
+  /// Hull::DefaultTolerance, which is what nearly every caller wants; a
+  /// smaller value is raised to that one (it is the rounding of a plane
+  /// distance at the input's coordinates, so nothing finer can hold). This
   /// is the starting tolerance: when the input is noisy at a larger scale
   /// the builder widens it (see BuildHull) and the hull's Tolerance()
   /// reports the one it was built and validated with.

@@ -608,7 +608,11 @@ Result<Hull> BuildHull(std::span<const Vec3> points, const HullBuildSettings& se
     return Error{"too many points for a hull: " + std::to_string(points.size())};
   }
   if (auto error = CheckCoordinates(points)) return *error;
-  double tolerance = settings.tolerance > 0.0 ? settings.tolerance : Hull::DefaultTolerance(points);
+  // A requested tolerance below the derived one is below the rounding of a
+  // plane distance at these coordinates: no build can honour it (a grid-
+  // snapped sphere asked for 1e-20 m collapsed and was refused as flat at
+  // 0.6 m), so it starts at the derived one.
+  double tolerance = std::max(settings.tolerance, Hull::DefaultTolerance(points));
   // Noisy input (points nearly coplanar at a scale well above the
   // tolerance, or differences of far-from-origin coordinates that carry
   // rounding noise the derived tolerance cannot know about) can leave a
