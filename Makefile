@@ -10,6 +10,10 @@
 #                  large scenes' scaling series (long: about an hour on 2
 #                  cores), in reports/full/
 #
+#   make fuzz      build the libFuzzer targets (clang, ASan + UBSan) in
+#                  build-fuzz/ and run each for FUZZ_SECONDS (default 600)
+#   make fuzz-ci   the same, 30 s per target (the bounded CI form)
+#
 # JOBS sets build and test parallelism (default: all cores).
 
 JOBS ?= $(shell nproc)
@@ -30,7 +34,12 @@ SCENES = $(BUILD_DIR)/apps/scenes/talus-scenes
 # variants are compared on the small scenarios); about 45 minutes.
 SCENES_ENGINES ?= talus,bullet,ode-quickstep,ode-step
 
-.PHONY: deps configure build test test-release test-asan format format-check clean report report-full
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 600
+FUZZ_TARGETS ?= hull_builder point_file
+
+.PHONY: deps configure build test test-release test-asan format format-check clean report report-full \
+  fuzz-build fuzz fuzz-ci
 
 deps:
 	@scripts/install-deps.sh
@@ -75,7 +84,34 @@ format-check: deps
 	@clang-format --dry-run --Werror $(SOURCES)
 
 clean:
-	rm -rf $(BUILD_DIR) $(ASAN_DIR)
+	rm -rf $(BUILD_DIR) $(ASAN_DIR) $(FUZZ_DIR)
+
+# The fuzz tree: clang with libFuzzer, ASan and UBSan over the engine and the
+# point reader, asserts on (Debug at -O1). TALUS_FUZZ_DEPS=1 adds clang and
+# its runtime to the packages install-deps checks; `make test` needs neither.
+fuzz-build:
+	@TALUS_FUZZ_DEPS=1 scripts/install-deps.sh
+	@$(CMAKE) -S . -B $(FUZZ_DIR) -G $(GENERATOR) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++-14 \
+	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer" \
+	  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+	  -DTALUS_BUILD_FUZZ=ON -DTALUS_BUILD_TESTS=OFF -DTALUS_BUILD_BENCH=OFF -DTALUS_BUILD_TESTBED=OFF >/dev/null
+	@$(CMAKE) --build $(FUZZ_DIR) -j $(JOBS) --target $(addprefix talus_fuzz_,$(FUZZ_TARGETS))
+
+# Each target starts from its seeds in tests/data/fuzz/<target>/ (read only)
+# and grows its own corpus in build-fuzz/corpus/<target>/; a crash is saved
+# as build-fuzz/artifacts/<target>-crash-... and stops the run. Turn it into
+# a file in tests/data/fuzz/<target>/ (the test suites replay those).
+fuzz: fuzz-build
+	@for t in $(FUZZ_TARGETS); do \
+	  mkdir -p $(FUZZ_DIR)/corpus/$$t $(FUZZ_DIR)/artifacts; \
+	  echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
+	  $(FUZZ_DIR)/fuzz/talus_fuzz_$$t $(FUZZ_DIR)/corpus/$$t tests/data/fuzz/$$t \
+	    -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+	    -artifact_prefix=$(FUZZ_DIR)/artifacts/$$t- || exit 1; \
+	done
+
+fuzz-ci:
+	@$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=30
 
 # One page with every analysis: the default run and SAT validation as in
 # `report`, plus the sweep (run time against error), the stress envelope and

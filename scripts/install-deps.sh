@@ -20,6 +20,15 @@ packages=(
   chromium                          # headless browser: the report's render test (ctest label browser)
 )
 
+# Optional group, only for `make fuzz` / `make fuzz-ci` (which set
+# TALUS_FUZZ_DEPS=1): clang and its runtime, which holds libFuzzer and the
+# sanitizers for clang. A plain `make test` neither needs nor installs them.
+if [ "${TALUS_FUZZ_DEPS:-0}" = 1 ]; then
+  packages+=(
+    clang-14 libclang-rt-14-dev     # libFuzzer targets in fuzz/ (docs/fuzzing.md)
+  )
+fi
+
 # The report inlines Chart.js and three.js, pinned by harness/report/package-lock.json;
 # `npm ci` installs exactly that into harness/report/node_modules, quietly,
 # and only when it is missing or older than the lock. Only the HTML report

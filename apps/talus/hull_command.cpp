@@ -109,7 +109,7 @@ Result<std::string> MakeOutput(const HullOptions& options) {
   if (!hull) return Error{options.input + ": no hull: " + hull.GetError().message};
   if (options.format == "obj") return FormatObj(hull.Value(), options.input);
   auto props = ComputeMassProperties(hull.Value(), options.density);
-  if (!props) return props.GetError();
+  if (!props) return Error{options.input + ": no mass properties: " + props.GetError().message};
   return FormatJson(hull.Value(), props.Value(), options.density);
 }
 

@@ -8,7 +8,10 @@
 // Every error names the source and the 1-based line ("points.xyz:7:
 // expected 3 numbers, got 2"); a read either yields every point or an error,
 // never a partial list. Numbers are parsed with std::from_chars, so the
-// result does not depend on the C locale.
+// result does not depend on the C locale; one leading '+' is allowed. An OBJ
+// word that is no Wavefront statement ("vv") is refused as a typo. A
+// leading UTF-8 byte-order mark is skipped. Messages quote at most the first
+// 40 bytes of a bad token, with non-printable bytes escaped as \xNN.
 #pragma once
 
 #include <span>
@@ -41,8 +44,13 @@ PointFormat DetectPointFormat(std::string_view name, std::string_view text);
 /// with no points at all.
 Result<std::vector<Vec3>> ParsePoints(std::string_view text, std::string_view name, PointFormat format);
 
+/// A token as error messages quote it: in single quotes, at most its first
+/// 40 bytes (then "... (N bytes)"), bytes outside printable ASCII and the
+/// backslash written as \xNN.
+std::string QuoteToken(std::string_view token);
+
 /// Reads the file at `path` and parses it as ParsePoints does; errors also
-/// for a file that cannot be opened or read.
+/// for a directory and a file that cannot be opened or read.
 Result<std::vector<Vec3>> ReadPointFile(const std::string& path, PointFormat format);
 
 }  // namespace talus::cli

@@ -22,6 +22,8 @@ std::string ParseError(std::string_view text, PointFormat format = PointFormat::
   return points ? std::string() : points.GetError().message;
 }
 
+std::string DataPath(const std::string& name) { return std::string(TALUS_TEST_DATA_DIR) + "/cli/" + name; }
+
 TEST(PointFile, XyzLinesWithCommentsBlankLinesAndCrlfAreRead) {
   const auto points = Parse("# header\n\n1 2 3\r\n  -4.5\t+5e-1 6 # trailing\n\n7 8 9");
   ASSERT_EQ(points.size(), 3u);
@@ -102,6 +104,63 @@ TEST(PointFile, ReadsDataFiles) {
   auto tetra = ReadPointFile(std::string(TALUS_TEST_DATA_DIR) + "/cli/tetra.obj", PointFormat::Auto);
   ASSERT_TRUE(tetra) << tetra.GetError().message;
   EXPECT_EQ(tetra.Value().size(), 4u);
+}
+
+// Issue 14: hostile point files. Each once was accepted silently or quoted
+// unreadably; the data files are in tests/data/cli.
+TEST(PointFileHostile, TwoSignsAreRefused) {
+  EXPECT_EQ(ParseError("1 2 3\n+-1 0 0\n"), "points.xyz:2: '+-1' is not a number (two signs)");
+  EXPECT_EQ(ParseError("++1 0 0\n"), "points.xyz:1: '++1' is not a number (two signs)");
+  EXPECT_EQ(ParseError("-+1 0 0\n"), "points.xyz:1: '-+1' is not a number");
+  auto file = ReadPointFile(DataPath("plus_minus.xyz"), PointFormat::Auto);
+  ASSERT_FALSE(file);
+  EXPECT_EQ(file.GetError().message, DataPath("plus_minus.xyz") + ":3: '+-1' is not a number (two signs)");
+}
+
+TEST(PointFileHostile, UnknownObjStatementIsRefusedAsATypo) {
+  auto file = ReadPointFile(DataPath("obj_typo.obj"), PointFormat::Auto);
+  ASSERT_FALSE(file);
+  EXPECT_EQ(file.GetError().message,
+            DataPath("obj_typo.obj") +
+                ":4: unknown OBJ statement 'vv' (points are 'v x y z' lines; other statements such as f, vn, "
+                "vt, o, g are skipped)");
+  // Every real statement is still skipped.
+  EXPECT_EQ(Parse("mtllib a.mtl\nusemtl m\nv 1 2 3\nvp 0.5\ns off\nl 1 2\np 1\n", PointFormat::Obj).size(),
+            1u);
+}
+
+TEST(PointFileHostile, DirectoryIsNamedAsADirectory) {
+  const std::string path = std::string(TALUS_TEST_DATA_DIR) + "/cli";
+  auto points = ReadPointFile(path, PointFormat::Auto);
+  ASSERT_FALSE(points);
+  EXPECT_EQ(points.GetError().message, path + ": is a directory, not a point file");
+}
+
+// A 4 MB token is quoted by its first 40 bytes and its length.
+TEST(PointFileHostile, HugeTokenIsQuotedByAShortPrefix) {
+  const std::string token(4 << 20, '7');
+  const std::string message = ParseError("1 2 " + token + "x\n");
+  EXPECT_EQ(message, "points.xyz:1: '" + std::string(40, '7') + "'... (" + std::to_string((4 << 20) + 1) +
+                         " bytes) is not a number");
+}
+
+TEST(PointFileHostile, NulAndOtherControlBytesAreEscaped) {
+  auto file = ReadPointFile(DataPath("nul_byte.xyz"), PointFormat::Auto);
+  ASSERT_FALSE(file);
+  EXPECT_EQ(file.GetError().message, DataPath("nul_byte.xyz") + ":3: '1\\x00' is not a number");
+  EXPECT_EQ(QuoteToken("a\\b\x7f\xff"), "'a\\x5cb\\x7f\\xff'");
+  EXPECT_EQ(ParseError("1 2 \xef\xbb\xbf"
+                       "3\n"),
+            "points.xyz:1: '\\xef\\xbb\\xbf3' is not a number");
+}
+
+// Editors on some systems start a text file with a UTF-8 byte-order mark:
+// skipped at the start, so the file reads as without it.
+TEST(PointFileHostile, LeadingByteOrderMarkIsSkipped) {
+  auto file = ReadPointFile(DataPath("bom.xyz"), PointFormat::Auto);
+  ASSERT_TRUE(file) << file.GetError().message;
+  ASSERT_EQ(file.Value().size(), 4u);
+  EXPECT_EQ(file.Value()[0], Vec3(0, 0, 0));
 }
 
 }  // namespace

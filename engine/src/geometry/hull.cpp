@@ -201,7 +201,7 @@ Result<Hull> Hull::FromPolygons(std::vector<Vec3> vertices, const std::vector<st
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const auto& loop = faces[f];
     const Vec3 newell = NewellNormal(vertices, loop);
-    const double twiceArea = newell.norm();
+    const double twiceArea = ScaledNorm(newell);
     if (!(twiceArea > 0.0)) return Error{FaceName(f) + " has zero area"};
     const Vec3 normal = newell / twiceArea;
     double offset = 0.0;
@@ -220,12 +220,18 @@ Result<Hull> Hull::FromPolygons(std::vector<Vec3> vertices, const std::vector<st
       }
       // c must not lie right of the directed line a -> b (seen from outside).
       const Vec3 ab = b - a;
-      const Vec3 inward = normal.cross(ab).normalized();
+      const Vec3 inwardDirection = normal.cross(ab);
+      const Vec3 inward = inwardDirection / ScaledNorm(inwardDirection);
       if (inward.dot(c - a) < -tolerance) {
         return Error{FaceName(f) + " is not convex at vertex " + std::to_string(loop[(i + 1) % loop.size()])};
       }
+      // The turning angle between the edges projected into the plane: a
+      // face off its plane by up to the tolerance (a large fraction of a
+      // tiny face's size) turns by 2 pi exactly only in projection.
+      const Vec3 abInPlane = ab - normal * normal.dot(ab);
       const Vec3 bc = c - b;
-      turning += std::atan2(normal.dot(ab.cross(bc)), ab.dot(bc));
+      const Vec3 bcInPlane = bc - normal * normal.dot(bc);
+      turning += std::atan2(normal.dot(abInPlane.cross(bcInPlane)), abInPlane.dot(bcInPlane));
     }
     // Local left turns everywhere still allow a loop that winds twice.
     if (std::abs(turning - 2.0 * std::numbers::pi) > 1e-6) {

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "geometry/hull_build_trace.h"
+#include "geometry/polygon_normal.h"
 #include "geometry/quickhull_mesh.h"
 #include "talus/hull_builder.h"
 
@@ -44,8 +45,29 @@ std::string Metres(double value) {
   return buffer;
 }
 
-// Rejects NaN and infinite coordinates, naming the first bad point.
-std::optional<Error> CheckFinite(std::span<const Vec3> points) {
+// Largest coordinate magnitude (metres) the builder accepts. It forms
+// squared distances and cross products of coordinate differences (up to
+// 2 x 1e150, so squares up to 12 x 1e300 = 1.2e301) and Newell sums of
+// millions of those: all stay below the double limit of 1.8e308 with a
+// factor ~1e7 to spare. Lengths beyond it are no physical body anyway; the
+// refusal says why instead of a misleading "collinear" from an overflow.
+constexpr double kMaxCoordinate = 1e150;
+
+// Smallest extent (metres, largest side of the bounding box) the builder can
+// resolve: squares of differences down to 1e-14 of it (1e-308) must stay
+// normal doubles, not underflow to zero (below 1e-140 a set would be
+// refused as "coincident" although its points are distinct).
+constexpr double kMinExtent = 1e-140;
+
+std::string Number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.3g", value);
+  return buffer;
+}
+
+// Rejects NaN, infinite and too large coordinates, naming the first bad
+// point, and a set too small to measure.
+std::optional<Error> CheckCoordinates(std::span<const Vec3> points) {
   static constexpr std::array<const char*, 3> kAxis = {"x", "y", "z"};
   for (std::size_t i = 0; i < points.size(); ++i) {
     for (int axis = 0; axis < 3; ++axis) {
@@ -58,7 +80,24 @@ std::optional<Error> CheckFinite(std::span<const Vec3> points) {
         return Error{"point " + std::to_string(i) + ": coordinate " + kAxis[static_cast<std::size_t>(axis)] +
                      " is infinite"};
       }
+      if (std::abs(value) > kMaxCoordinate) {
+        return Error{"point " + std::to_string(i) + ": coordinate " + kAxis[static_cast<std::size_t>(axis)] +
+                     " = " + Number(value) + " m exceeds the limit of " + Number(kMaxCoordinate) +
+                     " m in magnitude, beyond which squared distances between points overflow a double"};
+      }
     }
+  }
+  Vec3 lowest = points[0];
+  Vec3 highest = points[0];
+  for (const Vec3& p : points) {
+    lowest = lowest.cwiseMin(p);
+    highest = highest.cwiseMax(p);
+  }
+  const double extent = (highest - lowest).maxCoeff();
+  if (extent > 0.0 && extent < kMinExtent) {
+    return Error{"the points span only " + Metres(extent) + ", below the smallest extent of " +
+                 Metres(kMinExtent) +
+                 " at which squared distances between points stay above the double range"};
   }
   return std::nullopt;
 }
@@ -112,7 +151,8 @@ Result<std::array<int, 4>> FindInitialSimplex(std::span<const Vec3> points, doub
                  " (or there are fewer than 3 distinct points): they span no volume"};
   }
 
-  const Vec3 normal = (at(i1) - at(i0)).cross(at(i2) - at(i0)).normalized();
+  const Vec3 cross = (at(i1) - at(i0)).cross(at(i2) - at(i0));
+  const Vec3 normal = cross / ScaledNorm(cross);
   int i3 = -1;
   best = -1.0;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -150,6 +190,14 @@ constexpr int kMaxWidenings = 16;
 // back marks the build as unsettled, and BuildHull widens the tolerance.
 constexpr unsigned char kMaxEyeVisits = 3;
 
+// How one build at one tolerance ended.
+enum class BuildStatus {
+  kSettled,    // every point is inside or within the tolerance of the hull
+  kUnsettled,  // points kept coming back in front after merges moved planes
+  kCollapsed,  // merges or a horizon left no closed 2-manifold (see
+               // QuickhullMesh::Collapsed): the set is flat at this tolerance
+};
+
 // Working state of one build: the mesh plus scratch buffers reused by every
 // iteration, so the loop allocates nothing once they have grown.
 class Builder {
@@ -157,8 +205,8 @@ class Builder {
   Builder(std::span<const Vec3> points, double tolerance, int maxVertices)
       : m_mesh(points, tolerance), m_tolerance(tolerance), m_maxVertices(maxVertices) {}
 
-  // Builds the hull; false when the near-point recheck did not settle.
-  bool Run(const std::array<int, 4>& simplex);
+  // Builds the hull: kSettled, or why the mesh must be thrown away.
+  BuildStatus Run(const std::array<int, 4>& simplex);
   [[nodiscard]] double PlanarityError() const;
   void SetTrace(HullBuildTrace* trace) { m_trace = trace; }
   [[nodiscard]] Result<Hull> Bake() const;
@@ -167,9 +215,10 @@ class Builder {
   void BuildTetrahedron(const std::array<int, 4>& simplex);
   void AssignToBestFace(std::span<const QhConflict> candidates, std::span<const int> faces, int skip);
   int RecheckNearPoints();
-  bool ProcessQueue();
+  BuildStatus ProcessQueue();
   void ComputeHorizon(int face, int eye);
-  void AddPoint(int face, int eye);
+  [[nodiscard]] bool HorizonIsOneLoop();
+  bool AddPoint(int face, int eye);
   void Enqueue(int face);
 
   QuickhullMesh m_mesh;
@@ -189,6 +238,8 @@ class Builder {
   std::vector<unsigned char> m_eyeVisits;  // per point: times it was the eye
   std::vector<int> m_stamp;                // per point, for counting removed vertices
   int m_stampValue = 0;
+  std::vector<int> m_horizonMark;  // per point, HorizonIsOneLoop's visit stamp
+  int m_loopStamp = 0;
 };
 
 void Builder::BuildTetrahedron(const std::array<int, 4>& s) {
@@ -197,8 +248,12 @@ void Builder::BuildTetrahedron(const std::array<int, 4>& s) {
   int b = s[1];
   const int c = s[2];
   const int d = s[3];
+  // The triple product through a unit normal: a plain one is a product of
+  // three lengths, which overflows or underflows at the extreme scales the
+  // builder accepts (1e150 m coordinates, 1e-140 m sets).
   const Vec3& pa = m_mesh.Point(a);
-  if ((m_mesh.Point(b) - pa).cross(m_mesh.Point(c) - pa).dot(m_mesh.Point(d) - pa) > 0.0) std::swap(a, b);
+  const Vec3 cross = AccurateCross(m_mesh.Point(b) - pa, m_mesh.Point(c) - pa);
+  if ((cross / ScaledNorm(cross)).dot(m_mesh.Point(d) - pa) > 0.0) std::swap(a, b);
   const int base = m_mesh.AddTriangle(a, b, c);
   const int fBad = m_mesh.AddTriangle(b, a, d);
   const int fCbd = m_mesh.AddTriangle(c, b, d);
@@ -308,7 +363,7 @@ void Builder::Enqueue(int face) {
   m_queue.push_back(face);
 }
 
-bool Builder::Run(const std::array<int, 4>& simplex) {
+BuildStatus Builder::Run(const std::array<int, 4>& simplex) {
   BuildTetrahedron(simplex);
   const auto pointCount = static_cast<int>(m_mesh.Points().size());
   std::vector<QhConflict> all(static_cast<std::size_t>(pointCount));
@@ -322,17 +377,21 @@ bool Builder::Run(const std::array<int, 4>& simplex) {
   // Process the queue; then recheck the near points against the final
   // planes, and go on while that turns some of them into outside points.
   m_eyeVisits.assign(static_cast<std::size_t>(pointCount), 0);
+  m_horizonMark.assign(static_cast<std::size_t>(pointCount), 0);
   for (int round = 0; round < kMaxRecheckRounds; ++round) {
-    if (!ProcessQueue()) return false;
-    if (m_maxVertices > 0 && m_vertexCount >= m_maxVertices) return true;
-    if (RecheckNearPoints() == 0) return true;
+    const BuildStatus status = ProcessQueue();
+    if (status != BuildStatus::kSettled) return status;
+    if (m_maxVertices > 0 && m_vertexCount >= m_maxVertices) return BuildStatus::kSettled;
+    if (RecheckNearPoints() == 0) return BuildStatus::kSettled;
   }
-  return false;
+  return BuildStatus::kUnsettled;
 }
 
-// Adds eye points until no face has conflicts; false when a point keeps
-// coming back as the eye (the build does not settle at this tolerance).
-bool Builder::ProcessQueue() {
+// Adds eye points until no face has conflicts; kUnsettled when a point
+// keeps coming back as the eye (the build does not settle at this
+// tolerance), kCollapsed when adding a point broke the surface. Each point
+// is the eye at most kMaxEyeVisits times, so this ends.
+BuildStatus Builder::ProcessQueue() {
   while (m_queueHead < m_queue.size()) {
     const int face = m_queue[m_queueHead++];
     // Keep the queue compact: drop the consumed prefix now and then.
@@ -344,10 +403,11 @@ bool Builder::ProcessQueue() {
     f.queued = false;
     if (f.state != QhFaceState::kAlive || f.conflicts.empty()) continue;
     if (m_maxVertices > 0 && m_vertexCount >= m_maxVertices) break;
-    if (++m_eyeVisits[static_cast<std::size_t>(f.farthestPoint)] > kMaxEyeVisits) return false;
-    AddPoint(face, f.farthestPoint);
+    if (++m_eyeVisits[static_cast<std::size_t>(f.farthestPoint)] > kMaxEyeVisits)
+      return BuildStatus::kUnsettled;
+    if (!AddPoint(face, f.farthestPoint)) return BuildStatus::kCollapsed;
   }
-  return true;
+  return BuildStatus::kSettled;
 }
 
 // Depth-first walk over the faces the eye sees, starting at `face` and
@@ -387,8 +447,30 @@ void Builder::ComputeHorizon(int face, int eye) {
   }
 }
 
-void Builder::AddPoint(int face, int eye) {
+// The cone can only replace a visible region that is a disk: its horizon
+// must be one closed loop through distinct vertices. With exact arithmetic
+// it always is; with a tolerance, a nearly flat set can make the eye "see"
+// faces that ring an unseen one, or touch at a single vertex. Checked
+// before anything is changed, so the caller can abandon the build cleanly.
+bool Builder::HorizonIsOneLoop() {
+  const std::size_t n = m_horizon.size();
+  if (n < 3) return false;
+  ++m_loopStamp;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int end = m_mesh.Edge(m_mesh.Edge(m_horizon[i]).next).origin;
+    if (end != m_mesh.Edge(m_horizon[(i + 1) % n]).origin) return false;
+    int& mark = m_horizonMark[static_cast<std::size_t>(end)];
+    if (mark == m_loopStamp) return false;  // the loop passes a vertex twice
+    mark = m_loopStamp;
+  }
+  return true;
+}
+
+// Adds `eye` to the hull; false when the surface collapsed (the mesh must
+// then be abandoned: see BuildStatus::kCollapsed).
+bool Builder::AddPoint(int face, int eye) {
   ComputeHorizon(face, eye);
+  if (!HorizonIsOneLoop()) return false;
   if (m_trace != nullptr) RecordHullBuildStep(*m_trace, m_mesh, eye, m_horizon);
 
   if (m_maxVertices > 0) {
@@ -444,6 +526,7 @@ void Builder::AddPoint(int face, int eye) {
       do {
         if (m_mesh.ShouldMerge(nf, e)) {
           m_vertexCount -= m_mesh.MergeAcross(nf, e, m_orphans);
+          if (m_mesh.Collapsed()) return false;
           merged = true;
           break;
         }
@@ -456,6 +539,7 @@ void Builder::AddPoint(int face, int eye) {
   for (int nf : m_newFaces) {
     if (m_mesh.Face(nf).state == QhFaceState::kAlive) Enqueue(nf);
   }
+  return true;
 }
 
 Result<Hull> Builder::Bake() const {
@@ -479,13 +563,31 @@ Result<Hull> Builder::Bake() const {
     faces.push_back(loop);
   }
   auto hull = Hull::FromPolygons(std::move(vertices), faces, m_tolerance);
-  if (!hull) {
-    return Error{
-        "Quickhull produced a hull that failed validation (please keep this point set as a "
-        "regression case): " +
-        hull.GetError().message};
-  }
+  if (!hull) return Error{"its hull failed validation: " + hull.GetError().message};
   return hull;
+}
+
+// Largest points x faces product for which BuildHull checks every input
+// point against every face of the finished hull (about 20 ms): the build
+// only rechecks points near the faces they were given to, and a point
+// dropped as inside can, on nearly degenerate sets, end up slightly in
+// front of a face that merges moved. Bigger inputs skip this safety net.
+constexpr double kFullCheckBudget = 2e7;
+
+// The first input point more than the tolerance in front of a face of
+// `hull`, as a message, when the input is small enough to check them all.
+std::optional<std::string> FindPointInFront(const Hull& hull, std::span<const Vec3> points) {
+  if (static_cast<double>(points.size()) * hull.FaceCount() > kFullCheckBudget) return std::nullopt;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (int f = 0; f < hull.FaceCount(); ++f) {
+      const double distance = hull.Faces()[static_cast<std::size_t>(f)].plane.SignedDistance(points[i]);
+      if (distance > hull.Tolerance()) {
+        return "point " + std::to_string(i) + " is " + Metres(distance) + " in front of face " +
+               std::to_string(f);
+      }
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -505,8 +607,12 @@ Result<Hull> BuildHull(std::span<const Vec3> points, const HullBuildSettings& se
   if (points.size() > static_cast<std::size_t>(std::numeric_limits<int>::max() / 8)) {
     return Error{"too many points for a hull: " + std::to_string(points.size())};
   }
-  if (auto error = CheckFinite(points)) return *error;
-  double tolerance = settings.tolerance > 0.0 ? settings.tolerance : Hull::DefaultTolerance(points);
+  if (auto error = CheckCoordinates(points)) return *error;
+  // A requested tolerance below the derived one is below the rounding of a
+  // plane distance at these coordinates: no build can honour it (a grid-
+  // snapped sphere asked for 1e-20 m collapsed and was refused as flat at
+  // 0.6 m), so it starts at the derived one.
+  double tolerance = std::max(settings.tolerance, Hull::DefaultTolerance(points));
   // Noisy input (points nearly coplanar at a scale well above the
   // tolerance, or differences of far-from-origin coordinates that carry
   // rounding noise the derived tolerance cannot know about) can leave a
@@ -515,21 +621,53 @@ Result<Hull> BuildHull(std::span<const Vec3> points, const HullBuildSettings& se
   // widened to kWidening x the larger of the tolerance and the measured
   // planarity error, for building and validation alike; the hull's
   // Tolerance() reports the one it was built and validated with.
-  for (int attempt = 0;; ++attempt) {
+  // A mesh that collapsed (a set flat or coincident at this tolerance,
+  // though its first tetrahedron was not) is retried wider as well: either
+  // a wider tolerance merges the set cleanly, or the initial tetrahedron
+  // test refuses it as flat. The loop runs at most kMaxWidenings + 1 builds,
+  // each of which ends (QuickhullMesh::Collapsed, kMaxEyeVisits).
+  const double startTolerance = tolerance;
+  std::string lastProblem;
+  for (int attempt = 0; attempt <= kMaxWidenings; ++attempt) {
     auto simplex = FindInitialSimplex(points, tolerance);
-    if (!simplex) return simplex.GetError();
+    if (!simplex) {
+      if (attempt == 0) return simplex.GetError();
+      return Error{simplex.GetError().message + " (the tolerance was widened from " + Metres(startTolerance) +
+                   " after the build at " + Metres(tolerance / kWidening) + " failed: " + lastProblem + ")"};
+    }
     Builder builder(points, tolerance, settings.maxVertices);
     // A widened retry records afresh: the trace shows the build that counted.
     if (settings.trace != nullptr) settings.trace->steps.clear();
     builder.SetTrace(settings.trace);
-    const bool settled = builder.Run(simplex.Value());
-    const double planarity = builder.PlanarityError();
-    if ((settled && planarity <= tolerance) || attempt == kMaxWidenings) {
-      auto hull = builder.Bake();
-      if (hull || attempt == kMaxWidenings) return hull;
+    const BuildStatus status = builder.Run(simplex.Value());
+    double planarity = 0.0;
+    if (status == BuildStatus::kCollapsed) {
+      lastProblem = "merging coplanar faces collapsed the surface";
+    } else {
+      planarity = builder.PlanarityError();
+      if (status == BuildStatus::kUnsettled) {
+        lastProblem = "points kept reappearing in front of merged faces";
+      } else if (planarity > tolerance) {
+        lastProblem = "a merged face is " + Metres(planarity) + " off its plane";
+      } else {
+        auto hull = builder.Bake();
+        if (hull) {
+          // A vertex cap leaves points outside on purpose.
+          std::optional<std::string> outside;
+          if (settings.maxVertices == 0) outside = FindPointInFront(hull.Value(), points);
+          if (!outside) return hull;
+          lastProblem = *outside;
+        } else {
+          lastProblem = hull.GetError().message;
+        }
+      }
     }
     tolerance = kWidening * std::max(tolerance, planarity);
   }
+  return Error{"no valid hull: the build did not settle with the tolerance widened " +
+               std::to_string(kMaxWidenings) + " times from " + Metres(startTolerance) + " to " +
+               Metres(tolerance / kWidening) + "; last problem: " + lastProblem +
+               " (please keep this point set as a regression case)"};
 }
 
 }  // namespace talus

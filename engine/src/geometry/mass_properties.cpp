@@ -25,7 +25,6 @@
 // and quadratic products are of the hull's size, not of its distance from
 // the origin; a 1 m box centred 1e4 m away then loses no more digits than one
 // at the origin. Only the final centre of mass is shifted back by r.
-#include <cassert>
 #include <cmath>
 #include <string>
 
@@ -85,8 +84,14 @@ Result<MassProperties> ComputeMassProperties(const Hull& hull, double density) {
   const Vec3 reference = VertexAverage(hull);
   const VolumeIntegrals integrals = IntegrateVolume(hull, reference);
   // A validated Hull is a closed convex solid with non-zero face areas, so
-  // its volume is positive; anything else is a broken Hull invariant.
-  assert(integrals.volume > 0.0);
+  // its volume is positive in exact arithmetic; but a volume is a product of
+  // three lengths and the fifth power of a length is in the inertia, which
+  // leave the double range for hulls the builder accepts (up to 1e150 m,
+  // down to 1e-140 m): refused with the figures rather than inf or 0.
+  if (!std::isfinite(integrals.volume) || !(integrals.volume > 0.0)) {
+    return Error{"the hull's volume (" + std::to_string(integrals.volume) +
+                 " m^3) is out of the double range: the hull is too large or too small for mass properties"};
+  }
 
   const Vec3 localCenter = integrals.firstMoment / integrals.volume;
   const Mat3 centralMoment =
@@ -100,6 +105,12 @@ Result<MassProperties> ComputeMassProperties(const Hull& hull, double density) {
       inertia(i, j) = average;
       inertia(j, i) = average;
     }
+  }
+
+  if (!std::isfinite(density * integrals.volume) || !inertia.allFinite() || !localCenter.allFinite()) {
+    return Error{"the mass (" + std::to_string(density * integrals.volume) +
+                 " kg) or inertia of the hull is out of the double range: the hull is too large, or the "
+                 "density too high, for mass properties"};
   }
 
   MassProperties props;

@@ -42,6 +42,16 @@ inline Vec3 AccurateCross(const Vec3& u, const Vec3& v) {
           DifferenceOfProducts(u.x(), v.y(), u.y(), v.x())};
 }
 
+/// The length of `v` without overflow or underflow in the squares: the
+/// components of a cross product of coordinate differences are products of
+/// two lengths, and their squares (four lengths) leave the double range for
+/// lengths beyond about 1e77 m or below 1e-77 m, although the result fits.
+inline double ScaledNorm(const Vec3& v) {
+  const double largest = v.cwiseAbs().maxCoeff();
+  if (!(largest > 0.0) || !std::isfinite(largest)) return largest;
+  return largest * (v / largest).norm();
+}
+
 /// Newell's normal of the closed loop of `count` points `pointAt(0..count-1)`
 /// (counter-clockwise seen from the side it points to), taken about `origin`
 /// (pass the loop's centroid: small differences keep their precision far

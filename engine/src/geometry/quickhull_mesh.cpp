@@ -112,7 +112,7 @@ void QuickhullMesh::UpdatePlane(int f) {
   Vec3 normal = PolygonNormal(
       count, [&](int i) -> const Vec3& { return Point(m_loopScratch[static_cast<std::size_t>(i)]); },
       centroid);
-  const double length = normal.norm();
+  const double length = ScaledNorm(normal);
   // A zero-area sliver keeps a zero normal: every distance to it is then 0,
   // which is "not clearly behind", so the merge pass absorbs it.
   if (length > 0.0) normal /= length;
@@ -180,12 +180,13 @@ bool QuickhullMesh::ShouldMerge(int f, int e) const {
 
 int QuickhullMesh::MergeAcross(int f, int e, std::vector<QhConflict>& orphans) {
   const int g = Edge(Edge(e).twin).face;
-  assert(g != f && Face(g).state == QhFaceState::kAlive);
-  // The shared boundary may be a run of several edges: find its ends.
+  if (g == f || Face(g).state != QhFaceState::kAlive) return MarkCollapsed();
+  // The shared boundary may be a run of several edges: find its ends. When
+  // it is all of f's border, f and g are the whole surface (a flat pillow).
   int start = e;
   while (Edge(Edge(Edge(start).prev).twin).face == g) {
     start = Edge(start).prev;
-    assert(start != e);
+    if (start == e) return MarkCollapsed();
   }
   int end = e;
   while (Edge(Edge(Edge(end).next).twin).face == g) end = Edge(end).next;
@@ -193,7 +194,8 @@ int QuickhullMesh::MergeAcross(int f, int e, std::vector<QhConflict>& orphans) {
   const int fAfter = Edge(end).next;
   const int gAfter = Edge(Edge(start).twin).next;
   const int gBefore = Edge(Edge(end).twin).prev;
-  assert(Edge(gAfter).face == g && gAfter != Edge(end).twin);
+  // g lying wholly inside f's border would leave nothing of g to join.
+  if (gAfter == Edge(end).twin || Edge(gAfter).face != g) return MarkCollapsed();
 
   // g's remaining border joins f's.
   for (int h = gAfter;; h = Edge(h).next) {
@@ -220,13 +222,17 @@ int QuickhullMesh::MergeAcross(int f, int e, std::vector<QhConflict>& orphans) {
   FreeFace(g, orphans);
 
   // A junction vertex left with the same neighbour on both sides has only
-  // two faces around it: remove it (repeat until none is left).
+  // two faces around it: remove it (repeat until none is left). Each repair
+  // removes a vertex of f, so this ends; a face left with fewer than three
+  // vertices means the surface collapsed.
   bool repaired = true;
-  while (repaired) {
+  while (repaired && !m_collapsed) {
     repaired = false;
     int h = Face(f).edge;
+    int count = 0;
     do {
       const int n = Edge(h).next;
+      if (++count > kMaxLoopLength || Edge(n).next == h) return MarkCollapsed();
       if (Edge(Edge(h).twin).face == Edge(Edge(n).twin).face) {
         removed += RepairJunction(f, h, orphans);
         repaired = true;
@@ -235,8 +241,14 @@ int QuickhullMesh::MergeAcross(int f, int e, std::vector<QhConflict>& orphans) {
       h = n;
     } while (h != Face(f).edge);
   }
+  if (m_collapsed) return removed;
   UpdatePlane(f);
   return removed;
+}
+
+int QuickhullMesh::MarkCollapsed() {
+  m_collapsed = true;
+  return 0;
 }
 
 int QuickhullMesh::RepairJunction(int f, int in, std::vector<QhConflict>& orphans) {
@@ -245,14 +257,16 @@ int QuickhullMesh::RepairJunction(int f, int in, std::vector<QhConflict>& orphan
   const int tin = Edge(in).twin;
   const int tout = Edge(out).twin;
   const int h = Edge(tin).face;
-  assert(Edge(tout).next == tin);
+  // On a 2-manifold h runs w -> v -> u; anything else is a collapse.
+  if (Edge(tout).next != tin) return MarkCollapsed();
   const int v = Edge(out).origin;
   AddNear(f, {Point(v), v});  // v leaves the hull: recheck it later
   if (Face(h).vertexCount == 3) {
     // h would shrink to two edges: absorb it. Its third edge x (u -> w)
     // hands its twin to f's shortened edge.
+    // When x's twin is on f too, f and h are the whole surface.
     const int x = Edge(tin).next;
-    assert(Edge(x).next == tout && Edge(Edge(x).twin).face != f);
+    if (Edge(x).next != tout || Edge(Edge(x).twin).face == f) return MarkCollapsed();
     const int after = Edge(out).next;
     Edge(in).next = after;
     Edge(after).prev = in;

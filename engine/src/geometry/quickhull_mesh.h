@@ -139,8 +139,18 @@ class QuickhullMesh {
   /// Absorbs the face across half-edge `e` (which lies on live face `f`)
   /// into `f`, repairs the junction vertices, and recomputes the planes of
   /// every face it changed. Conflict points of deleted faces are appended
-  /// to `orphans`. Returns the number of hull vertices removed.
+  /// to `orphans`. Returns the number of hull vertices removed. When the
+  /// merge would collapse the surface (see Collapsed) it stops there and
+  /// the mesh must be abandoned.
   int MergeAcross(int f, int e, std::vector<QhConflict>& orphans);
+
+  /// True once a merge found that it would leave no closed 2-manifold: the
+  /// faces of a nearly flat or nearly coincident point set (flat at the
+  /// build tolerance although the initial tetrahedron was not) merged until
+  /// two faces share every edge, a face has fewer than three vertices, or a
+  /// vertex's faces no longer form one fan. The mesh is then inconsistent
+  /// and only good for being thrown away; the builder refuses or retries.
+  [[nodiscard]] bool Collapsed() const { return m_collapsed; }
 
   /// The border of face `f` as input point indices, counter-clockwise.
   void FaceLoop(int f, std::vector<int>& loop) const;
@@ -153,9 +163,16 @@ class QuickhullMesh {
   // Repairs the vertex where half-edge `in` (ending there) meets `out`
   // (leaving it), both on face `f`. Returns the number of vertices removed.
   int RepairJunction(int f, int in, std::vector<QhConflict>& orphans);
+  // Records a collapse (see Collapsed) and returns 0 vertices removed.
+  int MarkCollapsed();
+
+  // No face of a build over at most INT_MAX / 8 points has more border
+  // edges than this; a longer walk means a broken loop.
+  static constexpr int kMaxLoopLength = 1 << 28;
 
   std::span<const Vec3> m_points;
   double m_tolerance;
+  bool m_collapsed = false;
   std::vector<QhHalfEdge> m_edges;
   std::vector<QhFace> m_faces;
   std::vector<int> m_freeEdges;
