@@ -32,9 +32,9 @@ using harness::BodySpec;
 using harness::Run;
 using harness::Setting;
 
-std::string Format(double value) {
+std::string Format(double value, int digits = 17) {
   std::ostringstream out;
-  out.precision(17);
+  out.precision(digits);
   out << value;
   return out.str();
 }
@@ -370,7 +370,7 @@ void OdeBackend::AddSettings(const Run& run) {
       tuned ? Setting{"friction directions",
                       "dContactFDir1 along the slip (tangential relative velocity at the contact) when it "
                       "exceeds " +
-                          Format(kOdeSlipSpeedFloor) + " m/s",
+                          Format(kOdeSlipSpeedFloor, 3) + " m/s",
                       "ODE's own tangent axes (dPlaneSpace of the normal: world x and z on a floor)",
                       kOdeFdir1Effect}
             : Setting{"friction directions", "ODE's own tangent axes (dPlaneSpace of the normal)"},
