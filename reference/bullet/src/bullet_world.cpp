@@ -208,7 +208,7 @@ void BulletBackend::AddSettings(const Run& run) {
   const bool tuned = m_tuning == BulletTuning::Tuned;
   const std::string version = "Bullet " + std::to_string(btGetVersion());
   m_settings = {
-      {"configuration", tuned ? "tuned (Bullet's advice for small objects: a collision margin to scale)"
+      {"configuration", tuned ? "tuned (collision margin scaled to the scene's bodies)"
                               : "defaults (what a new Bullet user gets)"},
       kSinglePrecision
           ? Setting{"engine", version + " (single precision: the default build, pkg-config bullet)"}

@@ -11,8 +11,9 @@
 //     sanitizer builds; BulletSinglePrecisionAvailable says).
 //   - `defaults`: Bullet as a new user gets it, plus only what the scenario
 //     needs to be posed (combine rules, one step of h per Step, no sleeping);
-//   - `tuned`: the collision margin scaled to the objects (1 mm instead of
-//     4 cm), as Bullet's manual advises for small objects.
+//   - `tuned`: the collision margin scaled to the scenes' bodies (1 mm
+//     instead of 4 cm): Bullet's manual warns that a hull grows by its
+//     margin and that this is to be compensated.
 // Settings() lists every value with the Bullet default it replaces and its
 // measured effect; docs/testbed-backends.md has the table.
 #pragma once
