@@ -31,8 +31,11 @@ SAT_PAIRS ?= 1000
 FULL_DIR ?= reports/full
 SCENES = $(BUILD_DIR)/apps/scenes/talus-scenes
 # The scaling series runs the engines compared by the speed goal (Talus
-# variants are compared on the small scenarios); about 45 minutes.
-SCENES_ENGINES ?= talus,bullet,ode-quickstep,ode-step
+# variants are compared on the small scenarios), each peer in its fastest
+# configuration (docs/bench-scenes.md: Bullet's single-precision build, both
+# margins, the faster of which each ratio divides by; ODE's hash space);
+# about an hour.
+SCENES_ENGINES ?= talus,bullet-f32,bullet-f32-tuned,ode-quickstep-tuned,ode-step-tuned
 
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 600
@@ -63,8 +66,9 @@ test-asan: deps
 
 test: format-check test-release test-asan
 
-# Every engine (talus and its variants, bullet, ode-step, ode-quickstep) on
-# the default suite; the report is written even when a run failed, and the
+# Every engine (talus and its variants; bullet, bullet-f32, ode-step,
+# ode-quickstep, each in its defaults and -tuned configuration) on the
+# default suite; the report is written even when a run failed, and the
 # target then fails. REPLAY names the runs the page can replay in 3D (the
 # write-up's figures 2-4: free fall of 15 bodies, a small pyramid, a hull
 # coming to rest, a tossed box). The SAT validation (talus-sat-check,

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "report_peers.h"
 #include "talus/harness/bench_summary.h"
 #include "talus/harness/report.h"
 #include "talus/harness/sweep.h"
@@ -232,9 +233,14 @@ std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras)
             << "\n";
       }
     }
+    const std::string tuned = TunedVerdictLines(file.backends, group.byBackend);
+    if (!tuned.empty()) out << "\nPeer FAILs and their tuned configuration:\n\n" << tuned;
     out << "\n";
   }
-  out << "## Engine settings\n\nAs recorded by each backend for the first run it built.\n\n";
+  out << "## Engine settings\n\nAs recorded by each backend for the first run it built. For a peer, the "
+         "settings that depart from what the engine gives a new user come first, each with why and its "
+         "measured effect (`defaults` configurations change only what the scenario needs to be posed; "
+         "`-tuned` ones follow the engine's documented practice).\n\n";
   for (const std::string& b : file.backends) {
     const auto it = std::find_if(file.results.begin(), file.results.end(),
                                  [&](const RunResult& r) { return r.backend == b && r.error.empty(); });
@@ -243,6 +249,9 @@ std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras)
       out << "No run was built.\n\n";
       continue;
     }
+    const std::string departures = DeparturesTable(it->settings);
+    if (!departures.empty())
+      out << "Departures from the engine's defaults:\n\n" << departures << "\nAll settings:\n\n";
     Header(out, {"setting", "value"});
     for (const Setting& s : it->settings) Row(out, {s.key, s.value});
     out << "\n";

@@ -49,7 +49,13 @@ Json ResultToJson(const RunResult& r) {
   j["steps"] = r.steps;
   j["bodies"] = r.bodyNames;
   j["settings"] = Json::array();
-  for (const Setting& s : r.settings) j["settings"].push_back({{"key", s.key}, {"value", s.value}});
+  for (const Setting& s : r.settings) {
+    Json setting = {{"key", s.key}, {"value", s.value}};
+    // Only departures from the engine's defaults carry these two.
+    if (!s.engineDefault.empty()) setting["engineDefault"] = s.engineDefault;
+    if (!s.effect.empty()) setting["effect"] = s.effect;
+    j["settings"].push_back(std::move(setting));
+  }
   j["error"] = r.error;
   j["metrics"] = Json::array();
   for (const MetricResult& m : r.metrics) j["metrics"].push_back(MetricToJson(m));
@@ -164,7 +170,11 @@ RunResult ResultFromJson(const Json& j, const std::string& where) {
   const Json& settings = GetArray(j, "settings", where);
   for (std::size_t i = 0; i < settings.size(); ++i) {
     const std::string at = Concat({where, "/settings/", std::to_string(i)});
-    r.settings.push_back({GetString(settings[i], "key", at), GetString(settings[i], "value", at)});
+    Setting setting{GetString(settings[i], "key", at), GetString(settings[i], "value", at)};
+    if (settings[i].contains("engineDefault"))
+      setting.engineDefault = GetString(settings[i], "engineDefault", at);
+    if (settings[i].contains("effect")) setting.effect = GetString(settings[i], "effect", at);
+    r.settings.push_back(std::move(setting));
   }
   r.error = GetString(j, "error", where);
   const Json& metrics = GetArray(j, "metrics", where);

@@ -97,12 +97,30 @@ TEST(BenchSection, RatiosDivideByBulletOfTheSameSceneAndParameter) {
       Pyramid("bullet", 10, 8.0, 0.01)};
   const std::string md = BenchMarkdown(reports);
   // Rows by parameter, then engine in first-seen order.
-  const std::size_t h10 = md.find("| 10 | 385 | talus | 4 | 4.4 | 0.5 |");
-  const std::size_t h15 = md.find("| 15 | 1240 | talus | 30 | 33 | 1.5 |");
+  const std::size_t h10 = md.find("| 10 | 385 | talus | 4 | 4.4 | 0.5 (bullet) |");
+  const std::size_t h15 = md.find("| 15 | 1240 | talus | 30 | 33 | 1.5 (bullet) |");
   ASSERT_NE(h10, std::string::npos) << md;
   ASSERT_NE(h15, std::string::npos) << md;
   EXPECT_LT(h10, h15);
-  EXPECT_NE(md.find("| 15 | 1240 | bullet | 20 | 22 | 1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 15 | 1240 | bullet | 20 | 22 | 1 (bullet) |"), std::string::npos) << md;
+}
+
+TEST(BenchSection, RatiosDivideByTheFastestBulletConfiguration) {
+  // Four Bullet configurations ran; the single-precision tuned one is the
+  // fastest at H = 15 and the double defaults at H = 10, and each row says
+  // which it divided by. Another engine family ("ode-...") is never the peer.
+  const std::vector<BenchReport> reports = {Pyramid("talus", 15, 30.0, 0.001),
+                                            Pyramid("bullet", 15, 20.0, 0.07),
+                                            Pyramid("bullet-f32-tuned", 15, 12.0, 0.07),
+                                            Pyramid("bullet-tuned", 15, 19.0, 0.07),
+                                            Pyramid("ode-quickstep", 15, 1.0, 0.07),
+                                            Pyramid("talus", 10, 4.0, 0.001),
+                                            Pyramid("bullet", 10, 8.0, 0.01),
+                                            Pyramid("bullet-f32", 10, 9.0, 0.01)};
+  const std::string md = BenchMarkdown(reports);
+  EXPECT_NE(md.find("| 15 | 1240 | talus | 30 | 33 | 2.5 (bullet-f32-tuned) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 10 | 385 | talus | 4 | 4.4 | 0.5 (bullet) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("talus / bullet-f32-tuned (the fastest bullet) = 2.5"), std::string::npos) << md;
 }
 
 TEST(BenchSection, GoalsSayMetMissedAndWhetherStabilityIsWorse) {
@@ -110,11 +128,13 @@ TEST(BenchSection, GoalsSayMetMissedAndWhetherStabilityIsWorse) {
       Pyramid("talus", 15, 9.0, 0.001), Pyramid("bullet", 15, 20.0, 0.07), Pile("talus", 10, 30.0, 0.04, 0),
       Pile("bullet", 10, 40.0, 0.005, 0)};
   const std::string md = BenchMarkdown(reports);
-  EXPECT_NE(md.find("- pyramid H = 15: talus / bullet = 0.45 (goal <= 0.5: met); drift 0.001 m vs 0.07 m "
+  EXPECT_NE(md.find("- pyramid H = 15: talus / bullet (the fastest bullet) = 0.45 (goal <= 0.5: met); drift "
+                    "0.001 m vs 0.07 m "
                     "(no worse)"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("- hull_pile L = 10: talus / bullet = 0.75 (goal <= 0.5: missed); max penetration "
+  EXPECT_NE(md.find("- hull_pile L = 10: talus / bullet (the fastest bullet) = 0.75 (goal <= 0.5: missed); "
+                    "max penetration "
                     "0.04 m vs 0.005 m (worse)"),
             std::string::npos)
       << md;

@@ -29,9 +29,10 @@ class SmallPyramid : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(SmallPyramid, StandsForSixHundredSteps) {
   // H = 4 (30 cubes); ODE's dWorldStep takes 0.74 s per step there, so it
-  // gets H = 2 (5 cubes), the same layering in small.
+  // gets H = 2 (5 cubes), the same layering in small. The tuned peers run
+  // too: the hash space and the slip-aligned friction are their own paths.
   const std::string engine = GetParam();
-  const int height = engine == "ode-step" ? 2 : 4;
+  const int height = engine.starts_with("ode-step") ? 2 : 4;
   const BenchReport report = RunScene(engine, "pyramid", height, 600);
   EXPECT_TRUE(report.skipped.empty()) << report.skipped;
   EXPECT_EQ(report.bodies, PyramidCubeCount(height));
@@ -44,7 +45,8 @@ TEST_P(SmallPyramid, StandsForSixHundredSteps) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Engines, SmallPyramid,
-                         ::testing::Values("talus", "bullet", "ode-quickstep", "ode-step"));
+                         ::testing::Values("talus", "bullet", "bullet-tuned", "ode-quickstep",
+                                           "ode-quickstep-tuned", "ode-step", "ode-step-tuned"));
 
 class SmallHullPile : public ::testing::TestWithParam<const char*> {};
 
@@ -64,7 +66,8 @@ TEST_P(SmallHullPile, KeepsEveryBodyInsideTheWalls) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Engines, SmallHullPile,
-                         ::testing::Values("talus", "bullet", "ode-quickstep", "ode-step", "mujoco",
+                         ::testing::Values("talus", "bullet", "bullet-tuned", "ode-quickstep",
+                                           "ode-quickstep-tuned", "ode-step", "ode-step-tuned", "mujoco",
                                            "mujoco-tuned"));
 
 TEST(BenchRun, OdeStepOnTheFullPyramidIsSkippedWithAReason) {
@@ -73,6 +76,10 @@ TEST(BenchRun, OdeStepOnTheFullPyramidIsSkippedWithAReason) {
   EXPECT_NE(report.skipped.find("dense LCP"), std::string::npos) << report.skipped;
   EXPECT_FALSE(BenchSkipReason("ode-step", kOdeStepMaxBodies).has_value());
   EXPECT_TRUE(BenchSkipReason("ode-quickstep", kOdeMaxBodies + 1).has_value());
+  // The tuned ODE collides in a hash space: no all-pairs cap; its dWorldStep
+  // still solves a dense LCP.
+  EXPECT_FALSE(BenchSkipReason("ode-quickstep-tuned", kOdeMaxBodies + 1).has_value());
+  EXPECT_TRUE(BenchSkipReason("ode-step-tuned", kOdeStepMaxBodies + 1).has_value());
   EXPECT_FALSE(BenchSkipReason("talus", 100000).has_value());
   EXPECT_FALSE(BenchSkipReason("bullet", 100000).has_value());
   EXPECT_FALSE(BenchSkipReason("mujoco", kMujocoMaxBodies).has_value());

@@ -75,7 +75,10 @@ TEST_P(EveryBackend, BoxRestsAtItsHalfHeight) {
     ASSERT_NE(height, nullptr);
     ASSERT_NE(jitter, nullptr);
     EXPECT_TRUE(height->pass) << GetParam() << " error " << height->error;
-    EXPECT_TRUE(jitter->pass) << GetParam() << " jitter " << jitter->measured;
+    // ODE quickstep at ODE's default surface layer 0 makes and breaks the
+    // contacts each step: 1.18 mm peak to peak, over the 1 mm tolerance; its
+    // tuned 1 mm layer removes it (docs/testbed-backends.md).
+    EXPECT_EQ(jitter->pass, GetParam() != "ode-quickstep") << GetParam() << " jitter " << jitter->measured;
     // The file measures contacts and penetration: a resting box touches.
     const MetricResult* contacts = Find(result, "contacts.final");
     ASSERT_NE(contacts, nullptr);
@@ -88,8 +91,9 @@ TEST_P(EveryBackend, BoxRestsAtItsHalfHeight) {
 // exact parabola, which FreeFallMatchesTheIntegratorToRoundOff rejects by
 // design (tests/reference/mujoco_backend_test.cpp checks it instead).
 INSTANTIATE_TEST_SUITE_P(Backends, EveryBackend,
-                         ::testing::Values("talus", "talus-writeup", "talus-split", "bullet", "ode-step",
-                                           "ode-quickstep", "mujoco"),
+                         ::testing::Values("talus", "talus-writeup", "talus-split", "bullet", "bullet-tuned",
+                                           "ode-step", "ode-step-tuned", "ode-quickstep",
+                                           "ode-quickstep-tuned", "mujoco"),
                          [](const auto& info) {
                            std::string name = info.param;
                            std::replace(name.begin(), name.end(), '-', '_');

@@ -6,20 +6,26 @@
 // stored as P^T (x - c), and the scenario frame is recovered on read-back.
 // Static bodies are geoms without a body, placed the same way.
 //
-// One step: collide every pair in a simple space (fixed geom order, so
-// contacts come out in the same order every run), turn each contact into a
-// dContact joint with the scenario's combined friction and restitution,
-// step, and empty the contact group.
+// One step: the space (dSimpleSpace in `defaults`, dHashSpace in `tuned`)
+// reports the pairs whose boxes overlap; they are sorted by scenario body
+// index and each is collided with the lower index as geom 1, so contacts come
+// out in the same order, with the same sign, whatever order the space found
+// them in (a hash space's order follows its cells, not the scenario). Each
+// contact becomes a dContact joint with the scenario's combined friction and
+// restitution (in `tuned`, the first friction direction along the slip),
+// then the world steps and the contact group is emptied.
 #include "talus/reference/ode_backend.h"
 
 #include <ode/ode.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
+#include <utility>
 
 #include "talus/harness/scenario_limits.h"
 #include "talus/reference/body_mass.h"
@@ -29,10 +35,11 @@ namespace {
 
 using harness::BodySpec;
 using harness::Run;
+using harness::Setting;
 
-std::string Format(double value) {
+std::string Format(double value, int digits = 17) {
   std::ostringstream out;
-  out.precision(17);
+  out.precision(digits);
   out << value;
   return out.str();
 }
@@ -102,14 +109,23 @@ class OdeLibrary {
 
 enum class Stepper { Step, QuickStep };
 
+// What differs between the two configurations (see ode_backend.h).
+struct OdeConfig {
+  Stepper stepper = Stepper::Step;
+  OdeTuning tuning = OdeTuning::Defaults;
+};
+
+std::string BackendName(const OdeConfig& config) {
+  std::string name = config.stepper == Stepper::Step ? "ode-step" : "ode-quickstep";
+  return config.tuning == OdeTuning::Tuned ? name + "-tuned" : name;
+}
+
 class OdeBackend final : public harness::Backend {
  public:
-  static Result<std::unique_ptr<harness::Backend>> Create(const Run& run, Stepper stepper);
+  static Result<std::unique_ptr<harness::Backend>> Create(const Run& run, OdeConfig config);
   ~OdeBackend() override;
 
-  [[nodiscard]] std::string Name() const override {
-    return m_stepper == Stepper::Step ? "ode-step" : "ode-quickstep";
-  }
+  [[nodiscard]] std::string Name() const override { return BackendName(m_config); }
   void Step() override;
   [[nodiscard]] int BodyCount() const override { return static_cast<int>(m_bodies.size()); }
   [[nodiscard]] harness::BodyState GetBodyState(int index) const override;
@@ -134,12 +150,14 @@ class OdeBackend final : public harness::Backend {
 
   OdeBackend() = default;
   static void NearCallback(void* data, dGeomID geom1, dGeomID geom2);
-  void Collide(dGeomID geom1, dGeomID geom2);
+  void Collide(const Body& a, const Body& b);
+  [[nodiscard]] bool SlipDirection(const Body& a, const Body& b, const dContactGeom& contact,
+                                   dVector3 direction) const;
   Result<bool> AddBody(const BodySpec& spec, const BodyMass& mass, int index);
   void AddSettings(const Run& run);
   [[nodiscard]] std::string UnsafeState() const;
 
-  Stepper m_stepper = Stepper::Step;
+  OdeConfig m_config;
   std::string m_runId;    // named by the fatal-error handlers
   std::string m_failure;  // why the last Step failed; empty when it ran
   double m_timeStep = 0.0;
@@ -149,6 +167,8 @@ class OdeBackend final : public harness::Backend {
   dJointGroupID m_contactGroup = nullptr;
   std::vector<std::unique_ptr<Body>> m_bodies;
   std::vector<harness::ContactPoint> m_contacts;
+  // The pairs the space reported this step, as (lower, higher) body index.
+  std::vector<std::pair<int, int>> m_pairs;
   // This world's stream of ODE's library-wide random generator (quickstep
   // reorders constraints randomly): swapped in around each step, so a world's
   // results do not depend on what other worlds ran before it in the process.
@@ -222,7 +242,7 @@ Result<bool> OdeBackend::AddBody(const BodySpec& spec, const BodyMass& mass, int
   return true;
 }
 
-Result<std::unique_ptr<harness::Backend>> OdeBackend::Create(const Run& run, Stepper stepper) {
+Result<std::unique_ptr<harness::Backend>> OdeBackend::Create(const Run& run, OdeConfig config) {
   const OdeLibrary& library = OdeLibrary::Get();
   if (!library.DoublePrecision()) {
     return Error{"ode: the installed ODE is not the double-precision build (" + library.Configuration() +
@@ -235,18 +255,29 @@ Result<std::unique_ptr<harness::Backend>> OdeBackend::Create(const Run& run, Ste
     masses.push_back(mass.Value());
   }
   std::unique_ptr<OdeBackend> backend(new OdeBackend());
-  backend->m_stepper = stepper;
+  backend->m_config = config;
   backend->m_runId = run.id;
   backend->m_timeStep = run.timeStep;
   backend->m_worldSettings = run.scenario.world;
   backend->m_world = dWorldCreate();
-  backend->m_space = dSimpleSpaceCreate(nullptr);
+  // ODE's hash space with its default cell levels (2^-3 to 2^10 m, set
+  // explicitly so the record does not depend on a library default).
+  if (config.tuning == OdeTuning::Tuned) {
+    backend->m_space = dHashSpaceCreate(nullptr);
+    dHashSpaceSetLevels(backend->m_space, kOdeHashMinLevel, kOdeHashMaxLevel);
+  } else {
+    backend->m_space = dSimpleSpaceCreate(nullptr);
+  }
   backend->m_contactGroup = dJointGroupCreate(0);
   const Vec3& g = run.scenario.world.gravity;
   dWorldSetGravity(backend->m_world, g.x(), g.y(), g.z());
   dWorldSetERP(backend->m_world, kOdeErp);
   dWorldSetCFM(backend->m_world, kOdeCfm);
-  dWorldSetContactSurfaceLayer(backend->m_world, kOdeContactSurfaceLayer);
+  // The tuned quickstep keeps contacts alive with ODE's documented anti-jitter
+  // layer; dWorldStep keeps ODE's 0 (kOdeTunedQuickStepSurfaceLayer says why).
+  if (config.tuning == OdeTuning::Tuned && config.stepper == Stepper::QuickStep) {
+    dWorldSetContactSurfaceLayer(backend->m_world, kOdeTunedQuickStepSurfaceLayer);
+  }
   dWorldSetQuickStepNumIterations(backend->m_world,
                                   run.iterations > 0 ? run.iterations : kOdeDefaultQuickStepIterations);
   for (size_t i = 0; i < run.scenario.bodies.size(); ++i) {
@@ -265,33 +296,59 @@ OdeBackend::~OdeBackend() {
 }
 
 void OdeBackend::NearCallback(void* data, dGeomID geom1, dGeomID geom2) {
-  static_cast<OdeBackend*>(data)->Collide(geom1, geom2);
-}
-
-void OdeBackend::Collide(dGeomID geom1, dGeomID geom2) {
   const auto* a = static_cast<const Body*>(dGeomGetData(geom1));
   const auto* b = static_cast<const Body*>(dGeomGetData(geom2));
   if (a->body == nullptr && b->body == nullptr) return;
+  static_cast<OdeBackend*>(data)->m_pairs.emplace_back(std::min(a->index, b->index),
+                                                       std::max(a->index, b->index));
+}
+
+// The tangential part of the velocity of A relative to B at the contact
+// point, normalised; false when it is below kOdeSlipSpeedFloor (no slip
+// direction to align with: ODE's own tangent axes are kept).
+bool OdeBackend::SlipDirection(const Body& a, const Body& b, const dContactGeom& contact,
+                               dVector3 direction) const {
+  dVector3 va = {0, 0, 0, 0};
+  dVector3 vb = {0, 0, 0, 0};
+  if (a.body != nullptr) dBodyGetPointVel(a.body, contact.pos[0], contact.pos[1], contact.pos[2], va);
+  if (b.body != nullptr) dBodyGetPointVel(b.body, contact.pos[0], contact.pos[1], contact.pos[2], vb);
+  const Vec3 normal(contact.normal[0], contact.normal[1], contact.normal[2]);
+  Vec3 slip(va[0] - vb[0], va[1] - vb[1], va[2] - vb[2]);
+  slip -= slip.dot(normal) * normal;
+  const double speed = slip.norm();
+  if (speed <= kOdeSlipSpeedFloor) return false;
+  slip /= speed;
+  direction[0] = slip.x();
+  direction[1] = slip.y();
+  direction[2] = slip.z();
+  direction[3] = 0;
+  return true;
+}
+
+void OdeBackend::Collide(const Body& a, const Body& b) {
   dContact contacts[kOdeMaxContactsPerPair];
   std::memset(contacts, 0, sizeof(contacts));
-  const int count = dCollide(geom1, geom2, kOdeMaxContactsPerPair, &contacts[0].geom, sizeof(dContact));
-  const double friction = harness::Combine(m_worldSettings.frictionCombine, a->friction, b->friction);
+  const int count = dCollide(a.geom, b.geom, kOdeMaxContactsPerPair, &contacts[0].geom, sizeof(dContact));
+  const double friction = harness::Combine(m_worldSettings.frictionCombine, a.friction, b.friction);
   const double restitution =
-      harness::Combine(m_worldSettings.restitutionCombine, a->restitution, b->restitution);
+      harness::Combine(m_worldSettings.restitutionCombine, a.restitution, b.restitution);
   for (int i = 0; i < count; ++i) {
     dContact& contact = contacts[i];
     contact.surface.mode = dContactApprox1;
     contact.surface.mu = friction;
+    if (m_config.tuning == OdeTuning::Tuned && SlipDirection(a, b, contact.geom, contact.fdir1)) {
+      contact.surface.mode |= dContactFDir1;
+    }
     if (restitution > 0.0) {
       contact.surface.mode |= dContactBounce;
       contact.surface.bounce = restitution;
       contact.surface.bounce_vel = kOdeBounceVelocity;
     }
     const dJointID joint = dJointCreateContact(m_world, m_contactGroup, &contact);
-    dJointAttach(joint, a->body, b->body);
+    dJointAttach(joint, a.body, b.body);
     // ODE's normal points into geom1, i.e. from B = geom2 towards A = geom1.
     const dContactGeom& g = contact.geom;
-    m_contacts.push_back({a->index, b->index, Vec3(g.pos[0], g.pos[1], g.pos[2]),
+    m_contacts.push_back({a.index, b.index, Vec3(g.pos[0], g.pos[1], g.pos[2]),
                           Vec3(g.normal[0], g.normal[1], g.normal[2]), g.depth});
   }
 }
@@ -322,22 +379,27 @@ std::string OdeBackend::UnsafeState() const {
 
 void OdeBackend::Step() {
   m_contacts.clear();
+  m_pairs.clear();
   m_failure = UnsafeState();
   if (!m_failure.empty()) return;
   tCurrentRun = &m_runId;
   tLastMessage.clear();
   dSpaceCollide(m_space, this, &OdeBackend::NearCallback);
+  std::sort(m_pairs.begin(), m_pairs.end());
+  for (const auto& [lower, higher] : m_pairs) {
+    Collide(*m_bodies[static_cast<size_t>(lower)], *m_bodies[static_cast<size_t>(higher)]);
+  }
   dRandSetSeed(m_randomSeed);
   // 0 when ODE could not take the step (it could not allocate its step
   // memory: a dense contact cluster asks for m^2 LCP entries).
-  const int stepped =
-      m_stepper == Stepper::Step ? dWorldStep(m_world, m_timeStep) : dWorldQuickStep(m_world, m_timeStep);
+  const int stepped = m_config.stepper == Stepper::Step ? dWorldStep(m_world, m_timeStep)
+                                                        : dWorldQuickStep(m_world, m_timeStep);
   m_randomSeed = dRandGetSeed();
   const std::size_t joints = m_contacts.size();
   dJointGroupEmpty(m_contactGroup);
   tCurrentRun = nullptr;
   if (stepped == 0) {
-    m_failure = std::string(m_stepper == Stepper::Step ? "dWorldStep" : "dWorldQuickStep") +
+    m_failure = std::string(m_config.stepper == Stepper::Step ? "dWorldStep" : "dWorldQuickStep") +
                 " failed (ODE could not allocate its step memory; " + std::to_string(m_bodies.size()) +
                 " bodies, " + std::to_string(joints) + " contact joints)" +
                 (tLastMessage.empty() ? "" : "; last " + tLastMessage);
@@ -366,8 +428,11 @@ harness::BodyState OdeBackend::GetBodyState(int index) const {
 }
 
 void OdeBackend::AddSettings(const Run& run) {
-  const bool quick = m_stepper == Stepper::QuickStep;
+  const bool quick = m_config.stepper == Stepper::QuickStep;
+  const bool tuned = m_config.tuning == OdeTuning::Tuned;
   m_settings = {
+      {"configuration", tuned ? "tuned (ODE's documented practice for Coulomb friction and many bodies)"
+                              : "defaults (what a new ODE user gets)"},
       {"engine", "ODE " + std::string(OdeLibrary::Get().Configuration())},
       {"precision", "double (dDOUBLE, checked with dCheckConfiguration)"},
       {"stepper",
@@ -381,17 +446,37 @@ void OdeBackend::AddSettings(const Run& run) {
       {"random seed", "0 per world (quickstep's constraint order; the generator is swapped per world)"},
       {"erp", Format(dWorldGetERP(m_world))},
       {"cfm", Format(dWorldGetCFM(m_world))},
-      {"contact surface layer (m)", Format(dWorldGetContactSurfaceLayer(m_world))},
+      tuned && quick ? Setting{"contact surface layer (m)", Format(dWorldGetContactSurfaceLayer(m_world)),
+                               "0", kOdeSurfaceLayerEffect}
+                     : Setting{"contact surface layer (m)", Format(dWorldGetContactSurfaceLayer(m_world))},
       {"contact max correcting velocity (m/s)", Format(dWorldGetContactMaxCorrectingVel(m_world))},
       {"max contacts per pair", std::to_string(kOdeMaxContactsPerPair)},
-      {"friction model",
-       "dContactApprox1: mu scales the normal force; pyramid cone (two tangent directions)"},
+      {"friction model", "dContactApprox1: mu scales the normal force (a pyramid: two tangent rows)",
+       "dContactApprox0: mu is a force bound in newtons",
+       "needed to pose the scenario's Coulomb coefficient at all: with a bound in newtons the stop "
+       "distance of a sliding box would depend on its mass"},
+      tuned ? Setting{"friction directions",
+                      "dContactFDir1 along the slip (tangential relative velocity at the contact) when it "
+                      "exceeds " +
+                          Format(kOdeSlipSpeedFloor, 3) + " m/s",
+                      "ODE's own tangent axes (dPlaneSpace of the normal: world x and z on a floor)",
+                      kOdeFdir1Effect}
+            : Setting{"friction directions", "ODE's own tangent axes (dPlaneSpace of the normal)"},
       {"friction combine", harness::CombineRuleName(run.scenario.world.frictionCombine)},
       {"restitution combine", harness::CombineRuleName(run.scenario.world.restitutionCombine)},
-      {"bounce velocity threshold (m/s)", Format(kOdeBounceVelocity)},
-      {"space", "dSimpleSpace (fixed pair order)"},
-      {"gyroscopic term", run.scenario.world.gyroscopic ? "on (dBodySetGyroscopicMode 1, implicit)"
-                                                        : "off (dBodySetGyroscopicMode 0)"},
+      {"bounce velocity threshold (m/s)", Format(kOdeBounceVelocity),
+       "no bounce (dContactBounce is per contact and off unless asked)",
+       "poses the scenario's restitution; 0.2 m/s, Bullet's default threshold, keeps resting bodies from "
+       "bouncing on the g h they gain each step"},
+      tuned ? Setting{"space",
+                      "dHashSpace, levels " + std::to_string(kOdeHashMinLevel) + " to " +
+                          std::to_string(kOdeHashMaxLevel) + "; pairs sorted by body index",
+                      "dSimpleSpace (every pair tested)", kOdeHashSpaceEffect}
+            : Setting{"space", "dSimpleSpace (every pair tested); pairs sorted by body index"},
+      run.scenario.world.gyroscopic
+          ? Setting{"gyroscopic term", "on (dBodySetGyroscopicMode 1, implicit)"}
+          : Setting{"gyroscopic term", "off (dBodySetGyroscopicMode 0)", "on (implicit)",
+                    "the scenario asks for no gyroscopic term (angular velocity exactly constant)"},
       {"damping", "linear 0, angular 0"},
       {"auto disable", "off"},
       {"hull shapes", "dConvex from the qhull triangulation, centred on the centroid"},
@@ -402,10 +487,21 @@ void OdeBackend::AddSettings(const Run& run) {
 }  // namespace
 
 void RegisterOdeBackends(harness::BackendRegistry& registry) {
-  registry.Register("ode-step", "ODE (double): dWorldStep, global LCP by Dantzig",
-                    [](const Run& run) { return OdeBackend::Create(run, Stepper::Step); });
-  registry.Register("ode-quickstep", "ODE (double): dWorldQuickStep, iterative SOR",
-                    [](const Run& run) { return OdeBackend::Create(run, Stepper::QuickStep); });
+  for (const OdeTuning tuning : {OdeTuning::Defaults, OdeTuning::Tuned}) {
+    const bool tuned = tuning == OdeTuning::Tuned;
+    const std::string configuration =
+        tuned ? " (tuned: friction direction along the slip, dHashSpace)" : " (ODE's defaults)";
+    registry.Register(BackendName({Stepper::Step, tuning}),
+                      "ODE (double): dWorldStep, global LCP by Dantzig" + configuration,
+                      [tuning](const Run& run) {
+                        return OdeBackend::Create(run, {Stepper::Step, tuning});
+                      });
+    registry.Register(BackendName({Stepper::QuickStep, tuning}),
+                      "ODE (double): dWorldQuickStep, iterative SOR" + configuration,
+                      [tuning](const Run& run) {
+                        return OdeBackend::Create(run, {Stepper::QuickStep, tuning});
+                      });
+  }
 }
 
 }  // namespace talus::reference

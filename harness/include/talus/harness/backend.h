@@ -45,9 +45,17 @@ struct ContactPoint {
 };
 
 /// One engine setting a run used, for the record ("solver", "sequential impulse").
+/// A value that differs from what the engine gives a new user names that
+/// default and why it was changed, with its measured effect, so the report
+/// can list every departure from the engine's defaults.
 struct Setting {
   std::string key;
   std::string value;
+  /// The engine's own default when `value` differs from it; "" when `value`
+  /// is the engine's default or the setting is not an engine choice.
+  std::string engineDefault{};
+  /// Why it differs and what it measurably changes ("" when it does not differ).
+  std::string effect{};
 };
 
 /// One per-step count an engine reports about its own work ("sphere pairs", 12).

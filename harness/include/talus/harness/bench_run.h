@@ -29,13 +29,13 @@ inline constexpr int kPyramidDriftStartStep = 120;
 /// grows with the square and time with up to the cube of its constraint
 /// rows, and a pyramid or a settled pile is one island. Measured: the 30
 /// cubes of pyramid H = 4 (about 360 contact points) already take 0.74 s
-/// per step, so above this many dynamic bodies a run of "ode-step" is
-/// skipped with that reason printed (docs/bench-scenes.md).
+/// per step, so above this many dynamic bodies a run of "ode-step" or
+/// "ode-step-tuned" is skipped with that reason printed (docs/bench-scenes.md).
 inline constexpr int kOdeStepMaxBodies = 40;
 
-/// ODE's backend collides in a dSimpleSpace, which tests all n (n - 1) / 2
-/// pairs every step. Above this many bodies ODE runs are skipped with that
-/// reason printed.
+/// ODE's defaults collide in a dSimpleSpace, which tests all n (n - 1) / 2
+/// pairs every step. Above this many bodies runs of the ODE defaults are
+/// skipped with that reason printed; the tuned ODE (dHashSpace) is not capped.
 inline constexpr int kOdeMaxBodies = 5000;
 
 /// MuJoCo 2.2.2 sizes its constraint arrays for the worst case at

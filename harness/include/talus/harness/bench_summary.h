@@ -1,7 +1,8 @@
 // The large-scene section of the comparison report: what `talus-scenes`
 // measured (talus/harness/bench_run.h, read back by bench_report_json.h),
-// as tables per scene with each engine's time per step against Bullet's
-// from the same invocation, the scaling series as log-log charts of time
+// as tables per scene with each engine's time per step against that of
+// Bullet's fastest configuration (double or single precision, defaults or
+// tuned) from the same invocation, the scaling series as log-log charts of time
 // per step against bodies, and the verdict on issue 7's speed goal (Talus
 // at most half of Bullet's ms/step on pyramid 15 and hull_pile 10, with
 // stability figures no worse).
@@ -14,7 +15,8 @@
 
 namespace talus::harness {
 
-/// Bullet's backend name, the peer every ratio of the section divides by.
+/// Bullet's backend name: every ratio of the section divides by the fastest
+/// of this backend and its configurations ("bullet-tuned", "bullet-f32"...).
 inline constexpr const char* kBenchRatioPeer = "bullet";
 /// The engine whose goal the section judges.
 inline constexpr const char* kBenchGoalEngine = "talus";

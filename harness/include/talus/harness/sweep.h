@@ -89,7 +89,7 @@ struct SweepGroup {
 
 /// The backends a sweep analysis treats as having no iteration setting:
 /// ODE's dWorldStep solves its LCP directly, so iterations do not apply.
-inline const std::vector<std::string> kSweepSingleSetting{"ode-step"};
+inline const std::vector<std::string> kSweepSingleSetting{"ode-step", "ode-step-tuned"};
 
 /// Groups the results with a truth into curves; backends in
 /// `singleSetting` ignore iterations (e.g. "ode-step"): only their first

@@ -1,18 +1,29 @@
 // The Bullet peer behind the harness's Backend interface.
 //
-// Bullet 3.24 in double precision (BT_USE_DOUBLE_PRECISION, the
-// *-float64 libraries): btDiscreteDynamicsWorld, btSequentialImpulse-
-// ConstraintSolver, btDbvtBroadphase. Boxes are btBoxShape, spheres
-// btSphereShape, hulls btConvexHullShape with polyhedral features. Every
-// place where Bullet's defaults differ from the scenario's meaning is pinned
-// and listed by Settings(); docs/testbed-backends.md has the table.
+// Bullet 3.24: btDiscreteDynamicsWorld, btSequentialImpulseConstraintSolver,
+// btDbvtBroadphase. Boxes are btBoxShape, spheres btSphereShape, hulls
+// btConvexHullShape with polyhedral features. Four backends: two builds
+// times two configurations.
+//   - "bullet", "bullet-tuned": double precision (BT_USE_DOUBLE_PRECISION,
+//     Debian's *-float64 libraries), linked in;
+//   - "bullet-f32", "bullet-f32-tuned": the single-precision default build
+//     most users link, from a module loaded at run time (absent from
+//     sanitizer builds; BulletSinglePrecisionAvailable says).
+//   - `defaults`: Bullet as a new user gets it, plus only what the scenario
+//     needs to be posed (combine rules, one step of h per Step, no sleeping);
+//   - `tuned`: the collision margin scaled to the scenes' bodies (1 mm
+//     instead of 4 cm): Bullet's manual warns that a hull grows by its
+//     margin and that this is to be compensated.
+// Settings() lists every value with the Bullet default it replaces and its
+// measured effect; docs/testbed-backends.md has the table.
 #pragma once
 
 #include "talus/harness/backend.h"
 
 namespace talus::reference {
 
-/// Collision margin of every Bullet shape, metres. Boxes keep their exact
+/// Collision margin of every Bullet shape in the tuned configuration, metres
+/// (the defaults keep Bullet's 0.04 m). Boxes keep their exact
 /// size (btBoxShape subtracts the margin inside and adds it back, rounding
 /// the corners by this radius); hulls are inflated by it. 1 mm: small
 /// against the scenario sizes (>= 5 cm) yet well above round-off, which is
@@ -28,7 +39,26 @@ inline constexpr double kRestitutionVelocityThreshold = 0.2;
 /// Solver iterations when the run says "engine default" (Bullet's default).
 inline constexpr int kBulletDefaultIterations = 10;
 
-/// Registers "bullet".
+/// Which configuration a Bullet world is built in (see the file comment).
+enum class BulletTuning { Defaults, Tuned };
+
+/// Measured effect of the tuned margin, for Settings() and the report.
+inline constexpr const char* kBulletMarginEffect =
+    "hulls are inflated by the margin, so the 4 cm default holds hull_rest 0.040 m high (FAIL); 1 mm "
+    "holds it 0.001 m high (1 FAIL removed). Boxes keep their size either way (the margin is subtracted "
+    "inside) and spheres use their radius: no other verdict changes";
+
+/// Measured effect of the double-precision build, as above.
+inline constexpr const char* kBulletDoubleEffect =
+    "round-off only: free fall stays on the integrator-exact sequence to 4e-15 m (single: 1.6e-6 m, "
+    "3 FAILs of the 1e-9 m free-fall truths) and the e = 0.9 first apex is 0.042 m low instead of "
+    "0.043 m (1 FAIL); every other verdict is the same in both builds";
+
+/// Whether this build has the single-precision module ("bullet-f32...").
+bool BulletSinglePrecisionAvailable();
+
+/// Registers "bullet", "bullet-tuned" and, where available, "bullet-f32" and
+/// "bullet-f32-tuned".
 void RegisterBulletBackends(harness::BackendRegistry& registry);
 
 }  // namespace talus::reference

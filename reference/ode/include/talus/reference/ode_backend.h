@@ -1,8 +1,19 @@
-// The ODE peer behind the harness's Backend interface, in two flavours:
+// The ODE peer behind the harness's Backend interface: two steppers,
 // "ode-step" (dWorldStep: the global LCP solved by Dantzig's method, the kind
 // of solver the original write-up contrasts with iterative ones) and
 // "ode-quickstep" (dWorldQuickStep: projected Gauss-Seidel / SOR, iterative
-// like Talus and Bullet).
+// like Talus and Bullet), each in two configurations:
+//   - `defaults` ("ode-step", "ode-quickstep"): what a new ODE user gets, plus
+//     only what the scenario needs to be posed (mu as a coefficient, the
+//     combine rules, restitution, no auto-disable): dSimpleSpace, ODE's
+//     friction pyramid on its own tangent axes, every world parameter at
+//     ODE's default;
+//   - `tuned` ("ode-step-tuned", "ode-quickstep-tuned"): ODE's documented
+//     practice for Coulomb friction and many bodies: the first friction
+//     direction along the slip velocity (dContactFDir1), so the pyramid's
+//     edge is the sliding direction, and dHashSpace.
+// Settings() lists every value with the engine default it replaces and the
+// measured effect (docs/testbed-backends.md has the table).
 //
 // Shapes: dBox, dSphere and dConvex (planes, points and triangles of the
 // qhull hull, in the centre-of-mass frame). Contacts are dContact joints
@@ -26,11 +37,48 @@ inline constexpr double kOdeErp = 0.2;
 /// unit). 1e-10 is ODE's double-precision default: effectively hard contacts.
 inline constexpr double kOdeCfm = 1e-10;
 
-/// Depth (m) to which ODE lets contacts sink before correcting them; a
-/// small layer keeps resting contacts alive from step to step instead of
-/// flickering (ODE's default 0 makes quickstep jitter by ~2 mm). 1 mm:
-/// below the 1 cm rest-height tolerance, like Bullet's 1 mm margin.
-inline constexpr double kOdeContactSurfaceLayer = 0.001;
+/// Depth (m) to which the tuned quickstep lets contacts sink before
+/// correcting them. ODE's manual advises a small layer (its example: 0.001)
+/// against jitter from contacts made and broken every step; quickstep at
+/// ODE's default 0 jitters by more than 1 mm on a resting box. dWorldStep
+/// keeps 0 in both configurations: with 1 mm its Dantzig solver reports
+/// "LCP internal error" and the 5-box column falls (measured, see
+/// docs/testbed-backends.md).
+inline constexpr double kOdeTunedQuickStepSurfaceLayer = 0.001;
+
+/// Slip speed (m/s) below which a tuned contact keeps ODE's own tangent
+/// axes: a slower relative tangential velocity has no meaningful direction
+/// (1e-9 m/s is ~1e-7 of g h at 1 kHz, far below any sliding speed the
+/// scenarios ask about and far above round-off on velocities of ~1 m/s).
+inline constexpr double kOdeSlipSpeedFloor = 1e-9;
+
+/// dHashSpace cell levels of the tuned configuration: cells from 2^-3 m to
+/// 2^10 m, ODE's own defaults, set explicitly so the record is exact.
+inline constexpr int kOdeHashMinLevel = -3;
+inline constexpr int kOdeHashMaxLevel = 10;
+
+/// Measured effect of the tuned friction direction, for Settings() and the
+/// report (docs/testbed-backends.md "Measured effects" has the commands).
+inline constexpr const char* kOdeFdir1Effect =
+    "the friction pyramid's edge follows the slide, so friction is mu N against the slip in every "
+    "direction: on the 8 diagonal box_slide_directions runs the stop-distance error goes from -0.192 m "
+    "to 3e-11 m (dWorldStep) and 0.004 m (quickstep), the sideways drift from 0.145 m to 1e-15 m and "
+    "0.006 m: 24 FAILs removed per stepper. With quickstep it also slows the 30-degree incline slide "
+    "(-0.253 m against -0.011 m: 1 FAIL added)";
+
+/// Measured effect of the hash space, as above.
+inline constexpr const char* kOdeHashSpaceEffect =
+    "speed only: it tests the pairs whose cells meet instead of all n(n-1)/2; the pairs are sorted by "
+    "body index before dCollide, so the contacts and every result are the same as with dSimpleSpace";
+
+/// Measured effect of the tuned quickstep's surface layer, as above.
+inline constexpr const char* kOdeSurfaceLayerEffect =
+    "ODE's advice against contacts made and broken each step: box_rest's height jitter goes from 1.18 mm "
+    "(FAIL) to 0.003 mm; the 5-box column drifts 12 mm instead of 5.5 mm (1 FAIL added). Not used with "
+    "dWorldStep: there it makes the Dantzig solver report LCP internal errors and the 5-box column fall";
+
+/// Which configuration an ODE world is built in (see the file comment).
+enum class OdeTuning { Defaults, Tuned };
 
 /// Most contact points dCollide may return per pair. Box-box needs up to 8;
 /// more only multiplies rows without adding support.
@@ -44,7 +92,8 @@ inline constexpr int kOdeDefaultQuickStepIterations = 20;
 /// value as Bullet's restitution threshold (kRestitutionVelocityThreshold).
 inline constexpr double kOdeBounceVelocity = 0.2;
 
-/// Registers "ode-step" and "ode-quickstep".
+/// Registers "ode-step", "ode-quickstep" (defaults) and "ode-step-tuned",
+/// "ode-quickstep-tuned".
 void RegisterOdeBackends(harness::BackendRegistry& registry);
 
 }  // namespace talus::reference

@@ -1,0 +1,65 @@
+// The peers' configurations in the report (report_peers.h).
+#include "report_peers.h"
+
+#include <sstream>
+
+#include "text_util.h"
+
+namespace talus::harness {
+namespace {
+
+constexpr std::string_view kTunedSuffix = "-tuned";
+
+// Table cells may not hold a pipe or a line break.
+std::string CellText(const std::string& text) {
+  std::string cell;
+  for (char c : text) cell += c == '|' ? '/' : c == '\n' ? ' ' : c;
+  return cell;
+}
+
+}  // namespace
+
+std::string TunedName(const std::string& backend) {
+  if (backend.ends_with(kTunedSuffix)) return "";
+  return backend + std::string(kTunedSuffix);
+}
+
+std::string TunedVerdictLines(const std::vector<std::string>& backends,
+                              const std::map<std::string, const RunResult*>& byBackend) {
+  std::ostringstream out;
+  for (const std::string& name : backends) {
+    const auto own = byBackend.find(name);
+    const auto tuned = byBackend.find(TunedName(name));
+    if (own == byBackend.end() || tuned == byBackend.end() || !own->second->error.empty()) continue;
+    for (const MetricResult& m : own->second->metrics) {
+      if (!m.checked || m.pass) continue;
+      const MetricResult* other = nullptr;
+      for (const MetricResult& t : tuned->second->metrics) {
+        if (t.name == m.name) other = &t;
+      }
+      out << "- `" << name << "` FAILs " << m.name << " (" << FormatNumber(m.error, 3) << "): ";
+      if (!tuned->second->error.empty() || other == nullptr || !other->checked) {
+        out << "`" << tuned->first << "` did not measure it\n";
+      } else {
+        out << (other->pass ? "removed by `" : "not removed by `") << tuned->first << "` ("
+            << FormatNumber(other->error, 3) << ")\n";
+      }
+    }
+  }
+  return out.str();
+}
+
+std::string DeparturesTable(const std::vector<Setting>& settings) {
+  std::ostringstream out;
+  for (const Setting& s : settings) {
+    if (s.engineDefault.empty()) continue;
+    if (out.tellp() == 0) {
+      out << "| setting | value here | engine default | why, and its measured effect |\n|---|---|---|---|\n";
+    }
+    out << "| " << CellText(s.key) << " | " << CellText(s.value) << " | " << CellText(s.engineDefault)
+        << " | " << CellText(s.effect) << " |\n";
+  }
+  return out.str();
+}
+
+}  // namespace talus::harness

@@ -1,0 +1,309 @@
+// One Bullet world behind the Backend interface (see bullet_world.h): written
+// once against btScalar and compiled twice, in double precision into
+// talus_bullet_backend and in single precision into the talus_bullet_f32
+// module.
+//
+// Frames: a btRigidBody's transform is its centre-of-mass frame on principal
+// axes. A scenario body frame F (origin p, rotation R) maps to it by
+// X_com = p + R c and R_com = R P, with c the centroid and P the principal
+// rotation from ComputeBodyMass; hull points are stored in that frame as
+// P^T (x - c). Reading back inverts it: R = R_com P^T, p = X_com - R c.
+//
+// Material combining: Bullet multiplies friction and restitution. Each body
+// carries CF_CUSTOM_MATERIAL_CALLBACK and a pointer to its Material; the
+// process-wide gContactAddedCallback (installed once per Bullet library,
+// identical for every world) recomputes both with the scenario's rules for
+// every new or refreshed contact point.
+#include "bullet_world.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <mutex>
+#include <sstream>
+
+#include "talus/reference/body_mass.h"
+
+namespace talus::reference {
+namespace {
+
+using harness::BodySpec;
+using harness::Run;
+using harness::Setting;
+
+constexpr bool kSinglePrecision = sizeof(btScalar) == sizeof(float);
+
+btVector3 ToBt(const Vec3& v) { return btVector3(v.x(), v.y(), v.z()); }
+Vec3 FromBt(const btVector3& v) { return Vec3(v.x(), v.y(), v.z()); }
+btQuaternion ToBt(const Quat& q) { return btQuaternion(q.x(), q.y(), q.z(), q.w()); }
+Quat FromBt(const btQuaternion& q) { return Quat(q.w(), q.x(), q.y(), q.z()); }
+
+std::string Format(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+
+// What the contact callback needs to know about a body.
+struct Material {
+  double friction = 0.0;
+  double restitution = 0.0;
+  const harness::WorldSettings* world = nullptr;  // the combine rules
+  const BulletHost* host = nullptr;               // applies them
+};
+
+bool CombineMaterials(btManifoldPoint& point, const btCollisionObjectWrapper* wrap0, int, int,
+                      const btCollisionObjectWrapper* wrap1, int, int) {
+  const auto* a = static_cast<const Material*>(wrap0->getCollisionObject()->getUserPointer());
+  const auto* b = static_cast<const Material*>(wrap1->getCollisionObject()->getUserPointer());
+  if (a == nullptr || b == nullptr) return false;
+  point.m_combinedFriction =
+      static_cast<btScalar>(a->host->combine(a->world->frictionCombine, a->friction, b->friction));
+  point.m_combinedRestitution =
+      static_cast<btScalar>(a->host->combine(a->world->restitutionCombine, a->restitution, b->restitution));
+  return true;
+}
+
+class BulletBackend final : public harness::Backend {
+ public:
+  static Result<std::unique_ptr<harness::Backend>> Create(const Run& run, const std::vector<BodyMass>& masses,
+                                                          BulletTuning tuning, const BulletHost& host);
+  ~BulletBackend() override;
+
+  [[nodiscard]] std::string Name() const override {
+    return std::string(kSinglePrecision ? "bullet-f32" : "bullet") +
+           (m_tuning == BulletTuning::Tuned ? "-tuned" : "");
+  }
+  void Step() override { m_world->stepSimulation(m_timeStep, 0); }
+  [[nodiscard]] int BodyCount() const override { return static_cast<int>(m_bodies.size()); }
+  [[nodiscard]] harness::BodyState GetBodyState(int index) const override;
+  [[nodiscard]] std::vector<harness::ContactPoint> GetContacts() const override;
+  [[nodiscard]] std::vector<harness::Setting> Settings() const override { return m_settings; }
+
+ private:
+  struct Body {
+    std::unique_ptr<btCollisionShape> shape;
+    std::unique_ptr<btDefaultMotionState> motionState;
+    std::unique_ptr<btRigidBody> body;
+    Material material;
+    BodyMass mass;
+  };
+
+  BulletBackend() = default;
+  void AddSettings(const Run& run);
+
+  double m_timeStep = 0.0;
+  BulletTuning m_tuning = BulletTuning::Defaults;
+  BulletHost m_host;
+  harness::WorldSettings m_worldSettings;
+  std::unique_ptr<btDefaultCollisionConfiguration> m_configuration;
+  std::unique_ptr<btCollisionDispatcher> m_dispatcher;
+  std::unique_ptr<btBroadphaseInterface> m_broadphase;
+  std::unique_ptr<btSequentialImpulseConstraintSolver> m_solver;
+  std::unique_ptr<btDiscreteDynamicsWorld> m_world;
+  std::vector<std::unique_ptr<Body>> m_bodies;  // stable addresses: Material is pointed to
+  std::vector<harness::Setting> m_settings;
+};
+
+std::unique_ptr<btCollisionShape> MakeShape(const BodySpec& spec, const BodyMass& mass, BulletTuning tuning) {
+  std::unique_ptr<btCollisionShape> shape;
+  if (const auto* box = std::get_if<harness::BoxShape>(&spec.shape)) {
+    shape = std::make_unique<btBoxShape>(ToBt(box->halfExtents));
+  } else if (const auto* sphere = std::get_if<harness::SphereShape>(&spec.shape)) {
+    // A sphere's margin is its radius; setMargin would change nothing.
+    return std::make_unique<btSphereShape>(sphere->radius);
+  } else {
+    auto hull = std::make_unique<btConvexHullShape>();
+    const Mat3 toPrincipal = mass.principalRotation.toRotationMatrix().transpose();
+    for (const Vec3& point : std::get<harness::HullShape>(spec.shape).points) {
+      hull->addPoint(ToBt(toPrincipal * (point - mass.centroid)), false);
+    }
+    hull->recalcLocalAabb();
+    shape = std::move(hull);
+  }
+  // Defaults keep Bullet's own margin (CONVEX_DISTANCE_MARGIN, 0.04 m).
+  if (tuning == BulletTuning::Tuned) shape->setMargin(kBulletCollisionMargin);
+  if (auto* hull = dynamic_cast<btConvexHullShape*>(shape.get())) hull->initializePolyhedralFeatures();
+  return shape;
+}
+
+Result<std::unique_ptr<harness::Backend>> BulletBackend::Create(const Run& run,
+                                                                const std::vector<BodyMass>& masses,
+                                                                BulletTuning tuning, const BulletHost& host) {
+  if (masses.size() != run.scenario.bodies.size()) {
+    return Error{"bullet: " + std::to_string(masses.size()) + " mass records for " +
+                 std::to_string(run.scenario.bodies.size()) + " bodies"};
+  }
+  static std::once_flag installCallback;
+  std::call_once(installCallback, [] { gContactAddedCallback = CombineMaterials; });
+
+  std::unique_ptr<BulletBackend> backend(new BulletBackend());
+  backend->m_timeStep = run.timeStep;
+  backend->m_tuning = tuning;
+  backend->m_host = host;
+  backend->m_worldSettings = run.scenario.world;
+  backend->m_configuration = std::make_unique<btDefaultCollisionConfiguration>();
+  backend->m_dispatcher = std::make_unique<btCollisionDispatcher>(backend->m_configuration.get());
+  backend->m_broadphase = std::make_unique<btDbvtBroadphase>();
+  backend->m_solver = std::make_unique<btSequentialImpulseConstraintSolver>();
+  backend->m_world =
+      std::make_unique<btDiscreteDynamicsWorld>(backend->m_dispatcher.get(), backend->m_broadphase.get(),
+                                                backend->m_solver.get(), backend->m_configuration.get());
+  btDiscreteDynamicsWorld& world = *backend->m_world;
+  world.setGravity(ToBt(run.scenario.world.gravity));
+  btContactSolverInfo& info = world.getSolverInfo();
+  info.m_numIterations = run.iterations > 0 ? run.iterations : kBulletDefaultIterations;
+  // Bullet's own default, set so the record does not depend on the version.
+  info.m_restitutionVelocityThreshold = static_cast<btScalar>(kRestitutionVelocityThreshold);
+
+  for (size_t i = 0; i < run.scenario.bodies.size(); ++i) {
+    const BodySpec& spec = run.scenario.bodies[i];
+    auto body = std::make_unique<Body>();
+    body->mass = masses[i];
+    body->material = {spec.friction, spec.restitution, &backend->m_worldSettings, &backend->m_host};
+    body->shape = MakeShape(spec, body->mass, tuning);
+    const Mat3 rotation = spec.orientation.toRotationMatrix();
+    const Vec3 com = spec.position + rotation * body->mass.centroid;
+    const Quat comOrientation = (spec.orientation * body->mass.principalRotation).normalized();
+    body->motionState = std::make_unique<btDefaultMotionState>(btTransform(ToBt(comOrientation), ToBt(com)));
+    const bool dynamic = spec.motion == harness::Motion::Dynamic;
+    btRigidBody::btRigidBodyConstructionInfo construction(
+        dynamic ? body->mass.mass : 0.0, body->motionState.get(), body->shape.get(),
+        dynamic ? ToBt(body->mass.principalInertia) : btVector3(0, 0, 0));
+    construction.m_friction = spec.friction;
+    construction.m_restitution = spec.restitution;
+    construction.m_linearDamping = 0.0;
+    construction.m_angularDamping = 0.0;
+    body->body = std::make_unique<btRigidBody>(construction);
+    btRigidBody& rigid = *body->body;
+    // The gyroscopic term as the scenario says, in Bullet's implicit body-frame
+    // form only (the explicit and implicit-world variants always cleared).
+    int flags =
+        rigid.getFlags() & ~(BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT | BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD |
+                             BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
+    if (run.scenario.world.gyroscopic) flags |= BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY;
+    rigid.setFlags(flags);
+    rigid.setCollisionFlags(rigid.getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+    rigid.setUserPointer(&body->material);
+    rigid.setUserIndex(static_cast<int>(i));
+    rigid.setActivationState(DISABLE_DEACTIVATION);
+    if (dynamic) {
+      rigid.setLinearVelocity(ToBt(spec.linearVelocity));
+      rigid.setAngularVelocity(ToBt(spec.angularVelocity));
+    }
+    world.addRigidBody(&rigid);
+    backend->m_bodies.push_back(std::move(body));
+  }
+  backend->AddSettings(run);
+  return std::unique_ptr<harness::Backend>(std::move(backend));
+}
+
+BulletBackend::~BulletBackend() {
+  for (auto& body : m_bodies) m_world->removeRigidBody(body->body.get());
+}
+
+void BulletBackend::AddSettings(const Run& run) {
+  const btContactSolverInfo& info = m_world->getSolverInfo();
+  const bool tuned = m_tuning == BulletTuning::Tuned;
+  const std::string version = "Bullet " + std::to_string(btGetVersion());
+  m_settings = {
+      {"configuration", tuned ? "tuned (collision margin scaled to the scene's bodies)"
+                              : "defaults (what a new Bullet user gets)"},
+      kSinglePrecision
+          ? Setting{"engine", version + " (single precision: the default build, pkg-config bullet)"}
+          : Setting{"engine",
+                    version + " (double precision: BT_USE_DOUBLE_PRECISION, pkg-config bullet-float64)",
+                    "single precision (pkg-config bullet, what most users link)", kBulletDoubleEffect},
+      {"world", "btDiscreteDynamicsWorld, btDbvtBroadphase, btDefaultCollisionConfiguration"},
+      {"solver", "btSequentialImpulseConstraintSolver"},
+      {"time step (s)", Format(run.timeStep)},
+      {"stepping", "stepSimulation(h, 0): exactly one internal step of h per Step, no interpolation",
+       "stepSimulation(dt, 1, 1/60): fixed 1/60 s substeps, interpolated motion states",
+       "needed to pose the run's time step: every engine takes one step of h per Step"},
+      {"integrator", "semi-implicit (symplectic) Euler: v += h a, then x += h v"},
+      {"solver iterations",
+       std::to_string(info.m_numIterations) + (run.iterations > 0 ? "" : " (engine default)")},
+      {"solver mode flags",
+       std::to_string(info.m_solverMode) + " (warm starting, SIMD; one friction direction)"},
+      {"warm starting factor", Format(info.m_warmstartingFactor)},
+      {"split impulse", std::to_string(info.m_splitImpulse) + " (on past a penetration of " +
+                            Format(-info.m_splitImpulsePenetrationThreshold) + " m)"},
+      {"erp2 (contact Baumgarte factor)", Format(info.m_erp2)},
+      {"linear slop (m)", Format(info.m_linearSlop)},
+      {"global cfm", Format(info.m_globalCfm)},
+      {"restitution velocity threshold (m/s)", Format(info.m_restitutionVelocityThreshold)},
+      {"friction combine",
+       std::string(m_host.combineName(run.scenario.world.frictionCombine)) +
+           " (gContactAddedCallback, CF_CUSTOM_MATERIAL_CALLBACK)",
+       "product mu_a mu_b",
+       "needed to pose the scenario's rule: with the product, mu = 0.5 on both bodies is 0.25"},
+      {"restitution combine", m_host.combineName(run.scenario.world.restitutionCombine), "product e_a e_b",
+       "needed to pose the scenario's rule (max by default): a sphere with e = 0.7 on a floor with e = 0 "
+       "would not bounce"},
+      tuned
+          ? Setting{"collision margin (m)",
+                    Format(kBulletCollisionMargin) + " (boxes exact, hulls inflated by it, spheres: radius)",
+                    "0.04 (CONVEX_DISTANCE_MARGIN)", kBulletMarginEffect}
+          : Setting{"collision margin (m)",
+                    "0.04 (boxes exact with corners rounded by it, hulls inflated by "
+                    "it, spheres: radius)"},
+      {"contact breaking threshold (m)", Format(gContactBreakingThreshold)},
+      run.scenario.world.gyroscopic
+          ? Setting{"gyroscopic term", "on (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY)"}
+          : Setting{"gyroscopic term", "off (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY cleared)",
+                    "on (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY)",
+                    "the scenario asks for no gyroscopic term (angular velocity exactly constant)"},
+      {"damping", "linear 0, angular 0"},
+      {"sleeping", "off (DISABLE_DEACTIVATION)", "on (a body still for 2 s below 0.8 m/s and 1 rad/s sleeps)",
+       "needed to measure the engine: a sleeping body is frozen, which would hide the jitter and drift "
+       "the rest and stacking truths measure (Talus and ODE do not sleep either)"},
+      {"max rotation per step (rad)", Format(0.25 * SIMD_PI) + " (Bullet clamps faster spins)"},
+      {"hull shapes", "btConvexHullShape with initializePolyhedralFeatures, centred on the centroid"},
+      {"mass properties", "from talus::reference::ComputeBodyMass (exact), principal axes"},
+  };
+}
+
+harness::BodyState BulletBackend::GetBodyState(int index) const {
+  const Body& body = *m_bodies.at(static_cast<size_t>(index));
+  const btTransform& transform = body.body->getCenterOfMassTransform();
+  harness::BodyState state;
+  state.centerOfMass = FromBt(transform.getOrigin());
+  const Quat comOrientation = FromBt(transform.getRotation());
+  state.orientation = (comOrientation * body.mass.principalRotation.conjugate()).normalized();
+  state.origin = state.centerOfMass - state.orientation.toRotationMatrix() * body.mass.centroid;
+  state.linearVelocity = FromBt(body.body->getLinearVelocity());
+  state.angularVelocity = FromBt(body.body->getAngularVelocity());
+  state.mass = body.mass.mass;
+  const Mat3 rotation = state.orientation.toRotationMatrix();
+  state.worldInertia = rotation * body.mass.inertia * rotation.transpose();
+  return state;
+}
+
+std::vector<harness::ContactPoint> BulletBackend::GetContacts() const {
+  // Bullet keeps points up to the breaking threshold apart; all are
+  // reported, with depth = -distance (negative when separated).
+  std::vector<harness::ContactPoint> contacts;
+  const int manifolds = m_dispatcher->getNumManifolds();
+  for (int m = 0; m < manifolds; ++m) {
+    const btPersistentManifold* manifold = m_dispatcher->getManifoldByIndexInternal(m);
+    const int bodyA = manifold->getBody0()->getUserIndex();
+    const int bodyB = manifold->getBody1()->getUserIndex();
+    for (int p = 0; p < manifold->getNumContacts(); ++p) {
+      const btManifoldPoint& point = manifold->getContactPoint(p);
+      contacts.push_back({bodyA, bodyB, FromBt(point.getPositionWorldOnB()), FromBt(point.m_normalWorldOnB),
+                          -point.getDistance()});
+    }
+  }
+  return contacts;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<harness::Backend>> CreateBulletWorld(const Run& run,
+                                                            const std::vector<BodyMass>& masses,
+                                                            BulletTuning tuning, const BulletHost& host) {
+  return BulletBackend::Create(run, masses, tuning, host);
+}
+
+}  // namespace talus::reference

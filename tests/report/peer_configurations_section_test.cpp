@@ -1,0 +1,103 @@
+// The report's view of the peers' configurations (report_peers.h): the
+// departures table, the "removed by the tuned configuration" lines, and the
+// settings' two optional fields surviving results.json.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "report_peers.h"
+#include "talus/harness/report.h"
+#include "talus/harness/results_file.h"
+
+namespace talus::harness {
+namespace {
+
+MetricResult Metric(const std::string& name, double error, bool pass) {
+  MetricResult m;
+  m.name = name;
+  m.unit = "m";
+  m.measured = 1.0 + error;
+  m.truth = 1.0;
+  m.error = error;
+  m.tolerance.absolute = 0.01;
+  m.checked = true;
+  m.pass = pass;
+  return m;
+}
+
+RunResult Result(const std::string& backend, std::vector<MetricResult> metrics) {
+  RunResult r;
+  r.scenario = "box_slide_directions";
+  r.file = "sliding/box_slide_directions.json";
+  r.runId = "box_slide_directions[direction=30deg]";
+  r.backend = backend;
+  r.timeStep = 1.0 / 240.0;
+  r.steps = 360;
+  r.metrics = std::move(metrics);
+  r.settings = {{"engine", "ODE"},
+                {"friction directions", "along the slip", "world axes", "removes 24 FAILs"}};
+  return r;
+}
+
+TEST(PeerSection, TunedNameAddsTheSuffixOnceOnly) {
+  EXPECT_EQ(TunedName("ode-step"), "ode-step-tuned");
+  EXPECT_EQ(TunedName("bullet-f32"), "bullet-f32-tuned");
+  EXPECT_EQ(TunedName("ode-step-tuned"), "");
+}
+
+TEST(PeerSection, SaysForEachDefaultsFailWhetherTheTunedConfigurationRemovesIt) {
+  const RunResult defaults = Result(
+      "ode-step", {Metric("sliding_stop.distance", -0.192, false),
+                   Metric("sliding_stop.lateral", 0.145, false), Metric("sliding_stop.time", 0.001, true)});
+  const RunResult tuned = Result("ode-step-tuned", {Metric("sliding_stop.distance", 2.5e-11, true),
+                                                    Metric("sliding_stop.lateral", 0.02, false),
+                                                    Metric("sliding_stop.time", 0.0, true)});
+  const std::map<std::string, const RunResult*> byBackend = {{"ode-step", &defaults},
+                                                             {"ode-step-tuned", &tuned}};
+  const std::string lines = TunedVerdictLines({"ode-step", "ode-step-tuned"}, byBackend);
+  EXPECT_NE(
+      lines.find("- `ode-step` FAILs sliding_stop.distance (-0.192): removed by `ode-step-tuned` (2.5e-11)"),
+      std::string::npos)
+      << lines;
+  EXPECT_NE(
+      lines.find("- `ode-step` FAILs sliding_stop.lateral (0.145): not removed by `ode-step-tuned` (0.02)"),
+      std::string::npos)
+      << lines;
+  // Passing metrics and the tuned backend's own FAILs get no line.
+  EXPECT_EQ(lines.find("sliding_stop.time"), std::string::npos) << lines;
+  EXPECT_EQ(lines.find("`ode-step-tuned` FAILs"), std::string::npos) << lines;
+  // Without the tuned run there is nothing to say.
+  EXPECT_EQ(TunedVerdictLines({"ode-step"}, {{"ode-step", &defaults}}), "");
+}
+
+TEST(PeerSection, DeparturesTableListsOnlySettingsWithAnEngineDefault) {
+  const std::string table = DeparturesTable(Result("ode-step-tuned", {}).settings);
+  EXPECT_NE(table.find("| friction directions | along the slip | world axes | removes 24 FAILs |"),
+            std::string::npos)
+      << table;
+  EXPECT_EQ(table.find("| engine |"), std::string::npos) << table;
+  EXPECT_EQ(DeparturesTable({{"engine", "ODE"}}), "");
+  // A pipe in a value would split the cell: it is replaced.
+  EXPECT_NE(DeparturesTable({{"a", "x | y", "z", "w"}}).find("| a | x / y | z | w |"), std::string::npos);
+}
+
+TEST(PeerSection, SummaryShowsBothAndResultsJsonKeepsTheFields) {
+  ResultsFile file;
+  file.backends = {"ode-step", "ode-step-tuned"};
+  file.results = {Result("ode-step", {Metric("sliding_stop.distance", -0.192, false)}),
+                  Result("ode-step-tuned", {Metric("sliding_stop.distance", 2.5e-11, true)})};
+  const std::string md = SummaryMarkdown(file);
+  EXPECT_NE(md.find("Peer FAILs and their tuned configuration:"), std::string::npos) << md;
+  EXPECT_NE(md.find("removed by `ode-step-tuned`"), std::string::npos) << md;
+  EXPECT_NE(md.find("Departures from the engine's defaults:"), std::string::npos) << md;
+
+  auto back = ResultsFromJson(ResultsToJson(file));
+  ASSERT_TRUE(back) << back.GetError().message;
+  const Setting& departure = back.Value().results[0].settings[1];
+  EXPECT_EQ(departure.engineDefault, "world axes");
+  EXPECT_EQ(departure.effect, "removes 24 FAILs");
+  EXPECT_EQ(back.Value().results[0].settings[0].engineDefault, "");
+}
+
+}  // namespace
+}  // namespace talus::harness
