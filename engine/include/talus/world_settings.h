@@ -159,7 +159,7 @@ struct WorldSettings {
   /// write-up's (no gyroscopic term); MomentumSplitting for tumbling,
   /// non-symmetric bodies: it keeps a free body's angular momentum to
   /// round-off where ImplicitGyroscopic loses 1 to 11% of it.
-  RotationIntegrator rotation = RotationIntegrator::ConstantRate;
+  RotationIntegrator rotation = RotationIntegrator::MomentumSplitting;
   /// Translation scheme (see TranslationIntegrator). Default
   /// SymplecticEuler, the write-up's, whose exact free-fall sequence the
   /// testbed's free-fall truths are written against.
