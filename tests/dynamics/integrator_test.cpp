@@ -64,7 +64,8 @@ TEST(Integrator, ProjectileFollowsTheRecurrenceOnEveryAxis) {
 }
 
 TEST(Integrator, SpinAboutAPrincipalAxisConservesAngularMomentumWithoutGyroscopicTerm) {
-  World world = MakeWorld({.gravity = Vec3::Zero(), .rotation = RotationIntegrator::ConstantRate, .sleeping = false});
+  World world =
+      MakeWorld({.gravity = Vec3::Zero(), .rotation = RotationIntegrator::ConstantRate, .sleeping = false});
   const Mat3 inertia = Vec3(1.0, 2.0, 3.0).asDiagonal();
   const Quat tilt(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
   const Vec3 w = tilt * Vec3(0.0, 0.0, 4.0);
@@ -82,8 +83,8 @@ TEST(Integrator, SpinAboutAPrincipalAxisConservesAngularMomentumWithoutGyroscopi
 }
 
 TEST(Integrator, TumblingBodyConservesAngularMomentumWithImplicitGyroscopicStep) {
-  World world =
-      MakeWorld({.gravity = Vec3::Zero(), .rotation = RotationIntegrator::ImplicitGyroscopic, .sleeping = false});
+  World world = MakeWorld(
+      {.gravity = Vec3::Zero(), .rotation = RotationIntegrator::ImplicitGyroscopic, .sleeping = false});
   const Mat3 inertia = Vec3(1.0, 2.0, 3.0).asDiagonal();
   const BodyId id =
       world

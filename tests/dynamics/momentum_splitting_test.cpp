@@ -53,8 +53,7 @@ double EllipticFlipInterval(const Vec3& inertia, const Vec3& omega) {
   const double e2 = omega.dot(momentum);
   if (l2 < e2 * i2) std::swap(i1, i3);
   const double k2 = (i2 - i1) * (e2 * i3 - l2) / ((i3 - i2) * (l2 - e2 * i1));
-  return 2.0 * std::comp_ellint_1(std::sqrt(k2)) *
-         std::sqrt(i1 * i2 * i3 / ((i3 - i2) * (l2 - e2 * i1)));
+  return 2.0 * std::comp_ellint_1(std::sqrt(k2)) * std::sqrt(i1 * i2 * i3 / ((i3 - i2) * (l2 - e2 * i1)));
 }
 
 // What a torque-free run did.
@@ -164,7 +163,8 @@ TEST(MomentumSplitting, ImplicitGyroscopicStepLosesWhatTheSplittingKeeps) {
   // The contrast the scheme exists for (issue 15): 11% of |L| lost through
   // the turn-overs of the testbed box at 60 Hz by the implicit step.
   const Vec3 omega(0.02, 3.0, 0.005);
-  const SpinRun implicit = Spin(kBoxInertia, omega, 1, 1.0 / 60.0, 1500, RotationIntegrator::ImplicitGyroscopic);
+  const SpinRun implicit =
+      Spin(kBoxInertia, omega, 1, 1.0 / 60.0, 1500, RotationIntegrator::ImplicitGyroscopic);
   EXPECT_GT(implicit.magnitudeDrift, 0.05);
 }
 
@@ -181,18 +181,19 @@ TEST(MomentumSplitting, GeneralInertiaUsesItsPrincipalAxes) {
 
   World world = MakeWorld(
       {.gravity = Vec3::Zero(), .rotation = RotationIntegrator::MomentumSplitting, .sleeping = false});
-  const BodyId id = world
-                        .CreateBody({.type = BodyType::Dynamic,
-                                     .angularVelocity = {0.3, 2.0, -1.0},
-                                     .localInertia = inertia})
-                        .Value();
+  const BodyId id =
+      world
+          .CreateBody(
+              {.type = BodyType::Dynamic, .angularVelocity = {0.3, 2.0, -1.0}, .localInertia = inertia})
+          .Value();
   const BodyState s0 = world.GetBodyState(id).Value();
   const Vec3 l0 = AngularMomentum(s0);
   const double e0 = RotationalEnergy(s0);
   for (int n = 0; n < 2000; ++n) ASSERT_TRUE(world.Step(1e-3));
   const BodyState s = world.GetBodyState(id).Value();
   EXPECT_LT((AngularMomentum(s) - l0).norm(), 1e-12 * l0.norm());
-  EXPECT_LT(std::abs(RotationalEnergy(s) - e0), EnergyBound(Vec3(1.0, 2.0, 3.5), s0.angularVelocity, 1e-3) * e0);
+  EXPECT_LT(std::abs(RotationalEnergy(s) - e0),
+            EnergyBound(Vec3(1.0, 2.0, 3.5), s0.angularVelocity, 1e-3) * e0);
 }
 
 TEST(MomentumSplitting, DiagonalInertiaNeedsNoEigenSolve) {
@@ -264,7 +265,8 @@ BodyState DropBox(TranslationIntegrator translation, RotationIntegrator rotation
 }
 
 TEST(ExactConstantAcceleration, ContactsRestTheSameAsWithSymplecticEuler) {
-  const BodyState reference = DropBox(TranslationIntegrator::SymplecticEuler, RotationIntegrator::ConstantRate);
+  const BodyState reference =
+      DropBox(TranslationIntegrator::SymplecticEuler, RotationIntegrator::ConstantRate);
   for (const RotationIntegrator rotation :
        {RotationIntegrator::ConstantRate, RotationIntegrator::ImplicitGyroscopic,
         RotationIntegrator::MomentumSplitting}) {

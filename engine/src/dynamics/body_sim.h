@@ -36,7 +36,7 @@ struct BodySim {
   /// (the same vector in principal axes). Identity for a diagonal inertia.
   Quat principalFrame = Quat::Identity();
   Vec3 principalInertia = Vec3::Zero();  ///< kg m^2, the principal moments
-  double invMass = 0.0;                 ///< 1/kg; 0 for static and kinematic bodies
+  double invMass = 0.0;                  ///< 1/kg; 0 for static and kinematic bodies
   BodyType type = BodyType::Static;
   bool awake = true;  ///< false while asleep: not integrated, immovable in contacts
   /// Linear velocity at the start of the step and after forces and gravity

@@ -99,7 +99,8 @@ std::string ValidateSettings(const WorldSettings& s) {
     return "WorldSettings.positionCorrection = " + std::to_string(static_cast<int>(s.positionCorrection)) +
            " is not a PositionCorrection";
   }
-  if (s.rotation != RotationIntegrator::ConstantRate && s.rotation != RotationIntegrator::ImplicitGyroscopic &&
+  if (s.rotation != RotationIntegrator::ConstantRate &&
+      s.rotation != RotationIntegrator::ImplicitGyroscopic &&
       s.rotation != RotationIntegrator::MomentumSplitting) {
     return "WorldSettings.rotation = " + std::to_string(static_cast<int>(s.rotation)) +
            " is not a RotationIntegrator";

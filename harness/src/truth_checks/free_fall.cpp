@@ -33,9 +33,9 @@ std::vector<MetricResult> EvaluateFreeFall(const Run& run, const Truth& truth, c
   double worst = -1.0;
   for (const Sample& sample : trajectory.samples) {
     const double parabola = FreeFallHeight(kind.y0, kind.v0, kind.g, sample.time);
-    const double exact =
-        continuous ? parabola
-                   : FreeFallHeightSymplecticEuler(kind.y0, kind.v0, kind.g, trajectory.timeStep, sample.step);
+    const double exact = continuous ? parabola
+                                    : FreeFallHeightSymplecticEuler(kind.y0, kind.v0, kind.g,
+                                                                    trajectory.timeStep, sample.step);
     const double deviation = std::abs(height(sample) - exact);
     // !(deviation <= worst) also picks a NaN height, so it is not hidden.
     if (!(deviation <= worst)) {

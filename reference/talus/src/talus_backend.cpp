@@ -310,10 +310,10 @@ void TalusBackend::AddSettings(const Run& run) {
       {"speculative margin (m)", Format(s.narrowPhase.speculativeMargin)},
       {"gyroscopic term", s.rotation == RotationIntegrator::ConstantRate
                               ? "off (WorldSettings::rotation = ConstantRate)"
-                              : s.rotation == RotationIntegrator::MomentumSplitting
-                                    ? "on (WorldSettings::rotation = MomentumSplitting: L kept, exact "
-                                      "rotations about the principal axes)"
-                                    : "on (WorldSettings::rotation = ImplicitGyroscopic)"},
+                          : s.rotation == RotationIntegrator::MomentumSplitting
+                              ? "on (WorldSettings::rotation = MomentumSplitting: L kept, exact "
+                                "rotations about the principal axes)"
+                              : "on (WorldSettings::rotation = ImplicitGyroscopic)"},
       {"damping", "none"},
       {"sleeping", OnOff(s.sleeping)},
       {"hull shapes", "talus::BuildHull on the scenario points, in the body frame"},

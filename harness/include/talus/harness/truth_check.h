@@ -34,6 +34,11 @@ struct MetricResult {
   Tolerance tolerance;   ///< from the scenario file
   bool checked = false;  ///< the file gave a tolerance (absolute or relative > 0)
   bool pass = false;     ///< |error| <= absolute + relative |truth| (judged even when not checked)
+  /// The truth's published figure (PublishedFigure), shown beside the
+  /// measured value; NaN value when the truth has none.
+  double publishedValue = std::numeric_limits<double>::quiet_NaN();
+  double publishedUpper = std::numeric_limits<double>::quiet_NaN();
+  std::string publishedSource;
 };
 
 /// A metric with its name and unit set and every number still unset.
