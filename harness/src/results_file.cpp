@@ -29,6 +29,11 @@ Json MetricToJson(const MetricResult& m) {
   j["tolerance"] = {{"absolute", m.tolerance.absolute}, {"relative", m.tolerance.relative}};
   j["checked"] = m.checked;
   j["pass"] = m.pass;
+  // Only metrics of a truth with a published figure carry one.
+  if (!std::isnan(m.publishedValue)) {
+    j["published"] = {
+        {"value", m.publishedValue}, {"upper", Number(m.publishedUpper)}, {"source", m.publishedSource}};
+  }
   return j;
 }
 
@@ -132,6 +137,13 @@ MetricResult MetricFromJson(const Json& j, const std::string& where) {
   m.tolerance.relative = GetNumber(tolerance, "relative", Place(where, "tolerance"));
   m.checked = GetBool(j, "checked", where);
   m.pass = GetBool(j, "pass", where);
+  if (j.contains("published")) {
+    const Json& published = Field(j, "published", where);
+    const std::string place = Place(where, "published");
+    m.publishedValue = GetNumber(published, "value", place);
+    m.publishedUpper = GetNumber(published, "upper", place);
+    m.publishedSource = GetString(published, "source", place);
+  }
   return m;
 }
 
