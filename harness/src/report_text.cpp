@@ -67,6 +67,13 @@ std::string Expected(const MetricResult& m) {
   std::string text = FormatNumber(m.truth);
   if (!std::isnan(m.truthIntegrator))
     text.append(" (integrator ").append(FormatNumber(m.truthIntegrator)).append(")");
+  // A published figure for the same case sits beside the truth, so the
+  // reader compares the measured values with it.
+  if (!std::isnan(m.publishedValue)) {
+    text.append("; published ").append(FormatNumber(m.publishedValue));
+    if (!std::isnan(m.publishedUpper)) text.append(" to ").append(FormatNumber(m.publishedUpper));
+    text.append(" (").append(m.publishedSource).append(")");
+  }
   return text;
 }
 

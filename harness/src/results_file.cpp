@@ -33,6 +33,11 @@ Json MetricToJson(const MetricResult& m) {
   j["checked"] = m.checked;
   j["pass"] = m.pass;
   j["ungated"] = m.ungated;
+  // Only metrics of a truth with a published figure carry one.
+  if (!std::isnan(m.publishedValue)) {
+    j["published"] = {
+        {"value", m.publishedValue}, {"upper", Number(m.publishedUpper)}, {"source", m.publishedSource}};
+  }
   return j;
 }
 
@@ -146,6 +151,13 @@ MetricResult MetricFromJson(const Json& j, const std::string& where) {
   m.checked = GetBool(j, "checked", where);
   m.pass = GetBool(j, "pass", where);
   if (j.contains("ungated")) m.ungated = GetString(j, "ungated", where);
+  if (j.contains("published")) {
+    const Json& published = Field(j, "published", where);
+    const std::string place = Place(where, "published");
+    m.publishedValue = GetNumber(published, "value", place);
+    m.publishedUpper = GetNumber(published, "upper", place);
+    m.publishedSource = GetString(published, "source", place);
+  }
   return m;
 }
 

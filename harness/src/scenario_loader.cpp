@@ -13,9 +13,11 @@
 #include <cmath>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
+#include <variant>
 
 #include "scenario_schema_text.h"
 #include "talus/harness/hull_rest.h"
@@ -410,6 +412,9 @@ Result<bool> MapGate(const json& entry, std::string_view file, const std::string
     return FieldError(file, pointer + "/tolerance",
                       "needs absolute or relative > 0 (a truth without a tolerance is never judged)");
   }
+  if (truth.toleranceReason.find_first_not_of(" \t\n") == std::string::npos) {
+    return FieldError(file, pointer + "/tolerance/reason", "is empty; say where the tolerance comes from");
+  }
   truth.gate = entry.value("gate", true);
   if (!entry.contains("ungated")) return true;
   for (size_t i = 0; i < entry["ungated"].size(); ++i) {
@@ -451,6 +456,61 @@ Result<TruthKind> MapInclineTip(const TruthContext& c) {
   return TruthKind(tip);
 }
 
+// A free-body truth (projectile, drifts) holds only while nothing but
+// gravity acts: no static body to touch.
+std::optional<Error> RefuseStaticBodies(const TruthContext& c, const std::string& kind) {
+  for (size_t b = 0; b < c.bodies.size(); ++b) {
+    if (c.bodies[b].motion == Motion::Static) {
+      return FieldError(c.file, c.pointer + "/kind",
+                        kind + " is a free-body truth, but body \"" + c.bodies[b].name + "\" is static");
+    }
+  }
+  return std::nullopt;
+}
+
+// The parabola starts where the body is: its centre of mass, which for a
+// box or a sphere is its origin, and its velocity.
+Result<TruthKind> MapProjectile(const TruthContext& c) {
+  if (auto refused = RefuseStaticBodies(c, "projectile")) return *refused;
+  const BodySpec& body = c.bodies[c.body];
+  if (body.motion != Motion::Dynamic || std::holds_alternative<HullShape>(body.shape)) {
+    return FieldError(c.file, c.pointer + "/body",
+                      "projectile needs a dynamic box or sphere (its centre of mass is its origin)");
+  }
+  const ProjectileTruth truth{ReadVec3(c.entry["x0"]), ReadVec3(c.entry["v0"])};
+  if ((truth.x0 - body.position).norm() > kSpinConsistencyTolerance * (1.0 + body.position.norm())) {
+    return FieldError(c.file, c.pointer + "/x0", "differs from the body's position");
+  }
+  if ((truth.v0 - body.linearVelocity).norm() >
+      kSpinConsistencyTolerance * (1.0 + body.linearVelocity.norm())) {
+    return FieldError(c.file, c.pointer + "/v0", "differs from the body's linearVelocity");
+  }
+  return TruthKind(truth);
+}
+
+// Drifts are relative: the body (or, for energy without a body, some
+// dynamic body) must start moving, else there is nothing to divide by.
+Result<TruthKind> MapDrift(const TruthContext& c, const std::string& kind) {
+  if (auto refused = RefuseStaticBodies(c, kind)) return *refused;
+  const bool spin = kind != "energy_drift";
+  bool moving = false;
+  for (size_t b = 0; b < c.bodies.size(); ++b) {
+    if (c.body >= 0 && b != static_cast<size_t>(c.body)) continue;
+    const BodySpec& body = c.bodies[b];
+    if (body.motion != Motion::Dynamic) continue;
+    moving = moving || body.angularVelocity.norm() > 0.0 || (!spin && body.linearVelocity.norm() > 0.0);
+  }
+  if (!moving) {
+    return FieldError(c.file, c.pointer + (c.body >= 0 ? "/body" : "/kind"),
+                      spin ? kind + " needs a dynamic body that starts spinning (a relative drift of 0)"
+                           : "energy_drift needs a dynamic body that starts moving (a relative drift of 0)");
+  }
+  if (kind == "energy_drift") return TruthKind(EnergyDriftTruth{});
+  if (kind == "rotational_energy_drift") return TruthKind(RotationalEnergyDriftTruth{});
+  return TruthKind(AngularMomentumDriftTruth{c.entry["metric"] == "magnitude" ? MomentumMetric::Magnitude
+                                                                              : MomentumMetric::Vector});
+}
+
 Result<TruthKind> MapTruthKind(const TruthContext& c) {
   const json& truth = c.entry;
   const std::string kind = truth["kind"].get<std::string>();
@@ -477,6 +537,10 @@ Result<TruthKind> MapTruthKind(const TruthContext& c) {
   if (kind == "incline_tip") return MapInclineTip(c);
   if (kind == "torque_free") return MapSpin(c, false);
   if (kind == "flip_period") return MapSpin(c, true);
+  if (kind == "projectile") return MapProjectile(c);
+  if (kind == "energy_drift" || kind == "angular_momentum_drift" || kind == "rotational_energy_drift") {
+    return MapDrift(c, kind);
+  }
   const int divisor = truth["timeStepDivisor"].get<int>();
   if (static_cast<long long>(c.world.steps) * divisor > kMaxSteps) {
     return FieldError(
@@ -534,6 +598,22 @@ Result<Scenario> MapScenario(const json& doc, std::string_view file) {
       truth.kind = std::move(kind).Value();
       auto gated = MapGate(entry, file, pointer, truth);
       if (!gated) return gated.GetError();
+      if (entry.contains("published")) {
+        const json& published = entry["published"];
+        PublishedFigure figure;
+        figure.value = published["value"].get<double>();
+        if (published.contains("upper")) {
+          figure.upper = published["upper"].get<double>();
+          if (figure.upper < figure.value) {
+            return FieldError(file, pointer + "/published/upper", "is below \"value\" (the range's low end)");
+          }
+        }
+        figure.source = published["source"].get<std::string>();
+        if (figure.source.find_first_not_of(" \t\n") == std::string::npos) {
+          return FieldError(file, pointer + "/published/source", "is empty; name who published the figure");
+        }
+        truth.published = figure;
+      }
       scenario.truths.push_back(truth);
     }
   }

@@ -59,12 +59,27 @@ std::vector<MetricResult> EvaluateTruth(const Run& run, const Truth& truth, cons
           return EvaluateTorqueFree(run, truth, kind, trajectory);
         } else if constexpr (std::is_same_v<Kind, FlipPeriodTruth>) {
           return EvaluateFlipPeriod(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, ProjectileTruth>) {
+          return EvaluateProjectile(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, EnergyDriftTruth>) {
+          return EvaluateEnergyDrift(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, AngularMomentumDriftTruth>) {
+          return EvaluateAngularMomentumDrift(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, RotationalEnergyDriftTruth>) {
+          return EvaluateRotationalEnergyDrift(run, truth, kind, trajectory);
         } else {
           static_assert(std::is_same_v<Kind, ConvergedReferenceTruth>, "a truth kind has no evaluator");
           return {};  // the runner compares against a finer run
         }
       },
       truth.kind);
+  if (truth.published) {
+    for (MetricResult& metric : metrics) {
+      metric.publishedValue = truth.published->value;
+      metric.publishedUpper = truth.published->upper;
+      metric.publishedSource = truth.published->source;
+    }
+  }
   return metrics;
 }
 

@@ -64,6 +64,9 @@ class ContactScene {
                     e.x() * e.x() + e.y() * e.y());
     body.inertiaLocal = (mass / 12.0 * diag).asDiagonal();
     body.invInertiaLocal = body.inertiaLocal.inverse();
+    const PrincipalAxes principal = ComputePrincipalAxes(body.inertiaLocal);
+    body.principalFrame = principal.frame;
+    body.principalInertia = principal.moments;
     body.UpdateWorldInertia();
     m_bodies.push_back(body);
     m_boxes.push_back({static_cast<int>(m_bodies.size()) - 1, halfExtents, friction, restitution});
@@ -77,7 +80,7 @@ class ContactScene {
   /// One step of `h` seconds, in World::Step's order.
   void Step(double h) {
     m_stats = StepStatistics{};
-    IntegrateVelocities(m_bodies, m_settings.gravity, m_settings.gyroscopic, h);
+    IntegrateVelocities(m_bodies, m_settings.gravity, m_settings.rotation, h);
     m_previous.swap(m_contacts);
     m_contacts.clear();
     Collide();
@@ -90,7 +93,7 @@ class ContactScene {
     if (split) m_solver.SolveSplitImpulses(m_settings.positionIterations);
     m_solver.Scatter(m_bodies, split);
     m_solver.StoreImpulses(m_contacts);
-    IntegratePositions(m_bodies, h, split);
+    IntegratePositions(m_bodies, h, split, m_settings.rotation, m_settings.translation);
     if (m_settings.positionCorrection == PositionCorrection::NonlinearGaussSeidel) {
       m_solver.SolveNonlinearPositions(m_bodies, m_settings.positionIterations, m_settings.baumgarte,
                                        m_settings.positionSlop);

@@ -300,9 +300,10 @@ std::uint64_t HashWorld(const World& world) {
   return hash;
 }
 
-std::uint64_t RunPile() {
+std::uint64_t RunPile(RotationIntegrator rotation, TranslationIntegrator translation) {
   WorldSettings settings;
-  settings.gyroscopic = true;
+  settings.rotation = rotation;
+  settings.translation = translation;
   World world = MakeWorld(settings);
   AddGround(world);
   for (int i = 0; i < 12; ++i) {
@@ -319,7 +320,12 @@ std::uint64_t RunPile() {
   return HashWorld(world);
 }
 
-TEST(WorldPhysics, SameWorldSteppedTwiceFromScratchIsBitIdentical) { EXPECT_EQ(RunPile(), RunPile()); }
+TEST(WorldPhysics, SameWorldSteppedTwiceFromScratchIsBitIdentical) {
+  EXPECT_EQ(RunPile(RotationIntegrator::ImplicitGyroscopic, TranslationIntegrator::SymplecticEuler),
+            RunPile(RotationIntegrator::ImplicitGyroscopic, TranslationIntegrator::SymplecticEuler));
+  EXPECT_EQ(RunPile(RotationIntegrator::MomentumSplitting, TranslationIntegrator::ExactConstantAcceleration),
+            RunPile(RotationIntegrator::MomentumSplitting, TranslationIntegrator::ExactConstantAcceleration));
+}
 
 TEST(WorldPhysics, DestroyingASupportWakesWhatRestedOnIt) {
   World world;

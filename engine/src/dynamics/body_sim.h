@@ -14,6 +14,8 @@
 // only what it uses.
 #pragma once
 
+#include <limits>
+
 #include "talus/body.h"
 #include "talus/math.h"
 
@@ -30,9 +32,26 @@ struct BodySim {
   Mat3 inertiaLocal = Mat3::Zero();     ///< kg m^2, body axes (for the gyroscopic term)
   Mat3 invInertiaLocal = Mat3::Zero();  ///< 1/(kg m^2), body axes
   Mat3 invInertiaWorld = Mat3::Zero();  ///< 1/(kg m^2), world axes
-  double invMass = 0.0;                 ///< 1/kg; 0 for static and kinematic bodies
+  /// Principal axes of inertiaLocal: a body-axes vector is principalFrame *
+  /// (the same vector in principal axes). Identity for a diagonal inertia.
+  Quat principalFrame = Quat::Identity();
+  Vec3 principalInertia = Vec3::Zero();  ///< kg m^2, the principal moments
+  double invMass = 0.0;                  ///< 1/kg; 0 for static and kinematic bodies
   BodyType type = BodyType::Static;
   bool awake = true;  ///< false while asleep: not integrated, immovable in contacts
+  /// Linear velocity at the start of the step and after forces and gravity
+  /// (before contacts), m/s: the exact constant-acceleration position update
+  /// uses them (integrator.h).
+  Vec3 startLinearVelocity = Vec3::Zero();
+  Vec3 freeLinearVelocity = Vec3::Zero();
+  /// The world angular momentum the last MomentumSplitting drift kept
+  /// (kg m^2/s) and the angular velocity it left (rad/s): while nothing
+  /// changes w (no torque, impulse or call), the next drift keeps that L
+  /// itself instead of I_world w, so a free body's L stays bit-identical
+  /// rather than gathering round-off from the conversion each step. NaN when
+  /// there is none (SetTransform clears it: a new attitude gives a new L).
+  Vec3 keptAngularMomentum = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  Vec3 keptAngularVelocity = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   /// Pseudo-velocities of split impulses, reset every step (m/s, rad/s).
   Vec3 pseudoLinear = Vec3::Zero();
   Vec3 pseudoAngular = Vec3::Zero();

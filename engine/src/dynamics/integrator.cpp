@@ -1,8 +1,11 @@
-// Symplectic Euler with an optional implicit gyroscopic term; see
-// dynamics/integrator.h for the scheme and its sources.
+// Symplectic Euler with a choice of rotation scheme (constant rate, implicit
+// gyroscopic step, free rigid body splitting) and of translation scheme; see
+// dynamics/integrator.h for the schemes and their sources.
 #include "dynamics/integrator.h"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
+#include <limits>
 
 namespace talus {
 namespace {
@@ -11,6 +14,34 @@ Mat3 Skew(const Vec3& a) {
   Mat3 s;
   s << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
   return s;
+}
+
+// q turned by the exact exponential of a constant rate w over h (world
+// axes): a rotation by |w| h about w, unit by construction; the normalise
+// only removes accumulated round-off.
+Quat TurnAtConstantRate(const Quat& q, const Vec3& w, double h) {
+  const double rate = w.norm();
+  if (!(rate > 0.0)) return q;
+  const Quat dq(Eigen::AngleAxisd(rate * h, w / rate));
+  return (dq * q).normalized();
+}
+
+// The exact flow of H_i = pi_i^2 / (2 I_i) over t: the body turns about its
+// principal axis i by t pi_i / I_i (turn <- turn R_i) and pi, seen from the
+// body, turns back by the same angle, so R pi stays the same.
+void FlowAboutPrincipalAxis(int axis, double t, const Vec3& moments, Vec3& pi, Quat& turn) {
+  const double angle = t * pi[axis] / moments[axis];
+  const int j = (axis + 1) % 3;
+  const int k = (axis + 2) % 3;
+  const double c = std::cos(angle);
+  const double s = std::sin(angle);
+  const double pj = pi[j];
+  const double pk = pi[k];
+  pi[j] = c * pj + s * pk;
+  pi[k] = c * pk - s * pj;
+  Quat half(std::cos(0.5 * angle), 0.0, 0.0, 0.0);
+  half.vec()[axis] = std::sin(0.5 * angle);
+  turn = turn * half;
 }
 
 }  // namespace
@@ -27,7 +58,51 @@ Vec3 GyroscopicStep(const BodySim& body, double h) {
   return q * w2;
 }
 
-int IntegrateVelocities(std::span<BodySim> bodies, const Vec3& gravity, bool gyroscopic, double h) {
+PrincipalAxes ComputePrincipalAxes(const Mat3& inertia) {
+  PrincipalAxes axes;
+  const bool diagonal = inertia(0, 1) == 0.0 && inertia(0, 2) == 0.0 && inertia(1, 2) == 0.0 &&
+                        inertia(1, 0) == 0.0 && inertia(2, 0) == 0.0 && inertia(2, 1) == 0.0;
+  if (diagonal) {
+    axes.moments = inertia.diagonal();
+    return axes;
+  }
+  const Eigen::SelfAdjointEigenSolver<Mat3> solver(inertia);
+  Mat3 frame = solver.eigenvectors();
+  // Eigenvectors come with either sign: make the frame a proper rotation.
+  if (frame.determinant() < 0.0) frame.col(2) = -frame.col(2);
+  axes.frame = Quat(frame).normalized();
+  axes.moments = solver.eigenvalues();
+  return axes;
+}
+
+FreeRotation SplitFreeRotation(const Quat& orientation, const PrincipalAxes& principal, const Vec3& momentum,
+                               double h) {
+  // Principal axes to world, and the momentum seen from them.
+  const Quat start = orientation * principal.frame;
+  Vec3 pi = start.conjugate() * momentum;
+  const double magnitude = pi.norm();
+  Quat turn = Quat::Identity();
+  const Vec3& moments = principal.moments;
+  FlowAboutPrincipalAxis(0, 0.5 * h, moments, pi, turn);
+  FlowAboutPrincipalAxis(1, 0.5 * h, moments, pi, turn);
+  FlowAboutPrincipalAxis(2, h, moments, pi, turn);
+  FlowAboutPrincipalAxis(1, 0.5 * h, moments, pi, turn);
+  FlowAboutPrincipalAxis(0, 0.5 * h, moments, pi, turn);
+  // Every sub-flow keeps |pi| exactly; the rounded cos and sin of angles
+  // that repeat step after step do not (c^2 + s^2 - 1 ~ 1e-16 with the same
+  // sign each step: 2.6e-12 of |L| in 1e4 steps, measured). Putting |pi|
+  // back is a projection onto the flow's own invariant, not a correction of
+  // the method.
+  if (const double now = pi.norm(); now > 0.0) pi *= magnitude / now;
+  const Quat end = (start * turn).normalized();
+  FreeRotation out;
+  out.orientation = (end * principal.frame.conjugate()).normalized();
+  out.angularVelocity = end * pi.cwiseQuotient(moments);
+  return out;
+}
+
+int IntegrateVelocities(std::span<BodySim> bodies, const Vec3& gravity, RotationIntegrator rotation,
+                        double h) {
   int integrated = 0;
   for (BodySim& body : bodies) {
     if (body.type != BodyType::Dynamic || !body.awake) {
@@ -37,8 +112,10 @@ int IntegrateVelocities(std::span<BodySim> bodies, const Vec3& gravity, bool gyr
     }
     // Equation (1) of the write-up, with gravity as an acceleration so that
     // every mass falls alike.
+    body.startLinearVelocity = body.linearVelocity;
     body.linearVelocity += h * (gravity + body.invMass * body.force);
-    if (gyroscopic) body.angularVelocity = GyroscopicStep(body, h);
+    body.freeLinearVelocity = body.linearVelocity;
+    if (rotation == RotationIntegrator::ImplicitGyroscopic) body.angularVelocity = GyroscopicStep(body, h);
     body.angularVelocity += h * (body.invInertiaWorld * body.torque);
     body.force.setZero();
     body.torque.setZero();
@@ -47,26 +124,45 @@ int IntegrateVelocities(std::span<BodySim> bodies, const Vec3& gravity, bool gyr
   return integrated;
 }
 
-void IntegratePositions(std::span<BodySim> bodies, double h, bool usePseudoVelocities) {
+void IntegratePositions(std::span<BodySim> bodies, double h, bool usePseudoVelocities,
+                        RotationIntegrator rotation, TranslationIntegrator translation) {
   for (BodySim& body : bodies) {
     if (!body.IsMoving()) continue;
-    Vec3 v = body.linearVelocity;
-    Vec3 w = body.angularVelocity;
+    const bool dynamic = body.type == BodyType::Dynamic;
+    // Equation (2): the new velocity moves the body; for a body no impulse
+    // touched, the exact scheme uses the mean of the old and new velocity.
+    const bool free = dynamic && translation == TranslationIntegrator::ExactConstantAcceleration &&
+                      body.linearVelocity == body.freeLinearVelocity;
+    Vec3 v = free ? Vec3(0.5 * (body.startLinearVelocity + body.linearVelocity)) : body.linearVelocity;
+    Vec3 pseudoAngular = Vec3::Zero();
     if (usePseudoVelocities) {
       v += body.pseudoLinear;
-      w += body.pseudoAngular;
+      pseudoAngular = body.pseudoAngular;
       body.pseudoLinear.setZero();
       body.pseudoAngular.setZero();
     }
-    // Equation (2): the new velocity moves the body.
     body.center += h * v;
-    const double angle = w.norm() * h;
-    if (angle > 0.0) {
-      // exp of a constant rotation rate over the step: a rotation by |w| h
-      // about w, exact and unit length by construction; the normalise only
-      // removes accumulated round-off.
-      const Quat dq(Eigen::AngleAxisd(angle, w / w.norm()));
-      body.orientation = (dq * body.orientation).normalized();
+    Quat q = body.orientation;
+    if (dynamic && rotation == RotationIntegrator::MomentumSplitting) {
+      // L of the solved w at the attitude it was solved at (the last drift's
+      // own L when nothing changed w since), then the drift that keeps it;
+      // the pseudo-velocity (a position correction, not momentum) turns the
+      // result at its constant rate.
+      const Vec3 momentum = body.angularVelocity == body.keptAngularVelocity
+                                ? body.keptAngularMomentum
+                                : Vec3(q * (body.inertiaLocal * (q.conjugate() * body.angularVelocity)));
+      const FreeRotation drift =
+          SplitFreeRotation(q, {body.principalFrame, body.principalInertia}, momentum, h);
+      body.keptAngularMomentum = momentum;
+      body.keptAngularVelocity = drift.angularVelocity;
+      q = TurnAtConstantRate(drift.orientation, pseudoAngular, h);
+      body.angularVelocity = drift.angularVelocity;
+    } else {
+      q = TurnAtConstantRate(q, body.angularVelocity + pseudoAngular, h);
+      body.keptAngularVelocity.setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+    if (q.coeffs() != body.orientation.coeffs()) {
+      body.orientation = q;
       body.UpdateWorldInertia();
     }
   }

@@ -6,8 +6,10 @@
 
 #include <Eigen/Cholesky>
 #include <cmath>
+#include <limits>
 #include <string>
 
+#include "dynamics/integrator.h"
 #include "world/world_data.h"
 
 namespace talus {
@@ -96,6 +98,17 @@ std::string ValidateSettings(const WorldSettings& s) {
       s.positionCorrection != PositionCorrection::NonlinearGaussSeidel) {
     return "WorldSettings.positionCorrection = " + std::to_string(static_cast<int>(s.positionCorrection)) +
            " is not a PositionCorrection";
+  }
+  if (s.rotation != RotationIntegrator::ConstantRate &&
+      s.rotation != RotationIntegrator::ImplicitGyroscopic &&
+      s.rotation != RotationIntegrator::MomentumSplitting) {
+    return "WorldSettings.rotation = " + std::to_string(static_cast<int>(s.rotation)) +
+           " is not a RotationIntegrator";
+  }
+  if (s.translation != TranslationIntegrator::SymplecticEuler &&
+      s.translation != TranslationIntegrator::ExactConstantAcceleration) {
+    return "WorldSettings.translation = " + std::to_string(static_cast<int>(s.translation)) +
+           " is not a TranslationIntegrator";
   }
   if (s.positionIterations < 1 || s.positionIterations > 1000) {
     return "WorldSettings.positionIterations = " + std::to_string(s.positionIterations) +
@@ -196,6 +209,9 @@ Result<BodyId> World::CreateBody(const BodyDef& def) {
     sim.invMass = 1.0 / mass;
     sim.inertiaLocal = inertia;
     sim.invInertiaLocal = inertia.inverse();
+    const PrincipalAxes principal = ComputePrincipalAxes(inertia);
+    sim.principalFrame = principal.frame;
+    sim.principalInertia = principal.moments;
   }
   sim.UpdateWorldInertia();
   d.sims[i] = sim;
@@ -311,6 +327,7 @@ Status World::SetTransform(BodyId id, const Vec3& position, const Quat& orientat
   sim.orientation = orientation.normalized();
   sim.center = position + sim.orientation * sim.localCenter;
   sim.UpdateWorldInertia();
+  sim.keptAngularVelocity.setConstant(std::numeric_limits<double>::quiet_NaN());
   WakeBody(*m_data, i);
   return std::monostate{};
 }

@@ -3,11 +3,12 @@
 //
 //   0. UpdateBroadPhase     bounding spheres in (the only stage that may
 //                           refuse, so it runs before anything changes)
-//   1. IntegrateVelocities  gravity, forces, torques (+ gyroscopic term)
+//   1. IntegrateVelocities  gravity, forces, torques (+ implicit gyroscopic term)
 //   2. FindContacts         candidate pairs, manifolds, persistent contacts
 //   3. PrepareContacts      warm-start matching, constraint rows
 //   4. SolveVelocities      sequential impulses (+ split-impulse positions)
-//   5. IntegratePositions   x += h v, q = exp(h w / 2) q
+//   5. IntegratePositions   x += h v, q = exp(h w / 2) q (or the schemes of
+//                           WorldSettings::rotation and ::translation)
 //   6. UpdateSleep          islands at rest fall asleep
 //
 // Each stage is timed into StepStatistics. Nothing in here decides physics;
@@ -100,7 +101,7 @@ Result<StepStatistics> World::Step(double dt) {
   CountBodies(d, stats);
   const double broadPhaseUpdate = clock.Lap();
 
-  stats.awakeBodies = IntegrateVelocities(d.sims, d.settings.gravity, d.settings.gyroscopic, dt);
+  stats.awakeBodies = IntegrateVelocities(d.sims, d.settings.gravity, d.settings.rotation, dt);
   stats.seconds.integrateVelocities = clock.Lap();
 
   FindContacts(d, stats);
@@ -115,7 +116,8 @@ Result<StepStatistics> World::Step(double dt) {
   SolvePositions(d, stats);
   stats.seconds.solvePositions = clock.Lap();
 
-  IntegratePositions(d.sims, dt, d.settings.positionCorrection == PositionCorrection::SplitImpulses);
+  IntegratePositions(d.sims, dt, d.settings.positionCorrection == PositionCorrection::SplitImpulses,
+                     d.settings.rotation, d.settings.translation);
   CorrectPositions(d, stats);
   stats.seconds.integratePositions = clock.Lap();
 

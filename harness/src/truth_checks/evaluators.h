@@ -30,5 +30,15 @@ std::vector<MetricResult> EvaluateTorqueFree(const Run& run, const Truth& truth,
                                              const Trajectory& trajectory);
 std::vector<MetricResult> EvaluateFlipPeriod(const Run& run, const Truth& truth, const FlipPeriodTruth& kind,
                                              const Trajectory& trajectory);
+std::vector<MetricResult> EvaluateProjectile(const Run& run, const Truth& truth, const ProjectileTruth& kind,
+                                             const Trajectory& trajectory);
+std::vector<MetricResult> EvaluateEnergyDrift(const Run& run, const Truth& truth,
+                                              const EnergyDriftTruth& kind, const Trajectory& trajectory);
+std::vector<MetricResult> EvaluateAngularMomentumDrift(const Run& run, const Truth& truth,
+                                                       const AngularMomentumDriftTruth& kind,
+                                                       const Trajectory& trajectory);
+std::vector<MetricResult> EvaluateRotationalEnergyDrift(const Run& run, const Truth& truth,
+                                                        const RotationalEnergyDriftTruth& kind,
+                                                        const Trajectory& trajectory);
 
 }  // namespace talus::harness

@@ -148,7 +148,10 @@ WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine fric
   settings.frictionCombine = friction;
   settings.restitutionCombine = restitution;
   settings.sleeping = false;
-  settings.gyroscopic = run.scenario.world.gyroscopic;
+  // The scenario's gyroscopic term, in the engine's momentum-conserving
+  // form (free rigid body splitting); without it the write-up's constant rate.
+  settings.rotation = run.scenario.world.gyroscopic ? RotationIntegrator::MomentumSplitting
+                                                    : RotationIntegrator::ConstantRate;
   if (variant == Variant::WriteUp) {
     settings.narrowPhase.satMode = SatMode::Full;
     settings.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
@@ -311,7 +314,12 @@ void TalusBackend::AddSettings(const Run& run) {
        s.narrowPhase.reuseDistance > 0.0 ? Format(s.narrowPhase.reuseDistance) : "off"},
       {"manifolds", manifold},
       {"speculative margin (m)", Format(s.narrowPhase.speculativeMargin)},
-      {"gyroscopic term", std::string(OnOff(s.gyroscopic)) + " (WorldSettings::gyroscopic, implicit)"},
+      {"gyroscopic term", s.rotation == RotationIntegrator::ConstantRate
+                              ? "off (WorldSettings::rotation = ConstantRate)"
+                          : s.rotation == RotationIntegrator::MomentumSplitting
+                              ? "on (WorldSettings::rotation = MomentumSplitting: L kept, exact "
+                                "rotations about the principal axes)"
+                              : "on (WorldSettings::rotation = ImplicitGyroscopic)"},
       {"damping", "none"},
       {"sleeping", OnOff(s.sleeping)},
       {"hull shapes", "talus::BuildHull on the scenario points, in the body frame"},

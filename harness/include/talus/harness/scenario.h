@@ -10,6 +10,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -174,13 +175,49 @@ struct FlipPeriodTruth {
   Vec3 inertia = Vec3::Ones();
   Vec3 omega = Vec3::Zero();
 };
+/// Free flight on all three axes: the centre of mass follows
+/// x0 + v0 t + g t^2 / 2 (g the world's gravity vector); the metric is the
+/// largest distance from that parabola over the run (judged against the
+/// continuous answer, not an integrator's sequence).
+struct ProjectileTruth {
+  Vec3 x0 = Vec3::Zero();  ///< metres, centre of mass at t = 0
+  Vec3 v0 = Vec3::Zero();  ///< m/s
+};
+/// Total mechanical energy (translational and rotational kinetic energy plus
+/// the potential -m g.x) of `Truth::body`, or of every dynamic body when
+/// the truth names none, is conserved: the metric is the largest
+/// |E(t) - E(0)| / E0, with E0 the kinetic energy at the start (the total
+/// energy with the potential measured from the start positions).
+struct EnergyDriftTruth {};
+/// Which angular momentum drift a truth measures.
+enum class MomentumMetric {
+  Vector,     ///< max |L(t) - L(0)| / |L(0)|: direction and magnitude
+  Magnitude,  ///< max ||L(t)| - |L(0)|| / |L(0)|: magnitude only
+};
+/// A free body's angular momentum about its centre of mass (world frame,
+/// L = I_world w) is conserved; the metric is its relative drift.
+struct AngularMomentumDriftTruth {
+  MomentumMetric metric = MomentumMetric::Vector;
+};
+/// A free body's rotational kinetic energy w.I_world w / 2 is conserved:
+/// the metric is the largest |E(t) - E(0)| / E(0).
+struct RotationalEnergyDriftTruth {};
 /// No closed form: the truth is the same engine at timeStep / divisor.
 struct ConvergedReferenceTruth {
   int timeStepDivisor = 16;
 };
 using TruthKind = std::variant<FreeFallTruth, SlidingStopTruth, RestHeightTruth, BounceHeightsTruth,
                                ConvergedReferenceTruth, StackRestTruth, HullRestTruth, InclineSlideTruth,
-                               InclineTipTruth, TorqueFreeTruth, FlipPeriodTruth>;
+                               InclineTipTruth, TorqueFreeTruth, FlipPeriodTruth, ProjectileTruth,
+                               EnergyDriftTruth, AngularMomentumDriftTruth, RotationalEnergyDriftTruth>;
+
+/// A figure published for the same case (e.g. by the benchmark's authors),
+/// printed beside the measured one; never judged.
+struct PublishedFigure {
+  double value = 0.0;                                       ///< the figure, or the low end of a range
+  double upper = std::numeric_limits<double>::quiet_NaN();  ///< the high end of a range, NaN for one figure
+  std::string source;                                       ///< who measured it, how
+};
 
 /// A backend for which a truth is a known failure, with the physical reason
 /// (the file's "ungated" list): its metrics are still measured, judged and
@@ -205,6 +242,8 @@ struct Truth {
   /// Backends for which this truth is outside the gate, each with its
   /// reason (no repeats). Default none.
   std::vector<UngatedBackend> ungated{};
+  /// The published figure for this truth's metric, when there is one.
+  std::optional<PublishedFigure> published;
 };
 
 /// One scenario, fully resolved (sweeps already applied).

@@ -42,6 +42,11 @@ struct MetricResult {
   /// Why a judged metric is outside the gate for this backend (the file's
   /// reason); empty when it is gated or is a reported-only quantity.
   std::string ungated;
+  /// The truth's published figure (PublishedFigure), shown beside the
+  /// measured value; NaN value when the truth has none.
+  double publishedValue = std::numeric_limits<double>::quiet_NaN();
+  double publishedUpper = std::numeric_limits<double>::quiet_NaN();
+  std::string publishedSource;
 };
 
 /// A metric with its name and unit set and every number still unset.

@@ -15,8 +15,10 @@
 // same numbers the peers get), so the body frame is the scenario's frame
 // and the centre of mass sits at its centroid, with no re-centring;
 // sleeping off (the peers never sleep, and a sleeping body would hide
-// jitter); the gyroscopic term as the scenario says (WorldSettings::
-// gyroscopic, implicit; default on); combine
+// jitter); the gyroscopic term as the scenario says (on:
+// WorldSettings::rotation = MomentumSplitting, which keeps L; off:
+// ConstantRate); position update symplectic Euler (the engine's default);
+// combine
 // rules from the scenario (restitution "sqrt" has no engine rule and is
 // refused); iterations from the run (0 = the engine's default, 10).
 #pragma once

@@ -1,0 +1,185 @@
+// The free-body truth kinds (projectile, energy_drift,
+// angular_momentum_drift, rotational_energy_drift) on hand-made
+// trajectories of the gazebo_boxes scenario, whose exact motion is known:
+// the parabola, constant L and constant energy. Each test also shows the
+// truth failing on the error it exists to catch. Plus the loader's refusals.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "talus/harness/scenario_loader.h"
+#include "talus/harness/truth_check.h"
+
+namespace talus::harness {
+namespace {
+
+const Vec3 kInertia(0.8083333333333333, 0.6833333333333333, 0.14166666666666666);
+
+Run Gazebo() {
+  auto runs = LoadScenarioFile(std::string(TALUS_SCENARIO_DIR) + "/tumbling/gazebo_boxes.json");
+  EXPECT_TRUE(runs) << runs.GetError().message;
+  return runs.Value().at(0);  // h = 1 ms
+}
+
+// The exact motion at step n: on the parabola, spinning with the start's w
+// about fixed axes (L and energy constant), `shift` added to the position
+// and w scaled by `spin`.
+BodyState Exact(const Run& run, int n, const Vec3& shift = Vec3::Zero(), double spin = 1.0) {
+  const BodySpec& body = run.scenario.bodies[0];
+  const double t = n * run.timeStep;
+  BodyState state;
+  state.mass = 10.0;
+  state.centerOfMass =
+      body.position + body.linearVelocity * t + 0.5 * run.scenario.world.gravity * t * t + shift;
+  state.origin = state.centerOfMass;
+  state.linearVelocity = body.linearVelocity + run.scenario.world.gravity * t;
+  state.angularVelocity = spin * body.angularVelocity;
+  state.worldInertia = kInertia.asDiagonal();
+  return state;
+}
+
+Trajectory Track(const Run& run, const BodyState& last) {
+  Trajectory trajectory;
+  trajectory.timeStep = run.timeStep;
+  for (int n = 0; n < run.steps; n += 1000) {
+    trajectory.samples.push_back({.step = n, .time = n * run.timeStep, .bodies = {Exact(run, n)}});
+  }
+  trajectory.samples.push_back({.step = run.steps, .time = run.steps * run.timeStep, .bodies = {last}});
+  return trajectory;
+}
+
+const MetricResult& Metric(const std::vector<MetricResult>& metrics, const std::string& name) {
+  for (const MetricResult& m : metrics) {
+    if (m.name == name) return m;
+  }
+  ADD_FAILURE() << "no metric " << name;
+  return metrics.front();
+}
+
+std::vector<MetricResult> EvaluateAll(const Run& run, const Trajectory& trajectory) {
+  std::vector<MetricResult> all;
+  for (const Truth& truth : run.scenario.truths) {
+    for (MetricResult& m : EvaluateTruth(run, truth, trajectory)) all.push_back(m);
+  }
+  return all;
+}
+
+TEST(FreeBodyTruths, ExactMotionPassesEveryTruth) {
+  const Run run = Gazebo();
+  const auto metrics = EvaluateAll(run, Track(run, Exact(run, run.steps)));
+  ASSERT_EQ(metrics.size(), 3u);
+  for (const MetricResult& m : metrics) {
+    EXPECT_TRUE(m.pass) << m.name << " " << m.measured;
+    EXPECT_LT(m.measured, 1e-12) << m.name;
+  }
+}
+
+TEST(FreeBodyTruths, ProjectileSeesASidewaysDrift) {
+  // 1 cm sideways, inside the 4.9 cm vertical allowance but a real error.
+  const Run run = Gazebo();
+  const auto metrics = EvaluateAll(run, Track(run, Exact(run, run.steps, Vec3(0.0, 0.01, 0.0))));
+  EXPECT_NEAR(Metric(metrics, "projectile.position_error").measured, 0.01, 1e-12);
+  // and the symplectic-Euler lag g h t / 2 = 0.049 m passes, just
+  const auto lagged = EvaluateAll(run, Track(run, Exact(run, run.steps, Vec3(0.0, 0.0, -0.049))));
+  EXPECT_TRUE(Metric(lagged, "projectile.position_error").pass);
+  const auto beyond = EvaluateAll(run, Track(run, Exact(run, run.steps, Vec3(0.0, 0.0, -0.0491))));
+  EXPECT_FALSE(Metric(beyond, "projectile.position_error").pass);
+}
+
+TEST(FreeBodyTruths, EnergyDriftMeasuresTheLagOfSymplecticEuler) {
+  // Lower by g h t / 2 at the same speed: the energy lost is m g^2 h t / 2
+  // = 4.802 J over E0 = the start's kinetic energy.
+  const Run run = Gazebo();
+  const auto metrics = EvaluateAll(run, Track(run, Exact(run, run.steps, Vec3(0.0, 0.0, -0.049))));
+  const double e0 =
+      0.5 * 10.0 * 72.0 + 0.5 * Vec3(0.1, 5.0, 0.1).dot(kInertia.cwiseProduct(Vec3(0.1, 5.0, 0.1)));
+  EXPECT_NEAR(Metric(metrics, "energy_drift.relative").measured, 10.0 * 9.8 * 0.049 / e0, 1e-12);
+  EXPECT_FALSE(Metric(metrics, "energy_drift.relative").pass);
+  EXPECT_FALSE(Metric(metrics, "energy_drift.relative").checked);  // gate false in the file
+}
+
+TEST(FreeBodyTruths, AngularMomentumMagnitudeAndVectorDiffer) {
+  const Run run = Gazebo();
+  // 2% more spin: both metrics see 2%.
+  const auto faster = EvaluateAll(run, Track(run, Exact(run, run.steps, Vec3::Zero(), 1.02)));
+  EXPECT_NEAR(Metric(faster, "angular_momentum_drift.magnitude").measured, 0.02, 1e-12);
+  EXPECT_FALSE(Metric(faster, "angular_momentum_drift.magnitude").pass);
+  // L turned without changing its length: the magnitude metric sees nothing,
+  // the vector metric sees the turn.
+  Truth vector = run.scenario.truths[1];
+  vector.kind = AngularMomentumDriftTruth{MomentumMetric::Vector};
+  Truth magnitude = run.scenario.truths[1];
+  BodyState turned = Exact(run, run.steps);
+  const Vec3 l = kInertia.cwiseProduct(turned.angularVelocity);
+  const Vec3 l2 = Quat(Eigen::AngleAxisd(0.1, Vec3::UnitX())) * l;
+  turned.angularVelocity = l2.cwiseQuotient(kInertia);
+  const Trajectory trajectory = Track(run, turned);
+  EXPECT_LT(EvaluateTruth(run, magnitude, trajectory).at(0).measured, 1e-12);
+  EXPECT_NEAR(EvaluateTruth(run, vector, trajectory).at(0).measured, 2.0 * std::sin(0.05), 1e-9);
+}
+
+TEST(FreeBodyTruths, PublishedFiguresTravelWithTheMetrics) {
+  const Run run = Gazebo();
+  const auto metrics = EvaluateAll(run, Track(run, Exact(run, run.steps)));
+  const MetricResult& l = Metric(metrics, "angular_momentum_drift.magnitude");
+  EXPECT_EQ(l.publishedValue, 0.0125);
+  EXPECT_EQ(l.publishedUpper, 0.0131);
+  EXPECT_NE(l.publishedSource.find("Peters & Hsu 2014"), std::string::npos);
+  EXPECT_EQ(Metric(metrics, "projectile.position_error").publishedValue, 0.049);
+  auto fine = LoadScenarioFile(std::string(TALUS_SCENARIO_DIR) + "/tumbling/gazebo_boxes.json");
+  ASSERT_TRUE(fine);
+  EXPECT_EQ(fine.Value().at(1).timeStep, 1e-4);
+  EXPECT_EQ(fine.Value().at(1).scenario.truths[0].published->value, 0.0049);
+}
+
+TEST(FreeBodyTruths, RotationalEnergyDriftIsRelative) {
+  const Run run = Gazebo();
+  Truth truth = run.scenario.truths[1];
+  truth.kind = RotationalEnergyDriftTruth{};
+  truth.tolerance = {.absolute = 0.02};
+  const auto metrics = EvaluateTruth(run, truth, Track(run, Exact(run, run.steps, Vec3::Zero(), 1.01)));
+  EXPECT_NEAR(metrics.at(0).measured, 1.01 * 1.01 - 1.0, 1e-12);
+  EXPECT_TRUE(metrics.at(0).pass);
+}
+
+std::string Refusal(const std::string& truths, const std::string& extraBody = "") {
+  const std::string text =
+      R"({"name": "x", "world": {"gravity": [0, 0, -9.8], "timeStep": 0.01, "duration": {"steps": 10}},
+          "bodies": [{"name": "box", "shape": {"kind": "box", "halfExtents": [0.1, 0.2, 0.3]},
+                      "motion": "dynamic", "position": [0, 0, 1], "linearVelocity": [1, 0, 0],
+                      "angularVelocity": [0, 1, 0], "mass": 1})" +
+      extraBody + R"(], "truths": [)" + truths + "]}";
+  auto runs = ParseScenarioText(text, "t.json");
+  return runs ? std::string() : runs.GetError().message;
+}
+
+TEST(FreeBodyTruths, LoaderRefusesWhatTheTruthsCannotMean) {
+  const std::string reason = R"("tolerance": {"absolute": 0.01, "reason": "r"})";
+  EXPECT_EQ(
+      Refusal(R"({"kind": "projectile", "body": "box", "x0": [0, 0, 1], "v0": [1, 0, 0], )" + reason + "}"),
+      "");
+  EXPECT_NE(
+      Refusal(R"({"kind": "projectile", "body": "box", "x0": [0, 0, 2], "v0": [1, 0, 0], )" + reason + "}")
+          .find("/truths/0/x0: differs from the body's position"),
+      std::string::npos);
+  EXPECT_NE(
+      Refusal(
+          R"({"kind": "rotational_energy_drift", "body": "box", )" + reason + "}",
+          R"(, {"name": "floor", "shape": {"kind": "box", "halfExtents": [1, 1, 1]}, "motion": "static", "position": [0, 0, -5]})")
+          .find("body \"floor\" is static"),
+      std::string::npos);
+  // A tolerance without its reason, an empty reason, a range upside down.
+  EXPECT_NE(Refusal(R"({"kind": "energy_drift", "tolerance": {"absolute": 0.01}})").find("reason"),
+            std::string::npos);
+  EXPECT_NE(Refusal(R"({"kind": "energy_drift", "tolerance": {"absolute": 0.01, "reason": " "}})")
+                .find("/truths/0/tolerance/reason: is empty"),
+            std::string::npos);
+  EXPECT_NE(Refusal(R"({"kind": "angular_momentum_drift", "body": "box", "metric": "magnitude", )" + reason +
+                    R"(, "published": {"value": 0.02, "upper": 0.01, "source": "s"}})")
+                .find("/truths/0/published/upper"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace talus::harness
