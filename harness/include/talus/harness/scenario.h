@@ -217,9 +217,9 @@ struct Truth {
   bool gate = true;
   /// Why the tolerance is what it is (the physics or numerics it comes
   /// from); required by the schema for the drift, projectile kinds.
-  std::string reason;
+  std::string reason = {};
   /// The published figure for this truth's metric, when there is one.
-  std::optional<PublishedFigure> published;
+  std::optional<PublishedFigure> published = std::nullopt;
 };
 
 /// One scenario, fully resolved (sweeps already applied).
