@@ -243,7 +243,7 @@ struct Truth {
   /// reason (no repeats). Default none.
   std::vector<UngatedBackend> ungated{};
   /// The published figure for this truth's metric, when there is one.
-  std::optional<PublishedFigure> published;
+  std::optional<PublishedFigure> published = std::nullopt;
 };
 
 /// One scenario, fully resolved (sweeps already applied).
