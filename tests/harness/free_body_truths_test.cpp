@@ -70,8 +70,11 @@ const MetricResult& Metric(const std::vector<MetricResult>& metrics, const std::
 
 std::vector<MetricResult> EvaluateAll(const Run& run, const Trajectory& trajectory) {
   std::vector<MetricResult> all;
+  // As the runner does: judge, then apply the file's gate for the backend.
   for (const Truth& truth : run.scenario.truths) {
-    for (MetricResult& m : EvaluateTruth(run, truth, trajectory)) all.push_back(m);
+    std::vector<MetricResult> metrics = EvaluateTruth(run, truth, trajectory);
+    ApplyGate(truth, "talus", metrics);
+    for (MetricResult& m : metrics) all.push_back(m);
   }
   return all;
 }
