@@ -34,7 +34,7 @@ std::string Cause(const std::string& backend, const MetricResult& failed,
   const auto tuned = byBackend.find(tunedName);
   if (tuned == byBackend.end()) {
     if (tunedName.empty()) return "the engine's own behaviour, in its tuned configuration";
-    return Concat({"the engine's own behaviour in this configuration (no `", tunedName, "` run to compare)"});
+    return "the engine's own behaviour in this configuration (no `-tuned` counterpart ran)";
   }
   const MetricResult* other =
       tuned->second->error.empty() ? FindMetric(*tuned->second, failed.name) : nullptr;

@@ -73,10 +73,9 @@ TEST(PeerSection, SaysForEachDefaultsFailWhetherTheTunedConfigurationRemovesIt) 
             std::string::npos)
       << lines;
   // Without the tuned run the cause cannot be put on a setting.
-  EXPECT_NE(
-      FailCauseLines({"ode-step"}, {{"ode-step", &defaults}})
-          .find("the engine's own behaviour in this configuration (no `ode-step-tuned` run to compare)"),
-      std::string::npos);
+  EXPECT_NE(FailCauseLines({"ode-step"}, {{"ode-step", &defaults}})
+                .find("the engine's own behaviour in this configuration (no `-tuned` counterpart ran)"),
+            std::string::npos);
 }
 
 TEST(PeerSection, DeparturesTableListsOnlySettingsWithAnEngineDefault) {
