@@ -8,6 +8,7 @@
 // time, one line per backend and body; and the median time per step of
 // every backend per run, as bars.
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -108,6 +109,13 @@ std::string MarkdownToHtml(const std::string& markdown) {
   std::string line;
   bool inTable = false;
   bool headerRow = false;
+  // Heading ids as GitHub makes them: a repeated anchor gets -1, -2...
+  std::map<std::string, int> seen;
+  const auto id = [&](const std::string& heading) {
+    const std::string base = HeadingAnchor(heading);
+    const int repeat = seen[base]++;
+    return repeat == 0 ? base : Concat({base, "-", std::to_string(repeat)});
+  };
   while (std::getline(in, line)) {
     const bool tableLine = !line.empty() && line[0] == '|';
     if (inTable && !tableLine) {
@@ -139,11 +147,12 @@ std::string MarkdownToHtml(const std::string& markdown) {
       out << "</tr>\n";
       headerRow = false;
     } else if (line.rfind("### ", 0) == 0) {
-      out << "<h3 id=\"" << HeadingAnchor(line.substr(4)) << "\">" << Inline(line.substr(4)) << "</h3>\n";
+      out << "<h3 id=\"" << id(line.substr(4)) << "\">" << Inline(line.substr(4)) << "</h3>\n";
     } else if (line.rfind("## ", 0) == 0) {
       // The anchor a FAIL's link points to (the same as GitHub's).
-      out << "<h2 id=\"" << HeadingAnchor(line.substr(3)) << "\">" << Inline(line.substr(3)) << "</h2>\n";
+      out << "<h2 id=\"" << id(line.substr(3)) << "\">" << Inline(line.substr(3)) << "</h2>\n";
     } else if (line.rfind("# ", 0) == 0) {
+      id(line.substr(2));  // counted, as GitHub counts it
       out << "<h1>" << Inline(line.substr(2)) << "</h1>\n";
     } else if (!line.empty()) {
       out << "<p>" << Inline(line) << "</p>\n";
@@ -232,8 +241,11 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, s
   // The scorecard opens the page, its chart beside its table (drawn once the
   // charting library below is loaded).
   const Scorecard card = BuildScorecard(file, extras);
-  out << MarkdownToHtml(SummaryTitle(file) + ScorecardMarkdown(card)) << ScorecardChartHtml(card)
-      << MarkdownToHtml(SummaryRuns(file));
+  // One conversion, so repeated heading anchors are numbered over the whole
+  // page as RunAnchors numbers them; the chart goes in before the overview.
+  std::string tables = MarkdownToHtml(SummaryTitle(file) + ScorecardMarkdown(card) + SummaryRuns(file));
+  tables.insert(tables.find("<h2 id=\"overview\">"), ScorecardChartHtml(card));
+  out << tables;
   out << "<h2>Plots</h2>\n<div class=\"plots\" id=\"plots\"></div>\n";
   out << "<script type=\"application/json\" id=\"plot-data\">" << ScriptSafe(PlotData(file).dump())
       << "</script>\n";

@@ -103,8 +103,22 @@ std::string HeadingAnchor(std::string_view heading) {
   return anchor;
 }
 
+std::map<std::string, std::string> RunAnchors(const ResultsFile& file) {
+  // The headings summary.md has before the run sections.
+  std::map<std::string, int> seen = {{"talus-testbed-report", 1}, {"scorecard", 1}, {"overview", 1}};
+  std::map<std::string, std::string> anchors;
+  for (const auto& [runId, byBackend] : ByRun(file)) {
+    if (anchors.count(runId)) continue;
+    const std::string base = HeadingAnchor(runId);
+    const int repeat = seen[base]++;
+    anchors[runId] = repeat == 0 ? base : Concat({base, "-", std::to_string(repeat)});
+  }
+  return anchors;
+}
+
 Scorecard BuildScorecard(const ResultsFile& file, const ReportExtras& extras) {
   Scorecard card;
+  const std::map<std::string, std::string> anchors = RunAnchors(file);
   for (const std::string& b : file.backends) RowOf(card, b);
   for (const auto& [runId, byBackend] : ByRun(file)) {
     for (const auto& [backend, result] : byBackend) {
@@ -112,7 +126,7 @@ Scorecard BuildScorecard(const ResultsFile& file, const ReportExtras& extras) {
       ++row.runs;
       if (!result->error.empty()) {
         ++row.runsStopped;
-        row.failRuns.emplace_back(runId, -1);
+        row.failRuns.push_back({runId, anchors.at(runId), -1});
         continue;
       }
       int fails = 0;
@@ -131,7 +145,7 @@ Scorecard BuildScorecard(const ResultsFile& file, const ReportExtras& extras) {
       if (fails == 0) {
         ++row.runsPassing;
       } else {
-        row.failRuns.emplace_back(runId, fails);
+        row.failRuns.push_back({runId, anchors.at(runId), fails});
       }
     }
   }
@@ -184,10 +198,10 @@ std::string ScorecardMarkdown(const Scorecard& card) {
     }
     for (const std::string& cell : row.sceneCells) out << " " << cell << " |";
     std::string links;
-    for (const auto& [runId, fails] : row.failRuns) {
+    for (const FailedRun& run : row.failRuns) {
       links.append(links.empty() ? "" : ", ")
-          .append(Concat({"[", runId, "](#", HeadingAnchor(runId), ") (",
-                          fails < 0 ? std::string("stopped") : std::to_string(fails), ")"}));
+          .append(Concat({"[", run.runId, "](#", run.anchor, ") (",
+                          run.fails < 0 ? std::string("stopped") : std::to_string(run.fails), ")"}));
     }
     out << " " << (links.empty() ? std::string("-") : links) << " |\n";
   }

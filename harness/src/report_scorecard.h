@@ -24,6 +24,19 @@ namespace talus::harness {
 /// "boxmu03").
 std::string HeadingAnchor(std::string_view heading);
 
+/// Each run id's section anchor (its "## <run id>" heading), unique as
+/// GitHub makes them: a repeat of an earlier heading's anchor in document
+/// order (the title, "Scorecard" and "Overview" come first) gets "-1",
+/// "-2"... MarkdownToHtml numbers repeated ids the same way.
+std::map<std::string, std::string> RunAnchors(const ResultsFile& file);
+
+/// A run with a FAIL (or that stopped), linked from the scorecard.
+struct FailedRun {
+  std::string runId;
+  std::string anchor;  ///< RunAnchors' anchor of its section
+  int fails = 0;       ///< judged metrics outside their tolerance; -1: the run stopped
+};
+
 /// One engine and configuration.
 struct ScorecardRow {
   std::string backend;
@@ -33,9 +46,8 @@ struct ScorecardRow {
   int runsPassing = 0;   ///< not stopped, and every judged metric passed
   int runsStopped = 0;   ///< stopped with an error
   int settingFails = 0;  ///< judged FAILs that its "-tuned" configuration removes
-  /// Runs with at least one FAIL, in the results' order, with their count
-  /// (-1: the run stopped).
-  std::vector<std::pair<std::string, int>> failRuns;
+  /// Runs with at least one FAIL or that stopped, in the results' order.
+  std::vector<FailedRun> failRuns;
   int sweepWins = 0;    ///< sweep groups it is most accurate at equal cost in
   int sweepGroups = 0;  ///< sweep groups it is compared in (0: not in the sweep)
   /// Per Scorecard::scenes column: median ms/step, "skipped" or "-".

@@ -130,6 +130,7 @@ std::string OverviewTable(const ResultsFile& file, bool linkFails) {
   for (const std::string& b : file.backends) header.push_back(b);
   Header(out, header);
   std::map<std::string, std::vector<double>> medians;
+  const std::map<std::string, std::string> anchors = RunAnchors(file);
   for (const RunGroup& group : GroupByRun(file)) {
     // The checked metrics of the run, named by whichever backend has them.
     std::vector<const MetricResult*> metrics;
@@ -149,7 +150,7 @@ std::string OverviewTable(const ResultsFile& file, bool linkFails) {
       for (const std::string& b : file.backends) {
         const auto it = group.byBackend.find(b);
         row.push_back(Cell(it == group.byBackend.end() ? nullptr : it->second, m->name,
-                           linkFails ? HeadingAnchor(group.runId) : ""));
+                           linkFails ? anchors.at(group.runId) : ""));
       }
       Row(out, row);
     }

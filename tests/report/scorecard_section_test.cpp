@@ -163,6 +163,23 @@ TEST(ScorecardSection, HtmlLinksEveryFailToAnAnchorThatExists) {
   EXPECT_NE(html.find("\"fractions\":[0.75,0.5,0.75]"), std::string::npos) << html.substr(chart, 200);
 }
 
+TEST(ScorecardSection, RepeatedAnchorsAreNumberedAlikeInBothFiles) {
+  // "box[v0=1.5]" and "box[v0=15]" share the anchor "boxv015": the second
+  // section is "boxv015-1", as GitHub numbers it.
+  ResultsFile file;
+  file.backends = {"talus"};
+  file.results = {MakeRun("box[v0=1.5]", "talus", {Metric("a", 0.5)}),
+                  MakeRun("box[v0=15]", "talus", {Metric("a", 0.5)})};
+  const std::map<std::string, std::string> anchors = RunAnchors(file);
+  EXPECT_EQ(anchors.at("box[v0=1.5]"), "boxv015");
+  EXPECT_EQ(anchors.at("box[v0=15]"), "boxv015-1");
+  const std::string md = SummaryMarkdown(file);
+  EXPECT_NE(md.find("[box[v0=15]](#boxv015-1) (1)"), std::string::npos) << md;
+  EXPECT_NE(md.find("| box[v0=15] | a (m) | 1 | +0.5 [FAIL](#boxv015-1) |"), std::string::npos) << md;
+  const std::string html = ReportHtml(file, "/* chart */");
+  EXPECT_NE(html.find("<h2 id=\"boxv015-1\">box[v0=15]</h2>"), std::string::npos);
+}
+
 TEST(ScorecardSection, SweepAndScenesAddTheirColumns) {
   // The sweep: three scenarios, talus and bullet at equal cost (1 s each);
   // error scalars |error| / 0.01: g1 talus 0.1 vs 0.5 (talus wins), g2 0.9
