@@ -213,6 +213,28 @@ std::string BenchMarkdown(const std::vector<BenchReport>& reports) {
   return out.str();
 }
 
+std::vector<BenchHeadline> BenchHeadlines(const std::vector<BenchReport>& reports) {
+  std::vector<BenchHeadline> headlines;
+  for (const SceneRows& group : GroupByScene(reports)) {
+    // The scene's reference size (the goals' H = 15, L = 10) when it was
+    // run; else the largest (rows are sorted by parameter).
+    const BenchScene* known = FindBenchScene(group.scene);
+    int parameter = group.rows.back()->parameter;
+    for (const BenchReport* r : group.rows) {
+      if (known != nullptr && r->parameter == known->defaultParameter) parameter = r->parameter;
+    }
+    BenchHeadline headline;
+    headline.title = Concat(
+        {group.scene, " ", ParameterName(group.scene), " = ", std::to_string(parameter), " (ms/step)"});
+    for (const BenchReport* r : group.rows) {
+      if (r->parameter != parameter) continue;
+      headline.cellByEngine[r->engine] = r->skipped.empty() ? FormatNumber(r->msMedian, 4) : "skipped";
+    }
+    headlines.push_back(std::move(headline));
+  }
+  return headlines;
+}
+
 std::string BenchHtmlSection(const std::vector<BenchReport>& reports) {
   if (reports.empty()) return "";
   std::ostringstream out;

@@ -8,10 +8,12 @@
 // time, one line per backend and body; and the median time per step of
 // every backend per run, as bars.
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "report_html_replay.h"
+#include "report_scorecard.h"
 #include "talus/harness/atomic_file.h"
 #include "talus/harness/bench_summary.h"
 #include "talus/harness/report.h"
@@ -45,9 +47,30 @@ std::string Escape(std::string_view text) {
   return out;
 }
 
-// Markdown inline code `x` becomes <code>x</code> (after escaping).
+// Markdown links to an anchor of the page, [text](#anchor), become
+// <a href="#anchor">text</a>; other brackets stay as they are. The text
+// may hold brackets itself (run ids do): it ends at the first "](#".
+std::string Links(const std::string& text) {
+  std::string out;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const std::size_t middle = text[i] == '[' ? text.find("](#", i) : std::string::npos;
+    const std::size_t end = middle == std::string::npos ? std::string::npos : text.find(')', middle);
+    if (end == std::string::npos) {
+      out += text[i++];
+      continue;
+    }
+    out.append("<a href=\"").append(text, middle + 2, end - middle - 2).append("\">");
+    out.append(text, i + 1, middle - i - 1).append("</a>");
+    i = end + 1;
+  }
+  return out;
+}
+
+// Markdown inline code `x` becomes <code>x</code> (after escaping), and
+// links to anchors become links.
 std::string Inline(std::string_view text) {
-  std::string escaped = Escape(text);
+  std::string escaped = Links(Escape(text));
   std::string out;
   bool open = false;
   for (char c : escaped) {
@@ -86,6 +109,13 @@ std::string MarkdownToHtml(const std::string& markdown) {
   std::string line;
   bool inTable = false;
   bool headerRow = false;
+  // Heading ids as GitHub makes them: a repeated anchor gets -1, -2...
+  std::map<std::string, int> seen;
+  const auto id = [&](const std::string& heading) {
+    const std::string base = HeadingAnchor(heading);
+    const int repeat = seen[base]++;
+    return repeat == 0 ? base : Concat({base, "-", std::to_string(repeat)});
+  };
   while (std::getline(in, line)) {
     const bool tableLine = !line.empty() && line[0] == '|';
     if (inTable && !tableLine) {
@@ -102,9 +132,11 @@ std::string MarkdownToHtml(const std::string& markdown) {
       out << "<tr>";
       for (const std::string& cell : SplitRow(line)) {
         const char* tag = headerRow ? "th" : "td";
-        // "FAIL" and "FAIL (ungated)": a known failure stays red.
+        // "FAIL" and "FAIL (ungated)", linked or not: a known failure stays red.
         const bool fail = (cell.size() >= 4 && cell.compare(cell.size() - 4, 4, "FAIL") == 0) ||
-                          cell.find(" FAIL (ungated)") != std::string::npos;
+                          cell.find(" FAIL (ungated)") != std::string::npos ||
+                          cell.find("[FAIL](#") != std::string::npos ||
+                          cell.find("[FAIL (ungated)](#") != std::string::npos;
         const bool ok = cell.size() >= 3 && cell.compare(cell.size() - 3, 3, " ok") == 0;
         out << "<" << tag
             << (fail ? " class=\"fail\""
@@ -115,10 +147,12 @@ std::string MarkdownToHtml(const std::string& markdown) {
       out << "</tr>\n";
       headerRow = false;
     } else if (line.rfind("### ", 0) == 0) {
-      out << "<h3>" << Inline(line.substr(4)) << "</h3>\n";
+      out << "<h3 id=\"" << id(line.substr(4)) << "\">" << Inline(line.substr(4)) << "</h3>\n";
     } else if (line.rfind("## ", 0) == 0) {
-      out << "<h2>" << Inline(line.substr(3)) << "</h2>\n";
+      // The anchor a FAIL's link points to (the same as GitHub's).
+      out << "<h2 id=\"" << id(line.substr(3)) << "\">" << Inline(line.substr(3)) << "</h2>\n";
     } else if (line.rfind("# ", 0) == 0) {
+      id(line.substr(2));  // counted, as GitHub counts it
       out << "<h1>" << Inline(line.substr(2)) << "</h1>\n";
     } else if (!line.empty()) {
       out << "<p>" << Inline(line) << "</p>\n";
@@ -204,7 +238,14 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, s
   std::ostringstream out;
   out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       << "<title>Talus testbed report</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n";
-  out << MarkdownToHtml(SummaryMarkdown(file));
+  // The scorecard opens the page, its chart beside its table (drawn once the
+  // charting library below is loaded).
+  const Scorecard card = BuildScorecard(file, extras);
+  // One conversion, so repeated heading anchors are numbered over the whole
+  // page as RunAnchors numbers them; the chart goes in before the overview.
+  std::string tables = MarkdownToHtml(SummaryTitle(file) + ScorecardMarkdown(card) + SummaryRuns(file));
+  tables.insert(tables.find("<h2 id=\"overview\">"), ScorecardChartHtml(card));
+  out << tables;
   out << "<h2>Plots</h2>\n<div class=\"plots\" id=\"plots\"></div>\n";
   out << "<script type=\"application/json\" id=\"plot-data\">" << ScriptSafe(PlotData(file).dump())
       << "</script>\n";

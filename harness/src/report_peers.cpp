@@ -24,31 +24,6 @@ std::string TunedName(const std::string& backend) {
   return backend + std::string(kTunedSuffix);
 }
 
-std::string TunedVerdictLines(const std::vector<std::string>& backends,
-                              const std::map<std::string, const RunResult*>& byBackend) {
-  std::ostringstream out;
-  for (const std::string& name : backends) {
-    const auto own = byBackend.find(name);
-    const auto tuned = byBackend.find(TunedName(name));
-    if (own == byBackend.end() || tuned == byBackend.end() || !own->second->error.empty()) continue;
-    for (const MetricResult& m : own->second->metrics) {
-      if (!m.checked || m.pass) continue;
-      const MetricResult* other = nullptr;
-      for (const MetricResult& t : tuned->second->metrics) {
-        if (t.name == m.name) other = &t;
-      }
-      out << "- `" << name << "` FAILs " << m.name << " (" << FormatNumber(m.error, 3) << "): ";
-      if (!tuned->second->error.empty() || other == nullptr || !other->checked) {
-        out << "`" << tuned->first << "` did not measure it\n";
-      } else {
-        out << (other->pass ? "removed by `" : "not removed by `") << tuned->first << "` ("
-            << FormatNumber(other->error, 3) << ")\n";
-      }
-    }
-  }
-  return out.str();
-}
-
 std::string DeparturesTable(const std::vector<Setting>& settings) {
   std::ostringstream out;
   for (const Setting& s : settings) {

@@ -1,7 +1,8 @@
 // The report's view of the peers' two configurations (docs/testbed-backends.md):
 // which settings of each configuration depart from the engine's defaults,
-// with their measured effect, and, for each FAIL of a peer's defaults,
-// whether its tuned configuration ("<name>-tuned") removes it.
+// with their measured effect, and the name of a configuration's tuned
+// counterpart ("<name>-tuned"), which report_scorecard.h asks whether it
+// removes each FAIL of the defaults.
 #pragma once
 
 #include <map>
@@ -15,12 +16,6 @@ namespace talus::harness {
 /// The tuned counterpart of a backend name ("ode-step" -> "ode-step-tuned");
 /// "" for a name that is itself tuned.
 std::string TunedName(const std::string& backend);
-
-/// Markdown bullet lines, one per failed truth of a backend in `backends`
-/// whose tuned counterpart ran the same run: "removed by" or "not removed
-/// by" it, with the tuned error. Empty when no such FAIL.
-std::string TunedVerdictLines(const std::vector<std::string>& backends,
-                              const std::map<std::string, const RunResult*>& byBackend);
 
 /// A Markdown table of `settings` that carry an engine default: setting,
 /// value here, engine default, measured effect. Empty when none does.

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "report_peers.h"
+#include "report_scorecard.h"
 #include "talus/harness/bench_summary.h"
 #include "talus/harness/report.h"
 #include "talus/harness/sweep.h"
@@ -46,8 +47,9 @@ const MetricResult* FindMetric(const RunResult& r, const std::string& name) {
   return nullptr;
 }
 
-// "+0.0012 ok" / "+0.0012 FAIL" / "+0.0012" (no tolerance) / "error".
-std::string Cell(const RunResult* r, const std::string& metric) {
+// "+0.0012 ok" / "+0.0012 FAIL" / "+0.0012" (no tolerance) / "error"; with
+// an anchor, a FAIL links to it: "+0.0012 [FAIL](#anchor)".
+std::string Cell(const RunResult* r, const std::string& metric, const std::string& anchor = "") {
   if (r == nullptr) return "-";
   if (!r->error.empty()) return "error";
   const MetricResult* m = FindMetric(*r, metric);
@@ -55,8 +57,11 @@ std::string Cell(const RunResult* r, const std::string& metric) {
   std::string_view sign = std::isnan(m->measured) || m->error < 0.0 ? "" : "+";
   const std::string value = std::isnan(m->measured) ? std::string("not measured") : FormatNumber(m->error, 3);
   // A truth ungated for this backend is still judged and shown so.
-  if (!m->ungated.empty()) return Concat({sign, value, m->pass ? " ok (ungated)" : " FAIL (ungated)"});
-  std::string_view mark = !m->checked ? "" : m->pass ? " ok" : " FAIL";
+  const auto fail = [&](std::string_view word) {
+    return anchor.empty() ? Concat({" ", word}) : Concat({" [", word, "](#", anchor, ")"});
+  };
+  if (!m->ungated.empty()) return Concat({sign, value, m->pass ? " ok (ungated)" : fail("FAIL (ungated)")});
+  std::string mark = !m->checked ? "" : m->pass ? " ok" : fail("FAIL");
   return Concat({sign, value, mark});
 }
 
@@ -119,12 +124,13 @@ std::string CsvNumber(double value) {
 
 }  // namespace
 
-std::string OverviewTable(const ResultsFile& file) {
+std::string OverviewTable(const ResultsFile& file, bool linkFails) {
   std::ostringstream out;
   std::vector<std::string> header = {"run", "metric", "truth"};
   for (const std::string& b : file.backends) header.push_back(b);
   Header(out, header);
   std::map<std::string, std::vector<double>> medians;
+  const std::map<std::string, std::string> anchors = RunAnchors(file);
   for (const RunGroup& group : GroupByRun(file)) {
     // The checked metrics of the run, named by whichever backend has them.
     std::vector<const MetricResult*> metrics;
@@ -143,7 +149,8 @@ std::string OverviewTable(const ResultsFile& file) {
           Expected(*m)};
       for (const std::string& b : file.backends) {
         const auto it = group.byBackend.find(b);
-        row.push_back(Cell(it == group.byBackend.end() ? nullptr : it->second, m->name));
+        row.push_back(Cell(it == group.byBackend.end() ? nullptr : it->second, m->name,
+                           linkFails ? anchors.at(group.runId) : ""));
       }
       Row(out, row);
     }
@@ -162,7 +169,7 @@ std::string OverviewTable(const ResultsFile& file) {
   return out.str();
 }
 
-std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras) {
+std::string SummaryTitle(const ResultsFile& file) {
   std::ostringstream out;
   out << "# Talus testbed report\n\n";
   out << "Backends: " <<
@@ -174,7 +181,12 @@ std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras)
       << ". Errors are measured minus the truth (minus the integrator-exact answer where one exists); "
          "ok/FAIL compares them with the scenario file's tolerance"
       << (file.deterministic ? "; wall times are zeroed (deterministic mode)" : "") << ".\n\n";
-  out << "## Overview\n\n" << OverviewTable(file) << "\n";
+  return out.str();
+}
+
+std::string SummaryRuns(const ResultsFile& file) {
+  std::ostringstream out;
+  out << "## Overview\n\n" << OverviewTable(file, true) << "\n";
   for (const RunGroup& group : GroupByRun(file)) {
     out << "## " << group.runId << "\n\n";
     const RunResult& first = *group.byBackend.begin()->second;
@@ -240,8 +252,9 @@ std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras)
             << "\n";
       }
     }
-    const std::string tuned = TunedVerdictLines(file.backends, group.byBackend);
-    if (!tuned.empty()) out << "\nPeer FAILs and their tuned configuration:\n\n" << tuned;
+    // Each FAIL's cause: a setting when the "-tuned" configuration removes it.
+    const std::string causes = FailCauseLines(file.backends, group.byBackend);
+    if (!causes.empty()) out << "\nFAILs and their cause:\n\n" << causes;
     out << "\n";
   }
   out << "## Engine settings\n\nAs recorded by each backend for the first run it built. For a peer, the "
@@ -263,6 +276,12 @@ std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras)
     for (const Setting& s : it->settings) Row(out, {s.key, s.value});
     out << "\n";
   }
+  return out.str();
+}
+
+std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras) {
+  std::ostringstream out;
+  out << SummaryTitle(file) << ScorecardMarkdown(BuildScorecard(file, extras)) << SummaryRuns(file);
   if (extras.satCheck != nullptr) out << SatCheckMarkdown(*extras.satCheck);
   if (extras.sweep != nullptr) out << SweepMarkdown(AnalyseSweep(*extras.sweep, kSweepSingleSetting)) << "\n";
   if (extras.stress != nullptr) out << StressMarkdown(*extras.stress) << "\n";

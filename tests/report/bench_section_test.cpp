@@ -158,7 +158,7 @@ TEST(BenchSection, ReportHasTheSectionAndChartsOnlyWhenGiven) {
   EXPECT_EQ(ReportHtml(file, "").find("scenes-data"), std::string::npos);
   EXPECT_NE(SummaryMarkdown(file, {.scenes = &reports}).find("## Large scenes"), std::string::npos);
   const std::string html = ReportHtml(file, "", "", {.scenes = &reports});
-  EXPECT_NE(html.find("<h2>Large scenes</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<h2 id=\"large-scenes\">Large scenes</h2>"), std::string::npos);
   EXPECT_NE(html.find("id=\"scenes-data\""), std::string::npos);
   EXPECT_NE(html.find("id=\"scenes-plots\""), std::string::npos);
   EXPECT_TRUE(BenchHtmlSection({}).empty());

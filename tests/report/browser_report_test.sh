@@ -61,4 +61,5 @@ check "Quickhull trace meshes" '"hullTraceMeshes":[1-9]'
 check "the Quickhull view has drawn pixels" '"hullTraceLitPixels":[1-9]'
 check "a broad-phase funnel chart (talus)" '"funnelCharts":1'
 check "one scaling chart per large scene" '"scalingCharts":2'
+check "the scorecard's pass-fraction chart" '"scorecardCharts":1'
 exit $fail

@@ -1,11 +1,13 @@
 // The report's view of the peers' configurations (report_peers.h): the
-// departures table, the "removed by the tuned configuration" lines, and the
+// departures table, the "removed by the tuned configuration" cause lines
+// (report_scorecard.h FailCauseLines), and the
 // settings' two optional fields surviving results.json.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "report_peers.h"
+#include "report_scorecard.h"
 #include "talus/harness/report.h"
 #include "talus/harness/results_file.h"
 
@@ -54,20 +56,26 @@ TEST(PeerSection, SaysForEachDefaultsFailWhetherTheTunedConfigurationRemovesIt) 
                                                     Metric("sliding_stop.time", 0.0, true)});
   const std::map<std::string, const RunResult*> byBackend = {{"ode-step", &defaults},
                                                              {"ode-step-tuned", &tuned}};
-  const std::string lines = TunedVerdictLines({"ode-step", "ode-step-tuned"}, byBackend);
-  EXPECT_NE(
-      lines.find("- `ode-step` FAILs sliding_stop.distance (-0.192): removed by `ode-step-tuned` (2.5e-11)"),
-      std::string::npos)
+  const std::string lines = FailCauseLines({"ode-step", "ode-step-tuned"}, byBackend);
+  EXPECT_NE(lines.find("- `ode-step` FAILs sliding_stop.distance (-0.192): a setting: removed by "
+                       "`ode-step-tuned` (2.5e-11)"),
+            std::string::npos)
       << lines;
-  EXPECT_NE(
-      lines.find("- `ode-step` FAILs sliding_stop.lateral (0.145): not removed by `ode-step-tuned` (0.02)"),
-      std::string::npos)
+  EXPECT_NE(lines.find("- `ode-step` FAILs sliding_stop.lateral (0.145): the engine's own behaviour: not "
+                       "removed by `ode-step-tuned` (0.02)"),
+            std::string::npos)
       << lines;
-  // Passing metrics and the tuned backend's own FAILs get no line.
+  // Passing metrics get no line; the tuned configuration's own FAIL is the
+  // engine's behaviour.
   EXPECT_EQ(lines.find("sliding_stop.time"), std::string::npos) << lines;
-  EXPECT_EQ(lines.find("`ode-step-tuned` FAILs"), std::string::npos) << lines;
-  // Without the tuned run there is nothing to say.
-  EXPECT_EQ(TunedVerdictLines({"ode-step"}, {{"ode-step", &defaults}}), "");
+  EXPECT_NE(lines.find("- `ode-step-tuned` FAILs sliding_stop.lateral (0.02): the engine's own behaviour, in "
+                       "its tuned configuration"),
+            std::string::npos)
+      << lines;
+  // Without the tuned run the cause cannot be put on a setting.
+  EXPECT_NE(FailCauseLines({"ode-step"}, {{"ode-step", &defaults}})
+                .find("the engine's own behaviour in this configuration (no `-tuned` counterpart ran)"),
+            std::string::npos);
 }
 
 TEST(PeerSection, DeparturesTableListsOnlySettingsWithAnEngineDefault) {
@@ -87,7 +95,7 @@ TEST(PeerSection, SummaryShowsBothAndResultsJsonKeepsTheFields) {
   file.results = {Result("ode-step", {Metric("sliding_stop.distance", -0.192, false)}),
                   Result("ode-step-tuned", {Metric("sliding_stop.distance", 2.5e-11, true)})};
   const std::string md = SummaryMarkdown(file);
-  EXPECT_NE(md.find("Peer FAILs and their tuned configuration:"), std::string::npos) << md;
+  EXPECT_NE(md.find("FAILs and their cause:"), std::string::npos) << md;
   EXPECT_NE(md.find("removed by `ode-step-tuned`"), std::string::npos) << md;
   EXPECT_NE(md.find("Departures from the engine's defaults:"), std::string::npos) << md;
 

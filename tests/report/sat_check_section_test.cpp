@@ -90,7 +90,7 @@ TEST(SatCheckSection, HtmlHasTheTablesThreePlotsAndTheirData) {
   const ResultsFile file;
   EXPECT_EQ(ReportHtml(file, "").find("sat-check"), std::string::npos);
   const std::string html = ReportHtml(file, "", "", {.satCheck = &s});
-  EXPECT_EQ(Occurrences(html, "<h2>SAT validation</h2>"), 1u);
+  EXPECT_EQ(Occurrences(html, "<h2 id=\"sat-validation\">SAT validation</h2>"), 1u);
   EXPECT_NE(html.find("id=\"sat-check-plots\""), std::string::npos);
   EXPECT_NE(html.find("type: 'logarithmic'"), std::string::npos);
   const std::string open = "<script type=\"application/json\" id=\"sat-check-data\">";

@@ -2,7 +2,8 @@
 // writes what the report's scripts achieved into #report-status as JSON:
 // {"charts", "webgl", "replayViews", "replayMeshes", "replayLitPixels",
 //  "hullTraceMeshes", "hullTraceLitPixels", "funnelCharts", "scalingCharts",
-//  "errors"}; scalingCharts counts the charts drawn in the large-scenes section.
+//  "scorecardCharts", "errors"}; scalingCharts counts the charts drawn in the
+// large-scenes section, scorecardCharts the scorecard's pass-fraction chart.
 window.talusReport = {webgl: false, replayViews: 0, replayMeshes: 0, replayLitPixels: [],
                       hullTraceMeshes: 0, hullTraceLitPixels: 0, funnelCharts: 0, errors: []};
 window.addEventListener('error', e => { window.talusReport.errors.push(String(e.message)); });
@@ -11,6 +12,8 @@ window.addEventListener('load', () => {
   s.charts = typeof Chart === 'undefined' ? 0 : Object.keys(Chart.instances).length;
   s.scalingCharts = typeof Chart === 'undefined' ? 0 :
       Object.values(Chart.instances).filter(c => c.canvas.closest('#scenes-plots')).length;
+  s.scorecardCharts = typeof Chart === 'undefined' ? 0 :
+      Object.values(Chart.instances).filter(c => c.canvas.id === 'scorecard-chart').length;
   const node = document.getElementById('report-status');
   node.textContent = JSON.stringify(s);
   node.setAttribute('data-done', 'true');

@@ -8,6 +8,7 @@
 // stability figures no worse).
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,16 @@ inline constexpr double kBenchGoalRatio = 0.5;
 /// engine and the peer ran them. Deterministic for the same reports. Empty
 /// for no reports.
 std::string BenchMarkdown(const std::vector<BenchReport>& reports);
+
+/// The report scorecard's large-scene figures: one per scene (in the
+/// section's order) at its reference size (BenchScene::defaultParameter)
+/// when the reports hold it, else at their largest, with each engine's median
+/// ms/step there as the section's table prints it, or "skipped".
+struct BenchHeadline {
+  std::string title;                                ///< e.g. "pyramid H = 15 (ms/step)"
+  std::map<std::string, std::string> cellByEngine;  ///< engines that have a row there
+};
+std::vector<BenchHeadline> BenchHeadlines(const std::vector<BenchReport>& reports);
 
 /// The section as HTML for report.html: the Markdown's tables plus one
 /// log-log chart per scene (median ms/step against dynamic bodies, a line

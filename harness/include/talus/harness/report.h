@@ -51,12 +51,16 @@ struct ReportExtras {
 
 /// The overview table (Markdown): one row per checked truth metric and run,
 /// a column per backend with its error and ok/FAIL, and a last row of
-/// median times per step. What `run` and `report` print.
-std::string OverviewTable(const ResultsFile& file);
+/// median times per step. What `run` and `report` print; summary.md's
+/// copy has `linkFails` set, so each FAIL links to its run's section
+/// ("[FAIL](#anchor)", report_scorecard.h HeadingAnchor).
+std::string OverviewTable(const ResultsFile& file, bool linkFails = false);
 
-/// summary.md's text; each extra that is given appends its section (in
-/// the order SAT validation, run time against error, stability envelope,
-/// large scenes).
+/// summary.md's text: the scorecard first (one row per engine and
+/// configuration, with the sweep's and the large scenes' columns when
+/// those extras are given), then the overview table and the run sections;
+/// each extra that is given appends its section (in the order SAT
+/// validation, run time against error, stability envelope, large scenes).
 std::string SummaryMarkdown(const ResultsFile& file, const ReportExtras& extras = {});
 
 /// results.csv's text (RFC 4180 quoting, header row first).
