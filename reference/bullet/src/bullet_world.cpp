@@ -23,6 +23,7 @@
 #include <sstream>
 
 #include "talus/reference/body_mass.h"
+#include "talus/reference/setting_text.h"
 
 namespace talus::reference {
 namespace {
@@ -38,12 +39,6 @@ Vec3 FromBt(const btVector3& v) { return Vec3(v.x(), v.y(), v.z()); }
 btQuaternion ToBt(const Quat& q) { return btQuaternion(q.x(), q.y(), q.z(), q.w()); }
 Quat FromBt(const btQuaternion& q) { return Quat(q.w(), q.x(), q.y(), q.z()); }
 
-std::string Format(double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
-}
 
 // What the contact callback needs to know about a body.
 struct Material {
@@ -217,7 +212,7 @@ void BulletBackend::AddSettings(const Run& run) {
                     "single precision (pkg-config bullet, what most users link)", kBulletDoubleEffect},
       {"world", "btDiscreteDynamicsWorld, btDbvtBroadphase, btDefaultCollisionConfiguration"},
       {"solver", "btSequentialImpulseConstraintSolver"},
-      {"time step (s)", Format(run.timeStep)},
+      {"time step (s)", SettingNumber(run.timeStep)},
       {"stepping", "stepSimulation(h, 0): exactly one internal step of h per Step, no interpolation",
        "stepSimulation(dt, 1, 1/60): fixed 1/60 s substeps, interpolated motion states",
        "needed to pose the run's time step: every engine takes one step of h per Step"},
@@ -226,13 +221,13 @@ void BulletBackend::AddSettings(const Run& run) {
        std::to_string(info.m_numIterations) + (run.iterations > 0 ? "" : " (engine default)")},
       {"solver mode flags",
        std::to_string(info.m_solverMode) + " (warm starting, SIMD; one friction direction)"},
-      {"warm starting factor", Format(info.m_warmstartingFactor)},
+      {"warm starting factor", SettingNumber(info.m_warmstartingFactor)},
       {"split impulse", std::to_string(info.m_splitImpulse) + " (on past a penetration of " +
-                            Format(-info.m_splitImpulsePenetrationThreshold) + " m)"},
-      {"erp2 (contact Baumgarte factor)", Format(info.m_erp2)},
-      {"linear slop (m)", Format(info.m_linearSlop)},
-      {"global cfm", Format(info.m_globalCfm)},
-      {"restitution velocity threshold (m/s)", Format(info.m_restitutionVelocityThreshold)},
+                            SettingNumber(-info.m_splitImpulsePenetrationThreshold) + " m)"},
+      {"erp2 (contact Baumgarte factor)", SettingNumber(info.m_erp2)},
+      {"linear slop (m)", SettingNumber(info.m_linearSlop)},
+      {"global cfm", SettingNumber(info.m_globalCfm)},
+      {"restitution velocity threshold (m/s)", SettingNumber(info.m_restitutionVelocityThreshold)},
       {"friction combine",
        std::string(m_host.combineName(run.scenario.world.frictionCombine)) +
            " (gContactAddedCallback, CF_CUSTOM_MATERIAL_CALLBACK)",
@@ -243,12 +238,12 @@ void BulletBackend::AddSettings(const Run& run) {
        "would not bounce"},
       tuned
           ? Setting{"collision margin (m)",
-                    Format(kBulletCollisionMargin) + " (boxes exact, hulls inflated by it, spheres: radius)",
+                    SettingNumber(kBulletCollisionMargin) + " (boxes exact, hulls inflated by it, spheres: radius)",
                     "0.04 (CONVEX_DISTANCE_MARGIN)", kBulletMarginEffect}
           : Setting{"collision margin (m)",
                     "0.04 (boxes exact with corners rounded by it, hulls inflated by "
                     "it, spheres: radius)"},
-      {"contact breaking threshold (m)", Format(gContactBreakingThreshold)},
+      {"contact breaking threshold (m)", SettingNumber(gContactBreakingThreshold)},
       run.scenario.world.gyroscopic
           ? Setting{"gyroscopic term", "on (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY)"}
           : Setting{"gyroscopic term", "off (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY cleared)",
@@ -258,7 +253,7 @@ void BulletBackend::AddSettings(const Run& run) {
       {"sleeping", "off (DISABLE_DEACTIVATION)", "on (a body still for 2 s below 0.8 m/s and 1 rad/s sleeps)",
        "needed to measure the engine: a sleeping body is frozen, which would hide the jitter and drift "
        "the rest and stacking truths measure (Talus and ODE do not sleep either)"},
-      {"max rotation per step (rad)", Format(0.25 * SIMD_PI) + " (Bullet clamps faster spins)"},
+      {"max rotation per step (rad)", SettingNumber(0.25 * SIMD_PI) + " (Bullet clamps faster spins)"},
       {"hull shapes", "btConvexHullShape with initializePolyhedralFeatures, centred on the centroid"},
       {"mass properties", "from talus::reference::ComputeBodyMass (exact), principal axes"},
   };

@@ -11,6 +11,7 @@
 // numbers) marks the world failed. A failed world stops stepping and
 // reports NaN states, which the runner's checks flag as a failed run.
 #include "talus/reference/mujoco_backend.h"
+#include "talus/reference/setting_text.h"
 
 #include <mujoco/mujoco.h>
 
@@ -29,12 +30,6 @@ namespace {
 using harness::BodySpec;
 using harness::Run;
 
-std::string Format(double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
-}
 
 const char* IntegratorName(int integrator) {
   switch (integrator) {
@@ -277,26 +272,26 @@ void MujocoBackend::AddSettings(const Run& run, const MjcfModel& mjcf) {
                                 "below that name their default)"
                               : "defaults: every engine option as a new MuJoCo user gets it"},
       {"model", "MJCF written in memory (mjVFS), one body with a free joint per dynamic body"},
-      {"time step (s)", Format(opt.timestep)},
+      {"time step (s)", SettingNumber(opt.timestep)},
       {"integrator", AgainstDefault(IntegratorName(opt.integrator), "Euler", opt.integrator == mjINT_EULER)},
       {"friction cone", AgainstDefault(opt.cone == mjCONE_ELLIPTIC ? "elliptic" : "pyramidal", "pyramidal",
                                        opt.cone == mjCONE_PYRAMIDAL)},
       {"solver", AgainstDefault(SolverName(opt.solver), "Newton", opt.solver == mjSOL_NEWTON)},
       {"solver iterations",
        std::to_string(opt.iterations) + (run.iterations > 0 ? " (the scenario's)" : " (MuJoCo default)")},
-      {"solver tolerance", Format(opt.tolerance)},
+      {"solver tolerance", SettingNumber(opt.tolerance)},
       {"noslip iterations",
        AgainstDefault(std::to_string(opt.noslip_iterations), "0 (off)", opt.noslip_iterations == 0)},
-      {"impratio", AgainstDefault(Format(opt.impratio), "1", opt.impratio == 1.0)},
+      {"impratio", AgainstDefault(SettingNumber(opt.impratio), "1", opt.impratio == 1.0)},
       {"multi-point convex collision (multiccd)",
        AgainstDefault((opt.enableflags & mjENBL_MULTICCD) != 0 ? "on" : "off", "off",
                       (opt.enableflags & mjENBL_MULTICCD) == 0)},
       {"constraint Jacobian", "auto (dense below 60 degrees of freedom, sparse above; MuJoCo default)"},
       {"contact softness",
        "solref 0.02 1, solimp 0.9 0.95 0.001 0.5 2, margin 0 (MuJoCo defaults); time constant used " +
-           Format(timeConstant) + " s (refsafe: at least 2 steps)"},
+           SettingNumber(timeConstant) + " s (refsafe: at least 2 steps)"},
       {"restitution", "no coefficient in MuJoCo: a contact of e > 0 gets solref (-1/t^2, -2 z(e)/t), t = " +
-                          Format(timeConstant) +
+                          SettingNumber(timeConstant) +
                           " s, z(e) = -ln e / sqrt(pi^2 + ln^2 e); e = 0 keeps the default solref"},
       {"friction", "condim 3 (sliding friction only; torsional and rolling off), one coefficient per geom"},
       {"friction combine", std::string(harness::CombineRuleName(run.scenario.world.frictionCombine)) +

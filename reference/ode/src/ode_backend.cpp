@@ -15,6 +15,7 @@
 // restitution (in `tuned`, the first friction direction along the slip),
 // then the world steps and the contact group is emptied.
 #include "talus/reference/ode_backend.h"
+#include "talus/reference/setting_text.h"
 
 #include <ode/ode.h>
 
@@ -37,12 +38,6 @@ using harness::BodySpec;
 using harness::Run;
 using harness::Setting;
 
-std::string Format(double value, int digits = 17) {
-  std::ostringstream out;
-  out.precision(digits);
-  out << value;
-  return out.str();
-}
 
 // ODE's error reporting. dError and dDebug (its internal assertions, such
 // as dxNormalize4's "zero length quaternion") must not return: ODE aborts
@@ -370,7 +365,7 @@ std::string OdeBackend::UnsafeState() const {
       finite = finite && std::isfinite(p[i]) && std::isfinite(v[i]) && std::isfinite(w[i]);
     if (!finite) return "body \"" + body->name + "\" has a non-finite state; not stepped (ODE would abort)";
     if (Vec3(p[0], p[1], p[2]).cwiseAbs().maxCoeff() > harness::kMaxLength) {
-      return "body \"" + body->name + "\" is beyond " + Format(harness::kMaxLength) +
+      return "body \"" + body->name + "\" is beyond " + SettingNumber(harness::kMaxLength) +
              " m from the origin; not stepped (ODE's collision arithmetic overflows there)";
     }
   }
@@ -437,19 +432,19 @@ void OdeBackend::AddSettings(const Run& run) {
       {"precision", "double (dDOUBLE, checked with dCheckConfiguration)"},
       {"stepper",
        quick ? "dWorldQuickStep (iterative SOR / projected Gauss-Seidel)" : "dWorldStep (Dantzig LCP)"},
-      {"time step (s)", Format(run.timeStep)},
+      {"time step (s)", SettingNumber(run.timeStep)},
       {"integrator", "semi-implicit (symplectic) Euler: v += h a, then x += h v"},
       {"solver iterations", quick ? std::to_string(dWorldGetQuickStepNumIterations(m_world)) +
                                         (run.iterations > 0 ? "" : " (engine default)")
                                   : std::string("n/a (direct LCP solve)")},
-      {"quickstep SOR w", Format(dWorldGetQuickStepW(m_world))},
+      {"quickstep SOR w", SettingNumber(dWorldGetQuickStepW(m_world))},
       {"random seed", "0 per world (quickstep's constraint order; the generator is swapped per world)"},
-      {"erp", Format(dWorldGetERP(m_world))},
-      {"cfm", Format(dWorldGetCFM(m_world))},
-      tuned && quick ? Setting{"contact surface layer (m)", Format(dWorldGetContactSurfaceLayer(m_world)),
+      {"erp", SettingNumber(dWorldGetERP(m_world))},
+      {"cfm", SettingNumber(dWorldGetCFM(m_world))},
+      tuned && quick ? Setting{"contact surface layer (m)", SettingNumber(dWorldGetContactSurfaceLayer(m_world)),
                                "0", kOdeSurfaceLayerEffect}
-                     : Setting{"contact surface layer (m)", Format(dWorldGetContactSurfaceLayer(m_world))},
-      {"contact max correcting velocity (m/s)", Format(dWorldGetContactMaxCorrectingVel(m_world))},
+                     : Setting{"contact surface layer (m)", SettingNumber(dWorldGetContactSurfaceLayer(m_world))},
+      {"contact max correcting velocity (m/s)", SettingNumber(dWorldGetContactMaxCorrectingVel(m_world))},
       {"max contacts per pair", std::to_string(kOdeMaxContactsPerPair)},
       {"friction model", "dContactApprox1: mu scales the normal force (a pyramid: two tangent rows)",
        "dContactApprox0: mu is a force bound in newtons",
@@ -458,13 +453,13 @@ void OdeBackend::AddSettings(const Run& run) {
       tuned ? Setting{"friction directions",
                       "dContactFDir1 along the slip (tangential relative velocity at the contact) when it "
                       "exceeds " +
-                          Format(kOdeSlipSpeedFloor, 3) + " m/s",
+                          SettingNumber(kOdeSlipSpeedFloor, 3) + " m/s",
                       "ODE's own tangent axes (dPlaneSpace of the normal: world x and z on a floor)",
                       kOdeFdir1Effect}
             : Setting{"friction directions", "ODE's own tangent axes (dPlaneSpace of the normal)"},
       {"friction combine", harness::CombineRuleName(run.scenario.world.frictionCombine)},
       {"restitution combine", harness::CombineRuleName(run.scenario.world.restitutionCombine)},
-      {"bounce velocity threshold (m/s)", Format(kOdeBounceVelocity),
+      {"bounce velocity threshold (m/s)", SettingNumber(kOdeBounceVelocity),
        "no bounce (dContactBounce is per contact and off unless asked)",
        "poses the scenario's restitution; 0.2 m/s, Bullet's default threshold, keeps resting bodies from "
        "bouncing on the g h they gain each step"},

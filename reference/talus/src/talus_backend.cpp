@@ -9,6 +9,7 @@
 // to the last bit. Contacts come from World::GetContactPoints (public API):
 // one point per manifold point, normal from B to A, depth > 0 when overlapping.
 #include "talus/reference/talus_backend.h"
+#include "talus/reference/setting_text.h"
 
 #include <cassert>
 #include <memory>
@@ -30,12 +31,6 @@ using harness::BodySpec;
 using harness::CombineRule;
 using harness::Run;
 
-std::string Format(double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
-}
 
 /// Which engine options a variant uses.
 enum class Variant { Defaults, WriteUp, SplitImpulses };
@@ -285,7 +280,7 @@ void TalusBackend::AddSettings(const Run& run) {
   m_settings = {
       {"engine", "Talus (double)"},
       {"variant", VariantName(m_variant)},
-      {"time step (s)", Format(run.timeStep)},
+      {"time step (s)", SettingNumber(run.timeStep)},
       {"stepping", "World::Step(h), one step per Step()"},
       {"integrator", "symplectic Euler (v += h a; x += h v)"},
       {"solver", "sequential impulses"},
@@ -296,24 +291,24 @@ void TalusBackend::AddSettings(const Run& run) {
       {"extra velocity sweeps for new contacts", s.maxVelocityIterations > s.velocityIterations
                                                      ? "up to " + std::to_string(s.maxVelocityIterations) +
                                                            " sweeps, until changes < " +
-                                                           Format(s.velocityTolerance) + " m/s"
+                                                           SettingNumber(s.velocityTolerance) + " m/s"
                                                      : "none"},
       {"position correction", PositionCorrectionName(s.positionCorrection)},
       {"position iterations", s.positionCorrection == PositionCorrection::Baumgarte
                                   ? "unused"
                                   : std::to_string(s.positionIterations)},
-      {"baumgarte factor", Format(s.baumgarte)},
-      {"slop (m)", Format(s.slop)},
-      {"restitution threshold (m/s)", Format(s.restitutionThreshold)},
+      {"baumgarte factor", SettingNumber(s.baumgarte)},
+      {"slop (m)", SettingNumber(s.slop)},
+      {"restitution threshold (m/s)", SettingNumber(s.restitutionThreshold)},
       {"friction combine", harness::CombineRuleName(run.scenario.world.frictionCombine)},
       {"restitution combine", harness::CombineRuleName(run.scenario.world.restitutionCombine)},
       {"broad phase", broadPhase},
       {"SAT", sat},
       {"SAT cache", OnOff(s.narrowPhase.useSatCache)},
       {"manifold reuse (m of relative motion)",
-       s.narrowPhase.reuseDistance > 0.0 ? Format(s.narrowPhase.reuseDistance) : "off"},
+       s.narrowPhase.reuseDistance > 0.0 ? SettingNumber(s.narrowPhase.reuseDistance) : "off"},
       {"manifolds", manifold},
-      {"speculative margin (m)", Format(s.narrowPhase.speculativeMargin)},
+      {"speculative margin (m)", SettingNumber(s.narrowPhase.speculativeMargin)},
       {"gyroscopic term", s.rotation == RotationIntegrator::ConstantRate
                               ? "off (WorldSettings::rotation = ConstantRate)"
                           : s.rotation == RotationIntegrator::MomentumSplitting
