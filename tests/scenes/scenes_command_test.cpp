@@ -3,6 +3,7 @@
 // engine (which ran nothing and exited 0).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -19,12 +20,18 @@ struct Outcome {
 };
 
 Outcome Execute(const std::string& arguments) {
-  const auto log = std::filesystem::temp_directory_path() / "talus_scenes_command.log";
+  // One log per test and process: ctest runs these tests in parallel.
+  const auto log = std::filesystem::temp_directory_path() /
+                   (std::string("talus_scenes_command_") +
+                    ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+                    std::to_string(::getpid()) + ".log");
   const int status = std::system(
       (std::string(TALUS_SCENES_BINARY) + " " + arguments + " >" + log.string() + " 2>&1").c_str());
   std::ifstream in(log);
   std::ostringstream text;
   text << in.rdbuf();
+  in.close();
+  std::filesystem::remove(log);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
 }
 

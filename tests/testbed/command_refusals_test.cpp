@@ -3,6 +3,7 @@
 // run whose step failed while the others finish.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -21,12 +22,18 @@ struct Outcome {
 };
 
 Outcome Execute(const std::string& arguments) {
-  const fs::path log = fs::temp_directory_path() / "talus_command_refusals.log";
+  // One log per test and process: ctest runs these tests in parallel.
+  const fs::path log =
+      fs::temp_directory_path() / (std::string("talus_command_refusals_") +
+                                   ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+                                   std::to_string(::getpid()) + ".log");
   const int status = std::system(
       (std::string(TALUS_TESTBED_BINARY) + " " + arguments + " >" + log.string() + " 2>&1").c_str());
   std::ifstream in(log);
   std::ostringstream text;
   text << in.rdbuf();
+  in.close();
+  std::filesystem::remove(log);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
 }
 
