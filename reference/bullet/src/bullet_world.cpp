@@ -39,7 +39,6 @@ Vec3 FromBt(const btVector3& v) { return Vec3(v.x(), v.y(), v.z()); }
 btQuaternion ToBt(const Quat& q) { return btQuaternion(q.x(), q.y(), q.z(), q.w()); }
 Quat FromBt(const btQuaternion& q) { return Quat(q.w(), q.x(), q.y(), q.z()); }
 
-
 // What the contact callback needs to know about a body.
 struct Material {
   double friction = 0.0;
@@ -236,13 +235,13 @@ void BulletBackend::AddSettings(const Run& run) {
       {"restitution combine", m_host.combineName(run.scenario.world.restitutionCombine), "product e_a e_b",
        "needed to pose the scenario's rule (max by default): a sphere with e = 0.7 on a floor with e = 0 "
        "would not bounce"},
-      tuned
-          ? Setting{"collision margin (m)",
-                    SettingNumber(kBulletCollisionMargin) + " (boxes exact, hulls inflated by it, spheres: radius)",
-                    "0.04 (CONVEX_DISTANCE_MARGIN)", kBulletMarginEffect}
-          : Setting{"collision margin (m)",
-                    "0.04 (boxes exact with corners rounded by it, hulls inflated by "
-                    "it, spheres: radius)"},
+      tuned ? Setting{"collision margin (m)",
+                      SettingNumber(kBulletCollisionMargin) +
+                          " (boxes exact, hulls inflated by it, spheres: radius)",
+                      "0.04 (CONVEX_DISTANCE_MARGIN)", kBulletMarginEffect}
+            : Setting{"collision margin (m)",
+                      "0.04 (boxes exact with corners rounded by it, hulls inflated by "
+                      "it, spheres: radius)"},
       {"contact breaking threshold (m)", SettingNumber(gContactBreakingThreshold)},
       run.scenario.world.gyroscopic
           ? Setting{"gyroscopic term", "on (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY)"}

@@ -30,7 +30,6 @@ namespace {
 using harness::BodySpec;
 using harness::Run;
 
-
 const char* IntegratorName(int integrator) {
   switch (integrator) {
     case mjINT_EULER:

@@ -31,7 +31,6 @@ using harness::BodySpec;
 using harness::CombineRule;
 using harness::Run;
 
-
 /// Which engine options a variant uses.
 enum class Variant { Defaults, WriteUp, SplitImpulses };
 
