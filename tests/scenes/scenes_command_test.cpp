@@ -2,8 +2,6 @@
 // the program and was silently accepted) and an engine list naming no
 // engine (which ran nothing and exited 0).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -11,28 +9,15 @@
 #include <sstream>
 #include <string>
 
+#include "support/command_outcome.h"
+
 namespace {
 
 #ifdef TALUS_SCENES_BINARY
-struct Outcome {
-  int code = -1;
-  std::string output;
-};
+using Outcome = talus::testing_support::CommandOutcome;
 
 Outcome Execute(const std::string& arguments) {
-  // One log per test and process: ctest runs these tests in parallel.
-  const auto log = std::filesystem::temp_directory_path() /
-                   (std::string("talus_scenes_command_") +
-                    ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
-                    std::to_string(::getpid()) + ".log");
-  const int status = std::system(
-      (std::string(TALUS_SCENES_BINARY) + " " + arguments + " >" + log.string() + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::ostringstream text;
-  text << in.rdbuf();
-  in.close();
-  std::filesystem::remove(log);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+  return talus::testing_support::RunCommand(std::string(TALUS_SCENES_BINARY) + " " + arguments);
 }
 
 TEST(ScenesCommand, AParameterOfZeroIsRefused) {

@@ -2,8 +2,6 @@
 // that names the argument and the limit (issue 14), and `run` reports a
 // run whose step failed while the others finish.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -11,30 +9,17 @@
 #include <sstream>
 #include <string>
 
+#include "support/command_outcome.h"
+
 namespace {
 
 #ifdef TALUS_TESTBED_BINARY
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int code = -1;
-  std::string output;  // stdout and stderr together
-};
+using Outcome = talus::testing_support::CommandOutcome;
 
 Outcome Execute(const std::string& arguments) {
-  // One log per test and process: ctest runs these tests in parallel.
-  const fs::path log =
-      fs::temp_directory_path() / (std::string("talus_command_refusals_") +
-                                   ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
-                                   std::to_string(::getpid()) + ".log");
-  const int status = std::system(
-      (std::string(TALUS_TESTBED_BINARY) + " " + arguments + " >" + log.string() + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::ostringstream text;
-  text << in.rdbuf();
-  in.close();
-  std::filesystem::remove(log);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+  return talus::testing_support::RunCommand(std::string(TALUS_TESTBED_BINARY) + " " + arguments);
 }
 
 bool Has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
