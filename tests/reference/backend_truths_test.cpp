@@ -14,33 +14,14 @@
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/ode_backend.h"
 
+#include "peer_fixture.h"
+
 namespace talus::reference {
 namespace {
 
 using harness::Backend;
-using harness::BackendRegistry;
-
-const BackendRegistry& Registry() {
-  static const BackendRegistry registry = [] {
-    BackendRegistry r;
-    RegisterBulletBackends(r);
-    RegisterOdeBackends(r);
-    return r;
-  }();
-  return registry;
-}
-
-std::vector<harness::Run> LoadRuns(const std::string& file) {
-  auto runs = harness::LoadScenarioFile(std::string(TALUS_SCENARIO_DIR) + "/" + file);
-  EXPECT_TRUE(runs) << runs.GetError().message;
-  return runs ? runs.Value() : std::vector<harness::Run>{};
-}
-
-std::unique_ptr<Backend> Build(const std::string& name, const harness::Run& run) {
-  auto backend = Registry().Create(name, run);
-  EXPECT_TRUE(backend) << backend.GetError().message;
-  return backend ? std::move(backend).Value() : nullptr;
-}
+using test::Build;
+using test::LoadRuns;
 
 class BackendTruths : public ::testing::TestWithParam<std::string> {};
 
@@ -49,12 +30,12 @@ TEST(BackendRegistry, ListsThePeersAndRefusesUnknownNames) {
   // precision module where the build has it (not under the sanitizers).
   std::vector<std::string> expected = {"bullet"};
   if (BulletSinglePrecisionAvailable()) expected.insert(expected.end(), {"bullet-f32", "bullet-f32-tuned"});
-  expected.insert(expected.end(),
-                  {"bullet-tuned", "ode-quickstep", "ode-quickstep-tuned", "ode-step", "ode-step-tuned"});
-  EXPECT_EQ(Registry().Names(), expected);
+  expected.insert(expected.end(), {"bullet-tuned", "mujoco", "mujoco-tuned", "ode-quickstep",
+                                   "ode-quickstep-tuned", "ode-step", "ode-step-tuned"});
+  EXPECT_EQ(test::PeerRegistry().Names(), expected);
   const auto runs = LoadRuns("stacking/box_rest.json");
   ASSERT_FALSE(runs.empty());
-  auto backend = Registry().Create("havok", runs[0]);
+  auto backend = test::PeerRegistry().Create("havok", runs[0]);
   ASSERT_FALSE(backend);
   EXPECT_NE(backend.GetError().message.find("unknown backend \"havok\" (known: bullet, "), std::string::npos);
 }

@@ -19,26 +19,15 @@
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/ode_backend.h"
 
+#include "peer_fixture.h"
+
 namespace talus::reference {
 namespace {
 
 using harness::Backend;
+using test::Build;
 
-const harness::BackendRegistry& Registry() {
-  static const harness::BackendRegistry registry = [] {
-    harness::BackendRegistry r;
-    RegisterBulletBackends(r);
-    RegisterOdeBackends(r);
-    return r;
-  }();
-  return registry;
-}
-
-harness::Run HullRun() {
-  auto runs = harness::LoadScenarioFile(std::string(TALUS_SCENARIO_DIR) + "/stacking/hull_rest.json");
-  EXPECT_TRUE(runs) << runs.GetError().message;
-  return runs ? runs.Value()[0] : harness::Run{};
-}
+harness::Run HullRun() { return test::LoadRun("stacking/hull_rest.json"); }
 
 MassProperties HullMass(const harness::BodySpec& body) {
   const auto& points = std::get<harness::HullShape>(body.shape).points;
@@ -47,12 +36,6 @@ MassProperties HullMass(const harness::BodySpec& body) {
   auto mass = ComputeMassProperties(hull.Value(), body.density);
   EXPECT_TRUE(mass);
   return mass.Value();
-}
-
-std::unique_ptr<Backend> Build(const std::string& name, const harness::Run& run) {
-  auto backend = Registry().Create(name, run);
-  EXPECT_TRUE(backend) << backend.GetError().message;
-  return backend ? std::move(backend).Value() : nullptr;
 }
 
 class HullBodies : public ::testing::TestWithParam<std::string> {};

@@ -14,31 +14,14 @@
 #include "talus/reference/body_mass.h"
 #include "talus/reference/mujoco_backend.h"
 
+#include "peer_fixture.h"
+
 namespace talus::reference {
 namespace {
 
 using harness::Backend;
-
-const harness::BackendRegistry& Registry() {
-  static const harness::BackendRegistry registry = [] {
-    harness::BackendRegistry r;
-    RegisterMujocoBackends(r);
-    return r;
-  }();
-  return registry;
-}
-
-harness::Run LoadRun(const std::string& file) {
-  auto runs = harness::LoadScenarioFile(std::string(TALUS_SCENARIO_DIR) + "/" + file);
-  EXPECT_TRUE(runs) << runs.GetError().message;
-  return runs ? runs.Value()[0] : harness::Run{};
-}
-
-std::unique_ptr<Backend> Build(const std::string& name, const harness::Run& run) {
-  auto backend = Registry().Create(name, run);
-  EXPECT_TRUE(backend) << backend.GetError().message;
-  return backend ? std::move(backend).Value() : nullptr;
-}
+using test::Build;
+using test::LoadRun;
 
 std::string SettingValue(const Backend& backend, const std::string& key) {
   for (const harness::Setting& setting : backend.Settings()) {
@@ -278,14 +261,14 @@ TEST(MujocoBackend, AWarningMidRunFailsTheWorldInsteadOfResettingIt) {
 TEST(MujocoBackend, RefusesWhatMuJoCoCannotDoWithTheReason) {
   harness::Run run = LoadRun("tumbling/box_torque_free.json");
   run.scenario.world.gyroscopic = false;
-  auto noGyro = Registry().Create("mujoco", run);
+  auto noGyro = test::PeerRegistry().Create("mujoco", run);
   ASSERT_FALSE(noGyro);
   EXPECT_NE(noGyro.GetError().message.find("gyroscopic term off"), std::string::npos);
 
   harness::Run flat = LoadRun("stacking/hull_rest.json");
   auto& points = std::get<harness::HullShape>(flat.scenario.bodies[1].shape).points;
   for (Vec3& p : points) p.y() = 0.0;  // no volume
-  auto degenerate = Registry().Create("mujoco-tuned", flat);
+  auto degenerate = test::PeerRegistry().Create("mujoco-tuned", flat);
   ASSERT_FALSE(degenerate);
   EXPECT_EQ(degenerate.GetError().message.rfind("mujoco: ", 0), 0u) << degenerate.GetError().message;
 
@@ -293,7 +276,7 @@ TEST(MujocoBackend, RefusesWhatMuJoCoCannotDoWithTheReason) {
   harness::Run big;
   big.scenario = harness::MakePyramidScene(10).Value();
   big.timeStep = big.scenario.world.timeStep;
-  auto tooBig = Registry().Create("mujoco", big);
+  auto tooBig = test::PeerRegistry().Create("mujoco", big);
   ASSERT_FALSE(tooBig);
   EXPECT_NE(tooBig.GetError().message.find("MB of mjData (nconmax 6260"), std::string::npos)
       << tooBig.GetError().message;

@@ -15,33 +15,14 @@
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/ode_backend.h"
 
+#include "peer_fixture.h"
+
 namespace talus::reference {
 namespace {
 
 using harness::Backend;
-using harness::BackendRegistry;
-
-const BackendRegistry& Registry() {
-  static const BackendRegistry registry = [] {
-    BackendRegistry r;
-    RegisterBulletBackends(r);
-    RegisterOdeBackends(r);
-    return r;
-  }();
-  return registry;
-}
-
-std::vector<harness::Run> LoadRuns(const std::string& file) {
-  auto runs = harness::LoadScenarioFile(std::string(TALUS_SCENARIO_DIR) + "/" + file);
-  EXPECT_TRUE(runs) << runs.GetError().message;
-  return runs ? runs.Value() : std::vector<harness::Run>{};
-}
-
-std::unique_ptr<Backend> Build(const std::string& name, const harness::Run& run) {
-  auto backend = Registry().Create(name, run);
-  EXPECT_TRUE(backend) << name << ": " << backend.GetError().message;
-  return backend ? std::move(backend).Value() : nullptr;
-}
+using test::Build;
+using test::LoadRuns;
 
 // Where the box of a box_slide_directions run stopped: distance along the
 // launch direction and sideways, from its start.
@@ -123,7 +104,13 @@ TEST(OdeStep, StandsTheFiveBoxColumnAtOdesDefaultSurfaceLayer) {
   }
 }
 
-std::vector<std::string> AllPeerNames() { return Registry().Names(); }
+// Bullet's and ODE's configurations (MuJoCo's determinism is tested in
+// mujoco_backend_test.cpp).
+std::vector<std::string> AllPeerNames() {
+  std::vector<std::string> names = test::PeerRegistry().Names();
+  std::erase_if(names, [](const std::string& name) { return name.starts_with("mujoco"); });
+  return names;
+}
 
 TEST(PeerConfigurations, EveryConfigurationIsBitIdenticalRunToRun) {
   // The pyramid exercises contacts between many pairs, so the hash space's
@@ -194,7 +181,7 @@ TEST(BulletSingle, PassesABadHullErrorThroughTheModuleBoundary) {
   // Four coplanar points: no volume, so no mass properties.
   run.scenario.bodies[1].shape =
       harness::HullShape{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 0, 1), Vec3(1, 0, 1)}};
-  auto backend = Registry().Create("bullet-f32", run);
+  auto backend = test::PeerRegistry().Create("bullet-f32", run);
   ASSERT_FALSE(backend);
   EXPECT_EQ(backend.GetError().message.rfind("bullet-f32: ", 0), 0u) << backend.GetError().message;
 }
