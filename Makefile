@@ -58,9 +58,12 @@ test-release: build
 
 # The sanitizer tree is a debug-assert build (-O1, asserts on), so programmer
 # errors trip assertions as well as ASan/UBSan. Benchmarks are left out.
+# -g1 (line tables only) keeps file:line in every sanitizer stack trace and
+# compiles about 25% faster than -g (scenario_loader.cpp: 29 s against 39 s
+# of CPU), which is most of what keeps `make test` inside CI's budget.
 test-asan: deps
 	@$(CMAKE) -S . -B $(ASAN_DIR) -G $(GENERATOR) -DCMAKE_BUILD_TYPE=Debug \
-	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DTALUS_SANITIZE=ON -DTALUS_BUILD_BENCH=OFF >/dev/null
+	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DTALUS_SANITIZE=ON -DTALUS_BUILD_BENCH=OFF >/dev/null
 	@$(CMAKE) --build $(ASAN_DIR) -j $(JOBS)
 	cd $(ASAN_DIR) && ctest $(CTEST_FLAGS) -LE slow
 
