@@ -1,6 +1,7 @@
 # Talus top-level commands. `make test` is what CI runs (.ci/run).
 #
 #   make test      install deps, build, run every test (plain + ASan/UBSan)
+#   make test-tsan the threaded tests under ThreadSanitizer in build-tsan/
 #   make build     configure and build the release tree in build/
 #   make format    reformat the sources with clang-format
 #   make report    run the default scenarios through Talus, Bullet and ODE
@@ -19,6 +20,7 @@
 JOBS ?= $(shell nproc)
 BUILD_DIR ?= build
 ASAN_DIR ?= build-asan
+TSAN_DIR ?= build-tsan
 CMAKE ?= cmake
 GENERATOR ?= Ninja
 CTEST_FLAGS ?= --output-on-failure --no-tests=error -j $(JOBS)
@@ -41,7 +43,7 @@ FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 600
 FUZZ_TARGETS ?= hull_builder point_file
 
-.PHONY: deps configure build test test-release test-asan format format-check clean report report-full \
+.PHONY: deps configure build test test-release test-asan test-tsan format format-check clean report report-full \
   fuzz-build fuzz fuzz-ci
 
 deps:
@@ -63,6 +65,18 @@ test-asan: deps
 	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DTALUS_SANITIZE=ON -DTALUS_BUILD_BENCH=OFF >/dev/null
 	@$(CMAKE) --build $(ASAN_DIR) -j $(JOBS)
 	cd $(ASAN_DIR) && ctest $(CTEST_FLAGS) -LE slow
+
+# The ThreadSanitizer tree: Debug at -O1 (asserts on) with TSan, building
+# only what the threaded tests need (talus_threads_tests: the job pool, the
+# step at 1, 2, 3 and 8 threads, the runner at 1, 2 and 8 jobs) and running
+# only the tests labelled `threads`. TSAN_OPTIONS makes any report fail the
+# test (halt_on_error) rather than only print.
+test-tsan: deps
+	@$(CMAKE) -S . -B $(TSAN_DIR) -G $(GENERATOR) -DCMAKE_BUILD_TYPE=Debug \
+	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DTALUS_SANITIZE_THREAD=ON -DTALUS_BUILD_BENCH=OFF \
+	  -DTALUS_BUILD_TESTBED=OFF >/dev/null
+	@$(CMAKE) --build $(TSAN_DIR) -j $(JOBS) --target talus_threads_tests
+	cd $(TSAN_DIR) && TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" ctest $(CTEST_FLAGS) -L threads
 
 test: format-check test-release test-asan
 
@@ -88,7 +102,7 @@ format-check: deps
 	@clang-format --dry-run --Werror $(SOURCES)
 
 clean:
-	rm -rf $(BUILD_DIR) $(ASAN_DIR) $(FUZZ_DIR)
+	rm -rf $(BUILD_DIR) $(ASAN_DIR) $(TSAN_DIR) $(FUZZ_DIR)
 
 # The fuzz tree: clang with libFuzzer, ASan and UBSan over the engine and the
 # point reader, asserts on (Debug at -O1). TALUS_FUZZ_DEPS=1 adds clang and
