@@ -101,6 +101,7 @@ struct Fingerprint {
   std::int32_t candidatePairs = 0;
   std::int32_t awakeBodies = 0;
   std::int32_t sleepingBodies = 0;
+  int wakes = 0;  ///< times a sleeping body woke up
 };
 
 void AppendBits(std::vector<std::uint64_t>& bits, const double* values, int n) {
@@ -133,6 +134,7 @@ Fingerprint Simulate(SceneBuilder build, WorldSettings settings, int threads, in
   World world = std::move(created).Value();
   build(world);
   Fingerprint print;
+  std::vector<bool> awake;
   for (int n = 0; n < steps; ++n) {
     const auto stats = world.Step(kH);
     EXPECT_TRUE(stats) << stats.GetError().message;
@@ -149,6 +151,10 @@ Fingerprint Simulate(SceneBuilder build, WorldSettings settings, int threads, in
       AppendBits(print.bits, state.linearVelocity.data(), 3);
       AppendBits(print.bits, state.angularVelocity.data(), 3);
       print.bits.push_back(state.awake ? 1u : 0u);
+      const auto slot = static_cast<std::size_t>(id.index);
+      if (awake.size() <= slot) awake.resize(slot + 1, true);
+      if (state.awake && !awake[slot]) ++print.wakes;
+      awake[slot] = state.awake;
     }
     for (const ContactPointInfo& point : world.GetContactPoints()) {
       AppendBits(print.bits, point.position.data(), 3);
@@ -185,7 +191,7 @@ TEST(WorldThreads, PyramidIsBitIdenticalForAnyThreadCount) {
     AddGround(world);
     AddPyramid(world, 7);  // 140 cubes: two integration chunks, ~60 narrow-phase chunks
   };
-  const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, WorldSettings{}, 30);
+  const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, WorldSettings{}, 20);
   // The scene reaches the parallel paths: several chunks of each kind.
   EXPECT_GT(one.awakeBodies, 128);
   EXPECT_GT(one.manifolds, 4 * 8);
@@ -207,10 +213,11 @@ TEST(WorldThreads, RandomBoxesWithSleepingAreBitIdenticalForAnyThreadCount) {
   };
   WorldSettings settings;
   settings.timeToSleep = 0.2;  // islands fall asleep within the run and are woken by later arrivals
-  const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, settings, 60);
+  const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, settings, 100);
   EXPECT_GT(one.manifolds, 8 * 8);
   EXPECT_GT(one.awakeBodies, 128);
   EXPECT_GT(one.sleepingBodies, 0);
+  EXPECT_GT(one.wakes, 0);
 }
 
 TEST(WorldThreads, EverySolverVariantIsBitIdentical) {
