@@ -1,6 +1,8 @@
 # Talus top-level commands. `make test` is what CI runs (.ci/run).
 #
 #   make test      install deps, build, run every test (plain + ASan/UBSan)
+#   make test-tsan the engine's threaded tests under ThreadSanitizer in build-tsan/
+#   make test-tsan-full  the same plus the runner's jobs (needs the harness: long)
 #   make build     configure and build the release tree in build/
 #   make format    reformat the sources with clang-format
 #   make report    run the default scenarios through Talus, Bullet and ODE
@@ -19,6 +21,7 @@
 JOBS ?= $(shell nproc)
 BUILD_DIR ?= build
 ASAN_DIR ?= build-asan
+TSAN_DIR ?= build-tsan
 CMAKE ?= cmake
 GENERATOR ?= Ninja
 CTEST_FLAGS ?= --output-on-failure --no-tests=error -j $(JOBS)
@@ -41,7 +44,7 @@ FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 600
 FUZZ_TARGETS ?= hull_builder point_file
 
-.PHONY: deps configure build test test-release test-asan format format-check clean report report-full \
+.PHONY: deps configure build test test-release test-asan test-tsan test-tsan-full format format-check clean report report-full \
   fuzz-build fuzz fuzz-ci
 
 deps:
@@ -67,7 +70,30 @@ test-asan: deps
 	@$(CMAKE) --build $(ASAN_DIR) -j $(JOBS)
 	cd $(ASAN_DIR) && ctest $(CTEST_FLAGS) -LE slow
 
-test: format-check test-release test-asan
+# The ThreadSanitizer tree: Debug at -O1 (asserts on) with TSan. `test-tsan`
+# (part of `make test`) builds only the engine's threaded tests
+# (talus_threads_tests: the job pool, worlds stepped at 1, 2, 3 and 8
+# threads) and runs the tests labelled `threads`; `test-tsan-full` adds the
+# testbed's runner at 1, 2 and 8 jobs (talus_runner_threads_tests), which
+# needs the whole harness library and costs minutes CI does not have.
+# TSAN_OPTIONS makes any report fail the test (halt_on_error) rather than
+# only print.
+TSAN_CONFIGURE = $(CMAKE) -S . -B $(TSAN_DIR) -G $(GENERATOR) -DCMAKE_BUILD_TYPE=Debug \
+  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DTALUS_SANITIZE_THREAD=ON -DTALUS_BUILD_BENCH=OFF \
+  -DTALUS_BUILD_TESTBED=OFF >/dev/null
+TSAN_RUN = cd $(TSAN_DIR) && TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" ctest $(CTEST_FLAGS)
+
+test-tsan: deps
+	@$(TSAN_CONFIGURE)
+	@$(CMAKE) --build $(TSAN_DIR) -j $(JOBS) --target talus_threads_tests
+	$(TSAN_RUN) -L '^threads$$'
+
+test-tsan-full: deps
+	@$(TSAN_CONFIGURE)
+	@$(CMAKE) --build $(TSAN_DIR) -j $(JOBS) --target talus_threads_tests talus_runner_threads_tests
+	$(TSAN_RUN) -L '^(threads|runner_threads)$$'
+
+test: format-check test-release test-asan test-tsan
 
 # Every engine (talus and its variants; bullet, bullet-f32, ode-step,
 # ode-quickstep, each in its defaults and -tuned configuration) on the
@@ -91,7 +117,7 @@ format-check: deps
 	@clang-format --dry-run --Werror $(SOURCES)
 
 clean:
-	rm -rf $(BUILD_DIR) $(ASAN_DIR) $(FUZZ_DIR)
+	rm -rf $(BUILD_DIR) $(ASAN_DIR) $(TSAN_DIR) $(FUZZ_DIR)
 
 # The fuzz tree: clang with libFuzzer, ASan and UBSan over the engine and the
 # point reader, asserts on (Debug at -O1). TALUS_FUZZ_DEPS=1 adds clang and

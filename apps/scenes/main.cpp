@@ -5,6 +5,7 @@
 //
 //   talus-scenes --scene pyramid --param 15 --engines bullet,ode-quickstep
 //   talus-scenes --series --format jsonl      (every scene's scaling series)
+//   talus-scenes --scene pyramid --param 20 --engines talus --threads 2
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
@@ -19,6 +20,7 @@
 #include "talus/reference/mujoco_backend.h"
 #include "talus/reference/ode_backend.h"
 #include "talus/reference/talus_backend.h"
+#include "talus/world_settings.h"
 
 namespace {
 
@@ -31,6 +33,7 @@ struct Options {
   int steps = talus::harness::kBenchDefaultSteps;
   std::string format = "csv";
   bool series = false;
+  int threads = 1;  // WorldSettings::threads of the Talus backends
 };
 
 std::vector<std::string> SplitList(const std::string& text) {
@@ -51,12 +54,6 @@ struct Job {
 }  // namespace
 
 int main(int argc, char** argv) {
-  talus::harness::BackendRegistry registry;
-  talus::reference::RegisterTalusBackends(registry);
-  talus::reference::RegisterBulletBackends(registry);
-  talus::reference::RegisterOdeBackends(registry);
-  talus::reference::RegisterMujocoBackends(registry);
-
   Options options;
   CLI::App app{"talus-scenes: the reference benchmark scenes (pyramid, hull_pile) on every engine"};
   app.add_option("--scene", options.scene, "pyramid or hull_pile (with --series: only that scene's series)")
@@ -70,7 +67,16 @@ int main(int argc, char** argv) {
   app.add_flag("--series", options.series,
                "run the scaling series (pyramid H = 10, 15, 20, 30; hull_pile L = 10, 20, 40); progress on "
                "stderr");
+  app.add_option("--threads", options.threads,
+                 "threads of the Talus backends' worlds (WorldSettings::threads; peers are unchanged)")
+      ->check(CLI::Range(1, talus::kMaxThreads));
   CLI11_PARSE(app, argc, argv);
+
+  talus::harness::BackendRegistry registry;
+  talus::reference::RegisterTalusBackends(registry, {.threads = options.threads});
+  talus::reference::RegisterBulletBackends(registry);
+  talus::reference::RegisterOdeBackends(registry);
+  talus::reference::RegisterMujocoBackends(registry);
 
   if (!options.series && options.scene.empty()) {
     std::cerr << "talus-scenes: --scene is required unless --series is given\n";
@@ -126,6 +132,8 @@ int main(int argc, char** argv) {
         ++failures;
         continue;
       }
+      // The Talus worlds stepped on --threads threads; every peer on one.
+      if (engine.starts_with("talus")) report.Value().threads = options.threads;
       if (options.series && !report.Value().skipped.empty()) {
         std::cerr << label << ": skipped: " << report.Value().skipped << '\n';
       }

@@ -6,6 +6,7 @@
 
 #include "sweep_commands.h"
 #include "talus/harness/scenario_limits.h"
+#include "talus/world_settings.h"
 #include "testbed_commands.h"
 
 int main(int argc, char** argv) {
@@ -29,6 +30,11 @@ int main(int argc, char** argv) {
   runCommand->add_option("-o,--out", run.out, "output folder for results.json")->capture_default_str();
   runCommand->add_option("-j,--jobs", run.jobs, "threads (0 = every core)")
       ->check(CLI::Range(0, harness::kMaxJobs));
+  runCommand
+      ->add_option("--threads", run.threads,
+                   "threads inside each Talus world (WorldSettings::threads; results are bit-identical, "
+                   "only wall time changes)")
+      ->check(CLI::Range(1, talus::kMaxThreads));
   runCommand
       ->add_option("--budget", run.budget,
                    "wall-clock seconds per job; a job past it stops with the reason (0 = no budget)")

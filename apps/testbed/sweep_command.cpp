@@ -126,15 +126,17 @@ bool WriteText(const fs::path& path, const std::string& text) {
   return static_cast<bool>(written);
 }
 
+harness::BackendRegistry MakeAllBackends(int talusThreads) {
+  harness::BackendRegistry r;
+  reference::RegisterTalusBackends(r, {.threads = talusThreads});
+  reference::RegisterBulletBackends(r);
+  reference::RegisterOdeBackends(r);
+  reference::RegisterMujocoBackends(r);
+  return r;
+}
+
 const harness::BackendRegistry& AllBackends() {
-  static const harness::BackendRegistry registry = [] {
-    harness::BackendRegistry r;
-    reference::RegisterTalusBackends(r);
-    reference::RegisterBulletBackends(r);
-    reference::RegisterOdeBackends(r);
-    reference::RegisterMujocoBackends(r);
-    return r;
-  }();
+  static const harness::BackendRegistry registry = MakeAllBackends(1);
   return registry;
 }
 

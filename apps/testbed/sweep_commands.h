@@ -25,7 +25,10 @@ void AddStressCommand(CLI::App& app, CommandAction& chosen);
 /// "talus-testbed: PATH: cannot write" on stderr) when it fails.
 bool WriteText(const std::filesystem::path& path, const std::string& text);
 
-/// Every backend the testbed knows (Talus's variants, Bullet, ODE).
+/// Every backend the testbed knows (Talus's variants, Bullet, ODE), the
+/// Talus worlds on one thread.
 const harness::BackendRegistry& AllBackends();
+/// The same backends with the Talus worlds on `talusThreads` threads.
+harness::BackendRegistry MakeAllBackends(int talusThreads);
 
 }  // namespace talus::testbed

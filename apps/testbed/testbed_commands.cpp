@@ -40,7 +40,8 @@ std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
                                       const std::vector<std::string>& backends, int jobs, bool deterministic,
                                       bool quiet, const std::vector<double>& timeSteps = {},
                                       const std::vector<int>& iterations = {},
-                                      const std::vector<std::string>& replay = {}, double budget = 0.0) {
+                                      const std::vector<std::string>& replay = {}, double budget = 0.0,
+                                      int talusThreads = 1) {
   auto loaded = harness::LoadScenarios(ScenarioPaths(scenarios));
   if (!loaded) {
     std::cerr << "talus-testbed: " << loaded.GetError().message << "\n";
@@ -60,7 +61,10 @@ std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
   if (!quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   // Shown even with --quiet: a run that ran nowhere must not vanish unseen.
   options.notice = [](const std::string& line) { std::cout << "talus-testbed: " << line << "\n"; };
-  auto results = harness::RunAll(AllBackends(), runs.Value(), options);
+  // The shared registry unless the Talus worlds need another thread count.
+  const std::optional<harness::BackendRegistry> threaded =
+      talusThreads == 1 ? std::nullopt : std::optional(MakeAllBackends(talusThreads));
+  auto results = harness::RunAll(threaded ? *threaded : AllBackends(), runs.Value(), options);
   if (!results) {
     std::cerr << "talus-testbed: " << results.GetError().message << "\n";
     return std::nullopt;
@@ -98,8 +102,9 @@ std::vector<std::string> DefaultBackends() {
 
 int RunCommand(const RunOptions& options) {
   const std::vector<std::string> backends = options.backends.empty() ? DefaultBackends() : options.backends;
-  auto file = LoadAndRun(options.scenarios, backends, options.jobs, options.deterministic, options.quiet,
-                         options.timeSteps, options.iterations, options.replay, options.budget);
+  auto file =
+      LoadAndRun(options.scenarios, backends, options.jobs, options.deterministic, options.quiet,
+                 options.timeSteps, options.iterations, options.replay, options.budget, options.threads);
   if (!file) return kExitBadInput;
   std::error_code error;
   fs::create_directories(options.out, error);

@@ -25,6 +25,7 @@ struct RunOptions {
   std::vector<int> iterations;         ///< each run again per value, 0 = engine default (empty = the file's)
   std::string out = "reports/latest";  ///< folder for results.json
   int jobs = 0;                        ///< 0 = every core
+  int threads = 1;                     ///< WorldSettings::threads of the Talus backends
   bool deterministic = false;          ///< zero wall times
   bool quiet = false;                  ///< no progress lines
   std::vector<std::string> replay;     ///< runs to record for the 3D replay: ids, scenario names or "all"

@@ -190,7 +190,19 @@ struct WorldSettings {
   /// seconds, >= 0. Default 0.5: long enough that the top of a bounce
   /// (momentarily at rest) never sends a body to sleep.
   double timeToSleep = 0.5;
+  /// Threads that run a step, the calling thread included, [1,
+  /// kMaxThreads]. Default 1: no thread is started and the step runs on the
+  /// caller alone. With more, the broad phase's proxies, the narrow phase
+  /// (per pair) and the integration (per body) are spread over the threads.
+  /// The result is bit-identical for every thread count: work is cut into
+  /// chunks that depend on the item count only, each item writes its own
+  /// slot, and results are gathered in item order (docs/threading.md).
+  int threads = 1;
 };
+
+/// The most threads a World may use (WorldSettings::threads): far above the
+/// cores of any machine this runs on; larger values are taken for typos.
+inline constexpr int kMaxThreads = 256;
 
 /// Why `settings` is invalid (names the field and the range), or an empty
 /// string when it is valid.

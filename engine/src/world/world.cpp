@@ -7,9 +7,12 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
+#include <system_error>
 
 #include "dynamics/integrator.h"
+#include "jobs/job_pool.h"
 #include "world/world_data.h"
 
 namespace talus {
@@ -73,6 +76,17 @@ std::string CheckBodyDef(const BodyDef& def) {
 
 Status Refuse(std::string message) { return Error{std::move(message)}; }
 
+// A job pool of `threads` threads, or an Error when the system refuses to
+// start one (too many threads for the process); nothing is left running.
+Result<std::unique_ptr<JobPool>> StartThreads(int threads) {
+  try {
+    return std::make_unique<JobPool>(threads);
+  } catch (const std::system_error& error) {
+    return Error{"WorldSettings.threads = " + std::to_string(threads) +
+                 ": the system refused to start a thread (" + error.what() + ")"};
+  }
+}
+
 // Wakes a dynamic body and resets its rest timer, which wakes its island at
 // the next sleep pass.
 void WakeBody(WorldData& d, std::size_t i) {
@@ -114,6 +128,10 @@ std::string ValidateSettings(const WorldSettings& s) {
     return "WorldSettings.positionIterations = " + std::to_string(s.positionIterations) +
            " is outside [1, 1000]";
   }
+  if (s.threads < 1 || s.threads > kMaxThreads) {
+    return "WorldSettings.threads = " + std::to_string(s.threads) + " is outside [1, " +
+           std::to_string(kMaxThreads) + "]";
+  }
   if (!std::isfinite(s.narrowPhase.speculativeMargin) || s.narrowPhase.speculativeMargin < 0.0) {
     return "WorldSettings.narrowPhase.speculativeMargin = " +
            std::to_string(s.narrowPhase.speculativeMargin) + " m must be finite and >= 0";
@@ -145,6 +163,11 @@ World::~World() = default;
 Result<World> World::Create(const WorldSettings& settings) {
   if (std::string error = ValidateSettings(settings); !error.empty()) return Error{error};
   auto data = std::make_unique<WorldData>();
+  if (settings.threads != data->jobs->ThreadCount()) {
+    auto jobs = StartThreads(settings.threads);
+    if (!jobs) return jobs.GetError();
+    data->jobs = std::move(jobs).Value();
+  }
   data->settings = settings;
   return World(std::move(data));
 }
@@ -153,6 +176,13 @@ const WorldSettings& World::Settings() const { return m_data->settings; }
 
 Status World::SetSettings(const WorldSettings& settings) {
   if (std::string error = ValidateSettings(settings); !error.empty()) return Refuse(error);
+  // A new thread count starts its threads before anything changes, so a
+  // refusal leaves the world as it was.
+  if (settings.threads != m_data->jobs->ThreadCount()) {
+    auto jobs = StartThreads(settings.threads);
+    if (!jobs) return jobs.GetError();
+    m_data->jobs = std::move(jobs).Value();
+  }
   m_data->settings = settings;
   // Turning sleeping off wakes everything that sleeps.
   if (!settings.sleeping) {

@@ -13,12 +13,17 @@
 // slots). `satCaches` keeps, per tested pair, the SAT's last axis, sorted by
 // pair key like the contacts and carried over by the same merge walk.
 //
+// `jobs` runs the step's parallel loops (settings.threads threads, the
+// caller included; see jobs/job_pool.h). It sits behind a pointer so that a
+// World stays movable and a thread count can be swapped in whole.
+//
 // `contacts` holds this step's touching pairs sorted by pair key, with the
 // accumulated impulses the solver wrote back; the next step matches against
 // it for warm starting.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -29,6 +34,7 @@
 #include "dynamics/contact.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/sleep.h"
+#include "jobs/job_pool.h"
 #include "talus/body.h"
 #include "talus/shape.h"
 #include "talus/world_settings.h"
@@ -51,6 +57,26 @@ struct PairSatCache {
   SatCache cache;
 };
 
+/// What the narrow phase made of one broad-phase pair this step. Written by
+/// whichever thread ran the pair, read back in pair order, so the contacts
+/// come out in the same order whatever the thread count.
+struct PairOutcome {
+  enum class Kind : std::uint8_t {
+    Kept,    ///< nothing on either side disturbs the other: last step's contact and cache stand
+    Reused,  ///< manifold rebuilt from last step's anchors; last step's cache stands
+    Tested,  ///< the narrow phase ran; `cache` is its new SAT cache
+  };
+  Kind kind = Kind::Tested;
+  bool touching = false;         ///< Reused or Tested: `contact` is this step's contact
+  bool wakeA = false;            ///< touching, and body a sleeps while b disturbs it
+  bool wakeB = false;            ///< the same for body b
+  std::int32_t oldContact = -1;  ///< index of last step's contact of the pair, or -1
+  std::int32_t oldCache = -1;    ///< index of last step's SAT cache of the pair, or -1
+  NarrowPhaseStats stats;        ///< Tested: the narrow phase's counts for this pair
+  Contact contact;
+  PairSatCache cache;
+};
+
 struct WorldData {
   WorldSettings settings;
   std::vector<BodySim> sims;
@@ -70,6 +96,12 @@ struct WorldData {
   std::vector<Contact> previousContacts;  ///< last step's, for warm starting
   ContactSolver solver;
   SleepManager sleepManager;
+
+  /// The step's threads, settings.threads of them (no worker for 1).
+  std::unique_ptr<JobPool> jobs = std::make_unique<JobPool>(1);
+  /// The narrow phase's per-pair results of this step, in pair order
+  /// (world/world_collide.cpp); kept for their capacity.
+  std::vector<PairOutcome> pairOutcomes;
 };
 
 }  // namespace talus

@@ -93,7 +93,8 @@ Result<Shape> MakeShape(const BodySpec& spec) {
 
 class TalusBackend final : public harness::Backend {
  public:
-  static Result<std::unique_ptr<harness::Backend>> Create(const Run& run, Variant variant);
+  static Result<std::unique_ptr<harness::Backend>> Create(const Run& run, Variant variant,
+                                                          const TalusBackendOptions& options);
 
   [[nodiscard]] std::string Name() const override { return VariantName(m_variant); }
   void Step() override;
@@ -132,8 +133,9 @@ const char* PositionCorrectionName(PositionCorrection correction) {
 }
 
 WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine friction,
-                           RestitutionCombine restitution) {
+                           RestitutionCombine restitution, const TalusBackendOptions& options) {
   WorldSettings settings;
+  settings.threads = options.threads;
   settings.gravity = run.scenario.world.gravity;
   if (run.iterations > 0) {
     settings.velocityIterations = run.iterations;
@@ -163,13 +165,14 @@ WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine fric
   return settings;
 }
 
-Result<std::unique_ptr<harness::Backend>> TalusBackend::Create(const Run& run, Variant variant) {
+Result<std::unique_ptr<harness::Backend>> TalusBackend::Create(const Run& run, Variant variant,
+                                                               const TalusBackendOptions& options) {
   const std::string prefix = std::string(VariantName(variant)) + ": ";
   auto friction = ToFrictionCombine(run.scenario.world.frictionCombine);
   if (!friction) return Error{prefix + friction.GetError().message};
   auto restitution = ToRestitutionCombine(run.scenario.world.restitutionCombine);
   if (!restitution) return Error{prefix + restitution.GetError().message};
-  auto world = World::Create(MakeSettings(run, variant, friction.Value(), restitution.Value()));
+  auto world = World::Create(MakeSettings(run, variant, friction.Value(), restitution.Value(), options));
   if (!world) return Error{prefix + world.GetError().message};
 
   std::unique_ptr<TalusBackend> backend(new TalusBackend(std::move(world).Value(), variant));
@@ -316,6 +319,10 @@ void TalusBackend::AddSettings(const Run& run) {
                               : "on (WorldSettings::rotation = ImplicitGyroscopic)"},
       {"damping", "none"},
       {"sleeping", OnOff(s.sleeping)},
+      s.threads == 1 ? harness::Setting{"threads", "1"}
+                     : harness::Setting{"threads", std::to_string(s.threads), "1",
+                                        "the step's broad-phase proxies, narrow phase and integration "
+                                        "spread over the threads; results bit-identical, wall time only"},
       {"hull shapes", "talus::BuildHull on the scenario points, in the body frame"},
       {"mass properties",
        "from talus::reference::ComputeBodyMass (exact), body frame, centre of mass at the centroid"},
@@ -324,14 +331,17 @@ void TalusBackend::AddSettings(const Run& run) {
 
 }  // namespace
 
-void RegisterTalusBackends(harness::BackendRegistry& registry) {
-  registry.Register("talus", "Talus (double): engine defaults (pruned SAT, clipped manifolds, warm starting)",
-                    [](const Run& run) { return TalusBackend::Create(run, Variant::Defaults); });
-  registry.Register("talus-writeup",
-                    "Talus (double): the write-up's choices (full SAT, write-up manifolds, no warm starting)",
-                    [](const Run& run) { return TalusBackend::Create(run, Variant::WriteUp); });
-  registry.Register("talus-split", "Talus (double): engine defaults plus split impulses",
-                    [](const Run& run) { return TalusBackend::Create(run, Variant::SplitImpulses); });
+void RegisterTalusBackends(harness::BackendRegistry& registry, TalusBackendOptions options) {
+  registry.Register(
+      "talus", "Talus (double): engine defaults (pruned SAT, clipped manifolds, warm starting)",
+      [options](const Run& run) { return TalusBackend::Create(run, Variant::Defaults, options); });
+  registry.Register(
+      "talus-writeup",
+      "Talus (double): the write-up's choices (full SAT, write-up manifolds, no warm starting)",
+      [options](const Run& run) { return TalusBackend::Create(run, Variant::WriteUp, options); });
+  registry.Register(
+      "talus-split", "Talus (double): engine defaults plus split impulses",
+      [options](const Run& run) { return TalusBackend::Create(run, Variant::SplitImpulses, options); });
 }
 
 }  // namespace talus::reference

@@ -20,14 +20,24 @@
 // ConstantRate); position update symplectic Euler (the engine's default);
 // combine
 // rules from the scenario (restitution "sqrt" has no engine rule and is
-// refused); iterations from the run (0 = the engine's default, 10).
+// refused); iterations from the run (0 = the engine's default, 10); threads
+// from TalusBackendOptions (default 1).
 #pragma once
 
 #include "talus/harness/backend.h"
 
 namespace talus::reference {
 
-/// Registers "talus", "talus-writeup" and "talus-split".
-void RegisterTalusBackends(harness::BackendRegistry& registry);
+/// How the testbed runs the Talus backends, beyond what a scenario says.
+struct TalusBackendOptions {
+  /// WorldSettings::threads of every world, [1, kMaxThreads]. Default 1, the
+  /// engine's default. The results are bit-identical for any count, so this
+  /// changes only the wall time (and the "threads" setting recorded).
+  int threads = 1;
+};
+
+/// Registers "talus", "talus-writeup" and "talus-split". A thread count
+/// outside [1, kMaxThreads] is refused by every backend's Create, naming it.
+void RegisterTalusBackends(harness::BackendRegistry& registry, TalusBackendOptions options = {});
 
 }  // namespace talus::reference

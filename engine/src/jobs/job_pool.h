@@ -1,0 +1,97 @@
+// JobPool: the engine's threads. A fixed set of worker threads that run one
+// ParallelFor at a time, with the calling thread working alongside them.
+//
+// Determinism is the design constraint, not speed: World::Step must give the
+// same bits for any thread count. So the pool never decides *what* is
+// computed, only *who* computes it. ParallelFor(count, grain, fn) cuts
+// [0, count) into chunks of `grain` items (the last one shorter); the chunk
+// boundaries depend on count and grain alone, never on the thread count.
+// A caller that writes each item's result into its own slot, and reduces
+// per-chunk partial results in chunk order afterwards, gets the same answer
+// with 1 thread or 64. Threads claim the next chunk from one atomic counter
+// (dynamic assignment): on a machine shared with other work, a thread that
+// is descheduled simply claims fewer chunks, where a static split would
+// leave everyone waiting for it.
+//
+// With one thread no worker is started and ParallelFor runs the same chunks
+// in order on the caller: the single-threaded step pays no synchronisation.
+//
+// Alternatives rejected: oneTBB and OpenMP (both in Debian, both good) would
+// add a run-time dependency to an engine that promises Eigen and the
+// standard library only, and neither is needed for one loop shape; a
+// work-stealing deque pays for nested and unbalanced task graphs the step
+// does not have (every stage is a flat loop).
+//
+// Rules for `fn`: it must not throw (the call is noexcept; an exception
+// terminates, as it would in the serial step), it must not call ParallelFor
+// on the same pool (a nested call runs its chunks serially on the calling
+// thread, which is correct but not parallel), and chunks must not write
+// shared state except through their own slots.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace talus {
+
+/// Number of chunks ParallelFor cuts `count` items into at `grain` items
+/// per chunk (grain < 1 counts as 1). Chunk c is [c grain, min(count, (c+1) grain)).
+[[nodiscard]] int ChunkCount(int count, int grain);
+
+class JobPool {
+ public:
+  /// A pool that runs ParallelFor on `threads` threads, the caller included
+  /// (so threads - 1 workers are started; none for 1). `threads` must be
+  /// >= 1 (asserted; WorldSettings validation refuses others).
+  /// Starting a thread can fail (std::system_error); the constructor then
+  /// stops the workers already started and rethrows, leaving nothing behind.
+  explicit JobPool(int threads = 1);
+  ~JobPool();
+  JobPool(const JobPool&) = delete;
+  JobPool& operator=(const JobPool&) = delete;
+
+  /// Threads that run a ParallelFor, the caller included.
+  [[nodiscard]] int ThreadCount() const { return static_cast<int>(m_workers.size()) + 1; }
+
+  /// Calls fn(begin, end) once for every chunk of [0, count) (see
+  /// ChunkCount), on any of the pool's threads, and returns when all have
+  /// returned. Chunks may run in any order and at the same time. count <= 0
+  /// calls nothing.
+  void ParallelFor(int count, int grain, const std::function<void(int begin, int end)>& fn) noexcept;
+
+ private:
+  // One ParallelFor call, copied by each worker that joins it.
+  struct Job {
+    const std::function<void(int, int)>* fn = nullptr;
+    int count = 0;
+    int grain = 1;
+    int chunks = 0;
+  };
+
+  void WorkerLoop();
+  // Runs chunk `chunk` of `job`.
+  static void RunChunk(const Job& job, int chunk) noexcept;
+  // Claims and runs chunks of `job` until none is left.
+  void RunChunks(const Job& job) noexcept;
+
+  std::vector<std::thread> m_workers;
+
+  Job m_job;                                   // the current job, guarded by m_mutex
+  std::atomic<int> m_nextChunk{0};             // next chunk to claim
+  std::atomic<int> m_doneChunks{0};            // chunks that have returned
+  std::atomic<std::uint64_t> m_generation{0};  // bumped per job (written under m_mutex)
+
+  std::mutex m_mutex;
+  std::condition_variable m_wake;  // workers: a new job or stop
+  std::condition_variable m_done;  // caller: every chunk ran, or every worker left the job
+  int m_busyWorkers = 0;           // workers inside a job, guarded by m_mutex
+  bool m_running = false;          // a ParallelFor is in progress, guarded by m_mutex
+  bool m_stop = false;             // guarded by m_mutex
+};
+
+}  // namespace talus

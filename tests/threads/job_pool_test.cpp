@@ -1,0 +1,134 @@
+// JobPool (engine/src/jobs): every item visited exactly once, chunk
+// boundaries that depend on the count and grain alone, real parallelism,
+// nested calls, and many back-to-back jobs (the hand-off ThreadSanitizer
+// watches).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <set>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "jobs/job_pool.h"
+
+namespace talus {
+namespace {
+
+TEST(ChunkCount, CeilingOfCountOverGrain) {
+  EXPECT_EQ(ChunkCount(0, 4), 0);
+  EXPECT_EQ(ChunkCount(-3, 4), 0);
+  EXPECT_EQ(ChunkCount(1, 4), 1);
+  EXPECT_EQ(ChunkCount(8, 4), 2);
+  EXPECT_EQ(ChunkCount(9, 4), 3);
+  EXPECT_EQ(ChunkCount(5, 0), 5);  // a grain below 1 counts as 1
+}
+
+// The chunks a ParallelFor ran, sorted: they must be [c g, min(n, (c+1) g))
+// for every c, whatever the thread count.
+std::vector<std::pair<int, int>> ChunksRun(JobPool& pool, int count, int grain) {
+  std::mutex mutex;
+  std::vector<std::pair<int, int>> chunks;
+  std::vector<std::atomic<int>> visits(static_cast<std::size_t>(std::max(count, 0)));
+  pool.ParallelFor(count, grain, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) visits[static_cast<std::size_t>(i)].fetch_add(1);
+    const std::lock_guard lock(mutex);
+    chunks.emplace_back(begin, end);
+  });
+  for (int i = 0; i < count; ++i) EXPECT_EQ(visits[static_cast<std::size_t>(i)].load(), 1) << "item " << i;
+  std::sort(chunks.begin(), chunks.end());
+  return chunks;
+}
+
+TEST(JobPool, EveryItemOnceInChunksThatIgnoreTheThreadCount) {
+  for (const int threads : {1, 2, 3, 8}) {
+    JobPool pool(threads);
+    EXPECT_EQ(pool.ThreadCount(), threads);
+    for (const int count : {0, 1, 7, 64, 1001}) {
+      for (const int grain : {1, 3, 64}) {
+        const std::vector<std::pair<int, int>> chunks = ChunksRun(pool, count, grain);
+        ASSERT_EQ(static_cast<int>(chunks.size()), ChunkCount(count, grain));
+        for (std::size_t c = 0; c < chunks.size(); ++c) {
+          const int begin = static_cast<int>(c) * grain;
+          EXPECT_EQ(chunks[c].first, begin);
+          EXPECT_EQ(chunks[c].second, std::min(count, begin + grain));
+        }
+      }
+    }
+  }
+}
+
+TEST(JobPool, OneThreadRunsTheChunksInOrderOnTheCaller) {
+  JobPool pool(1);
+  std::vector<int> begins;
+  const std::thread::id caller = std::this_thread::get_id();
+  pool.ParallelFor(10, 3, [&](int begin, int) {
+    EXPECT_EQ(std::this_thread::get_id(), caller);
+    begins.push_back(begin);
+  });
+  EXPECT_EQ(begins, (std::vector<int>{0, 3, 6, 9}));
+}
+
+// The first chunk holds its thread until another chunk has started (or
+// 10 s have passed, far beyond any scheduling delay on a loaded machine),
+// so a pool that never hands work to a worker fails.
+TEST(JobPool, WorkersTakeChunks) {
+  JobPool pool(4);
+  std::mutex mutex;
+  std::set<std::thread::id> ids;
+  std::atomic<int> started{0};
+  pool.ParallelFor(16, 1, [&](int begin, int) {
+    started.fetch_add(1);
+    {
+      const std::lock_guard lock(mutex);
+      ids.insert(std::this_thread::get_id());
+    }
+    if (begin != 0) return;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (started.load() < 2 && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+  });
+  EXPECT_GE(ids.size(), 2u);
+}
+
+TEST(JobPool, NestedCallsRunOnTheCallingThread) {
+  JobPool pool(3);
+  std::vector<std::atomic<int>> visits(40 * 5);
+  pool.ParallelFor(40, 2, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      const std::thread::id outer = std::this_thread::get_id();
+      pool.ParallelFor(5, 1, [&](int b, int e) {
+        EXPECT_EQ(std::this_thread::get_id(), outer);
+        for (int j = b; j < e; ++j) visits[static_cast<std::size_t>(i * 5 + j)].fetch_add(1);
+      });
+    }
+  });
+  for (const std::atomic<int>& v : visits) EXPECT_EQ(v.load(), 1);
+}
+
+// Thousands of small jobs back to back: the hand-off between jobs (late
+// workers, counter resets) is where a race would show, here or under TSan.
+TEST(JobPool, ManyShortJobsSumExactly) {
+  JobPool pool(3);
+  std::vector<long long> slots(97);
+  long long expected = 0;
+  for (int job = 0; job < 2000; ++job) {
+    pool.ParallelFor(97, 5, [&slots, job](int begin, int end) {
+      for (int i = begin; i < end; ++i) slots[static_cast<std::size_t>(i)] += job + i;
+    });
+    expected += job;
+  }
+  for (int i = 0; i < 97; ++i) EXPECT_EQ(slots[static_cast<std::size_t>(i)], expected + 2000LL * i);
+}
+
+TEST(JobPool, PoolsStartAndStopWithoutWork) {
+  for (int i = 0; i < 20; ++i) {
+    JobPool pool(1 + i % 8);
+    EXPECT_EQ(pool.ThreadCount(), 1 + i % 8);
+  }
+}
+
+}  // namespace
+}  // namespace talus

@@ -1,0 +1,292 @@
+// WorldSettings::threads: the step gives the same bits for 1, 2, 3 and 8
+// threads on scenes that exercise every parallel stage (many narrow-phase
+// chunks of box and hull pairs, more than one integration chunk, sleeping
+// and waking), and a bad thread count is refused with its name.
+//
+// The oracle is the single-threaded step: the parallel stages must not
+// change a single bit of any body's state, of the contact points or of the
+// step counts. No tolerance: the claim is bit-identity, so any difference is
+// a bug (a race, or a result that depends on which thread ran which item).
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "talus/hull_builder.h"
+#include "talus/world.h"
+
+namespace talus {
+namespace {
+
+constexpr double kH = 1.0 / 60.0;
+
+Shape Box(const Vec3& half) { return Shape::CreateBox(half).Value(); }
+
+void AddGround(World& world) {
+  ASSERT_TRUE(
+      world.CreateBody({.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({60, 0.5, 60})}));
+}
+
+// A pyramid of `height` layers of unit cubes: layer i is (height - i)^2
+// cubes, offset by half a cube from the layer below.
+void AddPyramid(World& world, int height) {
+  for (int layer = 0; layer < height; ++layer) {
+    const int side = height - layer;
+    for (int j = 0; j < side; ++j) {
+      for (int k = 0; k < side; ++k) {
+        const Vec3 position(j - 0.5 * (side - 1), layer + 0.5, k - 0.5 * (side - 1));
+        ASSERT_TRUE(world.CreateBody({.type = BodyType::Dynamic,
+                                      .position = position,
+                                      .shape = Box(Vec3::Constant(0.5)),
+                                      .density = 1000.0}));
+      }
+    }
+  }
+}
+
+// A side x side x side lattice of random convex hulls (12 random points
+// each), slightly jittered and turned, dropped onto the ground.
+void AddHullPile(World& world, int side, std::uint64_t seed) {
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int i = 0; i < side * side * side; ++i) {
+    std::vector<Vec3> points;
+    for (int p = 0; p < 12; ++p)
+      points.emplace_back(0.4 * unit(random), 0.4 * unit(random), 0.4 * unit(random));
+    auto hull = BuildHull(points);
+    ASSERT_TRUE(hull) << hull.GetError().message;
+    const Vec3 position(1.1 * (i % side) + 0.05 * unit(random), 0.6 + 1.1 * (i / (side * side)),
+                        1.1 * ((i / side) % side) + 0.05 * unit(random));
+    const Quat orientation = Quat(1.0, unit(random), unit(random), unit(random)).normalized();
+    ASSERT_TRUE(world.CreateBody(
+        {.type = BodyType::Dynamic,
+         .position = position,
+         .orientation = orientation,
+         .shape = Shape::CreateHull(std::make_shared<const Hull>(std::move(hull).Value())).Value(),
+         .density = 500.0}));
+  }
+}
+
+// `count` boxes of random sizes at random poses and velocities in a 12 m
+// wide column: they fall, collide, pile up and (with sleeping on) fall
+// asleep and are woken by later arrivals.
+void AddRandomBoxes(World& world, int count, std::uint64_t seed) {
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < count; ++i) {
+    const Vec3 half(0.2 + 0.4 * unit(random), 0.2 + 0.4 * unit(random), 0.2 + 0.4 * unit(random));
+    const Vec3 position(12.0 * unit(random) - 6.0, 0.5 + 6.0 * unit(random), 12.0 * unit(random) - 6.0);
+    const Quat orientation =
+        Quat(1.0, unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5).normalized();
+    ASSERT_TRUE(world.CreateBody(
+        {.type = BodyType::Dynamic,
+         .position = position,
+         .orientation = orientation,
+         .linearVelocity = {2.0 * unit(random) - 1.0, -2.0 * unit(random), 2.0 * unit(random) - 1.0},
+         .angularVelocity = {unit(random), unit(random), unit(random)},
+         .shape = Box(half),
+         .density = 200.0 + 800.0 * unit(random)}));
+  }
+}
+
+// Every double of every body's state, the contact points and the step's
+// counts, as raw bits.
+struct Fingerprint {
+  std::vector<std::uint64_t> bits;
+  std::int32_t manifolds = 0;
+  std::int32_t candidatePairs = 0;
+  std::int32_t awakeBodies = 0;
+  std::int32_t sleepingBodies = 0;
+  int wakes = 0;  ///< times a sleeping body woke up
+};
+
+void AppendBits(std::vector<std::uint64_t>& bits, const double* values, int n) {
+  for (int i = 0; i < n; ++i) bits.push_back(std::bit_cast<std::uint64_t>(values[i]));
+}
+
+void AppendStats(std::vector<std::uint64_t>& bits, const StepStatistics& s) {
+  for (const std::int64_t count :
+       {std::int64_t{s.bodies}, std::int64_t{s.awakeBodies}, std::int64_t{s.sleepingBodies},
+        std::int64_t{s.candidatePairs}, std::int64_t{s.sleepingPairsSkipped}, std::int64_t{s.manifolds},
+        std::int64_t{s.manifoldsReused}, std::int64_t{s.reusedContactPoints}, std::int64_t{s.contactPoints},
+        std::int64_t{s.warmStartedPoints}, std::int64_t{s.islands}, std::int64_t{s.velocitySweeps},
+        static_cast<std::int64_t>(s.narrowPhase.pairsTested),
+        static_cast<std::int64_t>(s.narrowPhase.satTests),
+        static_cast<std::int64_t>(s.narrowPhase.satCacheHits),
+        static_cast<std::int64_t>(s.narrowPhase.edgeAxesTested),
+        static_cast<std::int64_t>(s.narrowPhase.contactPoints)}) {
+    bits.push_back(static_cast<std::uint64_t>(count));
+  }
+}
+
+using SceneBuilder = void (*)(World&);
+
+// Builds the scene with `settings` at `threads` threads, steps it `steps`
+// times and fingerprints every step.
+Fingerprint Simulate(SceneBuilder build, WorldSettings settings, int threads, int steps) {
+  settings.threads = threads;
+  auto created = World::Create(settings);
+  EXPECT_TRUE(created) << created.GetError().message;
+  World world = std::move(created).Value();
+  build(world);
+  Fingerprint print;
+  std::vector<bool> awake;
+  for (int n = 0; n < steps; ++n) {
+    const auto stats = world.Step(kH);
+    EXPECT_TRUE(stats) << stats.GetError().message;
+    if (!stats) return print;
+    AppendStats(print.bits, stats.Value());
+    print.manifolds = std::max(print.manifolds, stats.Value().manifolds);
+    print.candidatePairs = std::max(print.candidatePairs, stats.Value().candidatePairs);
+    print.awakeBodies = std::max(print.awakeBodies, stats.Value().awakeBodies);
+    print.sleepingBodies = std::max(print.sleepingBodies, stats.Value().sleepingBodies);
+    for (const BodyId id : world.BodyIds()) {
+      const BodyState state = world.GetBodyState(id).Value();
+      AppendBits(print.bits, state.position.data(), 3);
+      AppendBits(print.bits, state.orientation.coeffs().data(), 4);
+      AppendBits(print.bits, state.linearVelocity.data(), 3);
+      AppendBits(print.bits, state.angularVelocity.data(), 3);
+      print.bits.push_back(state.awake ? 1u : 0u);
+      const auto slot = static_cast<std::size_t>(id.index);
+      if (awake.size() <= slot) awake.resize(slot + 1, true);
+      if (state.awake && !awake[slot]) ++print.wakes;
+      awake[slot] = state.awake;
+    }
+    for (const ContactPointInfo& point : world.GetContactPoints()) {
+      AppendBits(print.bits, point.position.data(), 3);
+      AppendBits(print.bits, point.normal.data(), 3);
+      AppendBits(print.bits, &point.depth, 1);
+    }
+  }
+  return print;
+}
+
+// The scene at 2, 3 and 8 threads against 1 thread, bit for bit; returns
+// the 1-thread fingerprint.
+Fingerprint ExpectSameBitsForEveryThreadCount(SceneBuilder build, const WorldSettings& settings, int steps) {
+  const Fingerprint reference = Simulate(build, settings, 1, steps);
+  for (const int threads : {2, 3, 8}) {
+    const Fingerprint threaded = Simulate(build, settings, threads, steps);
+    EXPECT_EQ(threaded.bits.size(), reference.bits.size()) << threads << " threads";
+    if (threaded.bits.size() != reference.bits.size()) continue;
+    std::size_t firstDifference = reference.bits.size();
+    for (std::size_t i = 0; i < reference.bits.size(); ++i) {
+      if (threaded.bits[i] != reference.bits[i]) {
+        firstDifference = i;
+        break;
+      }
+    }
+    EXPECT_EQ(firstDifference, reference.bits.size())
+        << threads << " threads differ from 1 at word " << firstDifference;
+  }
+  return reference;
+}
+
+TEST(WorldThreads, PyramidIsBitIdenticalForAnyThreadCount) {
+  const auto build = [](World& world) {
+    AddGround(world);
+    AddPyramid(world, 7);  // 140 cubes: two integration chunks, ~60 narrow-phase chunks
+  };
+  const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, WorldSettings{}, 20);
+  // The scene reaches the parallel paths: several chunks of each kind.
+  EXPECT_GT(one.awakeBodies, 128);
+  EXPECT_GT(one.manifolds, 4 * 8);
+}
+
+TEST(WorldThreads, HullPileIsBitIdenticalForAnyThreadCount) {
+  const auto build = [](World& world) {
+    AddGround(world);
+    AddHullPile(world, 4, 7);  // 64 hulls falling into each other and the ground
+  };
+  const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, WorldSettings{}, 60);
+  EXPECT_GT(one.manifolds, 2 * 8);
+}
+
+TEST(WorldThreads, RandomBoxesWithSleepingAreBitIdenticalForAnyThreadCount) {
+  const auto build = [](World& world) {
+    AddGround(world);
+    AddRandomBoxes(world, 160, 11);
+  };
+  WorldSettings settings;
+  settings.timeToSleep = 0.2;  // islands fall asleep within the run and are woken by later arrivals
+  const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, settings, 100);
+  EXPECT_GT(one.manifolds, 8 * 8);
+  EXPECT_GT(one.awakeBodies, 128);
+  EXPECT_GT(one.sleepingBodies, 0);
+  EXPECT_GT(one.wakes, 0);
+}
+
+TEST(WorldThreads, EverySolverVariantIsBitIdentical) {
+  const auto build = [](World& world) {
+    AddGround(world);
+    AddRandomBoxes(world, 60, 5);
+  };
+  WorldSettings split;
+  split.positionCorrection = PositionCorrection::SplitImpulses;
+  split.rotation = RotationIntegrator::ImplicitGyroscopic;
+  ExpectSameBitsForEveryThreadCount(build, split, 40);
+  WorldSettings writeUp;
+  writeUp.narrowPhase.satMode = SatMode::Full;
+  writeUp.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
+  writeUp.narrowPhase.reuseDistance = 0.0;
+  writeUp.positionCorrection = PositionCorrection::NonlinearGaussSeidel;
+  writeUp.translation = TranslationIntegrator::ExactConstantAcceleration;
+  writeUp.broadPhase = BroadPhaseKind::AabbTree;
+  ExpectSameBitsForEveryThreadCount(build, writeUp, 40);
+}
+
+// Changing the thread count between steps changes nothing either.
+TEST(WorldThreads, ChangingTheThreadCountMidRunChangesNoBit) {
+  const auto build = [](World& world) {
+    AddGround(world);
+    AddRandomBoxes(world, 60, 3);
+  };
+  const auto run = [&](bool switchThreads) {
+    World world;
+    build(world);
+    std::vector<std::uint64_t> bits;
+    for (int n = 0; n < 40; ++n) {
+      if (switchThreads && n % 10 == 5) {
+        WorldSettings settings = world.Settings();
+        settings.threads = 1 + (n / 10) % 3 * 2;  // 1, 3, 5, 1
+        EXPECT_TRUE(world.SetSettings(settings));
+      }
+      EXPECT_TRUE(world.Step(kH));
+    }
+    for (const BodyId id : world.BodyIds()) {
+      const BodyState state = world.GetBodyState(id).Value();
+      AppendBits(bits, state.position.data(), 3);
+      AppendBits(bits, state.orientation.coeffs().data(), 4);
+      AppendBits(bits, state.linearVelocity.data(), 3);
+      AppendBits(bits, state.angularVelocity.data(), 3);
+    }
+    return bits;
+  };
+  EXPECT_EQ(run(true), run(false));
+}
+
+TEST(WorldThreads, BadThreadCountsAreRefusedByName) {
+  for (const int threads : {0, -1, kMaxThreads + 1}) {
+    WorldSettings settings;
+    settings.threads = threads;
+    const auto created = World::Create(settings);
+    ASSERT_FALSE(created);
+    EXPECT_EQ(created.GetError().message, "WorldSettings.threads = " + std::to_string(threads) +
+                                              " is outside [1, " + std::to_string(kMaxThreads) + "]");
+    // A refused change leaves the world's settings as they were.
+    World world;
+    EXPECT_FALSE(world.SetSettings(settings));
+    EXPECT_EQ(world.Settings().threads, 1);
+  }
+  WorldSettings most;
+  most.threads = 4;
+  EXPECT_TRUE(World::Create(most));
+  EXPECT_EQ(WorldSettings{}.threads, 1);
+}
+
+}  // namespace
+}  // namespace talus
