@@ -32,7 +32,7 @@ using harness::CombineRule;
 using harness::Run;
 
 /// Which engine options a variant uses.
-enum class Variant { Defaults, WriteUp, SplitImpulses };
+enum class Variant { Defaults, WriteUp, SplitImpulses, Sequential };
 
 const char* VariantName(Variant variant) {
   switch (variant) {
@@ -42,6 +42,8 @@ const char* VariantName(Variant variant) {
       return "talus-writeup";
     case Variant::SplitImpulses:
       return "talus-split";
+    case Variant::Sequential:
+      return "talus-sequential";
   }
   return "talus";
 }
@@ -157,6 +159,9 @@ WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine fric
     settings.blockSolver = false;
     settings.maxVelocityIterations = 1;
     settings.positionCorrection = PositionCorrection::Baumgarte;
+    settings.contactSolver = ContactSolverKind::SequentialImpulses;  // the write-up's scalar order
+  } else if (variant == Variant::Sequential) {
+    settings.contactSolver = ContactSolverKind::SequentialImpulses;
   } else if (variant == Variant::SplitImpulses) {
     settings.positionCorrection = PositionCorrection::SplitImpulses;
   }
@@ -282,7 +287,9 @@ void TalusBackend::AddSettings(const Run& run) {
       {"time step (s)", SettingNumber(run.timeStep)},
       {"stepping", "World::Step(h), one step per Step()"},
       {"integrator", "symplectic Euler (v += h a; x += h v)"},
-      {"solver", "sequential impulses"},
+      {"solver", s.contactSolver == ContactSolverKind::SequentialImpulses
+                     ? "sequential impulses (scalar, pair order)"
+                     : "sequential impulses, coloured, four pairs per SIMD bundle"},
       {"velocity iterations",
        std::to_string(s.velocityIterations) + (run.iterations > 0 ? "" : " (engine default)")},
       {"warm starting", OnOff(s.warmStarting)},
@@ -332,6 +339,10 @@ void RegisterTalusBackends(harness::BackendRegistry& registry) {
                     [](const Run& run) { return TalusBackend::Create(run, Variant::WriteUp); });
   registry.Register("talus-split", "Talus (double): engine defaults plus split impulses",
                     [](const Run& run) { return TalusBackend::Create(run, Variant::SplitImpulses); });
+  registry.Register("talus-sequential",
+                    "Talus (double): engine defaults with the reference scalar sequential impulses "
+                    "(pair order) instead of the coloured wide solver",
+                    [](const Run& run) { return TalusBackend::Create(run, Variant::Sequential); });
 }
 
 }  // namespace talus::reference

@@ -9,6 +9,10 @@
 //                    warm starting, Baumgarte stabilisation.
 //   "talus-split"    the defaults plus split impulses (position correction
 //                    that adds no kinetic energy).
+//   "talus-sequential" the defaults with the reference solver order: scalar
+//                    sequential impulses pair after pair
+//                    (ContactSolverKind::SequentialImpulses) instead of the
+//                    coloured wide solver; the write-up variant uses it too.
 //
 // Common to all: double precision; one World::Step(h) per Step(); mass,
 // centre of mass and inertia from talus::reference::ComputeBodyMass (the
@@ -27,7 +31,7 @@
 
 namespace talus::reference {
 
-/// Registers "talus", "talus-writeup" and "talus-split".
+/// Registers "talus", "talus-writeup", "talus-split" and "talus-sequential".
 void RegisterTalusBackends(harness::BackendRegistry& registry);
 
 }  // namespace talus::reference
