@@ -56,6 +56,57 @@ inline Mask operator!(Mask a) { return {_mm256_xor_pd(a.v, _mm256_castsi256_pd(_
 /// m ? a : b per lane.
 inline Wide Select(Mask m, Wide a, Wide b) { return {_mm256_blendv_pd(b.v, a.v, m.v)}; }
 inline bool Any(Mask m) { return _mm256_movemask_pd(m.v) != 0; }
+/// Lane i of out[k] = rows[i][k], k < 6: four rows of six contiguous
+/// doubles (a solver body's v and w) turned into six lanes. Two 4x4
+/// transposes of unaligned loads at offsets 0 and 2 (both inside the row).
+inline void Transpose6(const double* const (&rows)[kWidth], Wide (&out)[6]) {
+  const auto transpose = [](__m256d a0, __m256d a1, __m256d a2, __m256d a3, __m256d(&r)[4]) {
+    const __m256d t0 = _mm256_unpacklo_pd(a0, a1);
+    const __m256d t1 = _mm256_unpackhi_pd(a0, a1);
+    const __m256d t2 = _mm256_unpacklo_pd(a2, a3);
+    const __m256d t3 = _mm256_unpackhi_pd(a2, a3);
+    r[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
+    r[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
+    r[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+    r[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+  };
+  __m256d low[4];
+  __m256d high[4];
+  transpose(_mm256_loadu_pd(rows[0]), _mm256_loadu_pd(rows[1]), _mm256_loadu_pd(rows[2]),
+            _mm256_loadu_pd(rows[3]), low);
+  transpose(_mm256_loadu_pd(rows[0] + 2), _mm256_loadu_pd(rows[1] + 2), _mm256_loadu_pd(rows[2] + 2),
+            _mm256_loadu_pd(rows[3] + 2), high);
+  for (int k = 0; k < 4; ++k) out[k].v = low[k];
+  out[4].v = high[2];
+  out[5].v = high[3];
+}
+
+/// The inverse of Transpose6 for the lanes set in `bits`: rows[i][k] =
+/// lane i of in[k]; other rows are not written.
+inline void Untranspose6(const Wide (&in)[6], unsigned bits, double* const (&rows)[kWidth]) {
+  // Rows [x y z wx] from in[0..3] and [z wx wy wz] from in[2..5]: the
+  // same transpose (it is its own inverse), stored unaligned, overlapping.
+  const auto transpose = [](__m256d a0, __m256d a1, __m256d a2, __m256d a3, __m256d(&r)[4]) {
+    const __m256d t0 = _mm256_unpacklo_pd(a0, a1);
+    const __m256d t1 = _mm256_unpackhi_pd(a0, a1);
+    const __m256d t2 = _mm256_unpacklo_pd(a2, a3);
+    const __m256d t3 = _mm256_unpackhi_pd(a2, a3);
+    r[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
+    r[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
+    r[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+    r[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+  };
+  __m256d low[4];
+  __m256d high[4];
+  transpose(in[0].v, in[1].v, in[2].v, in[3].v, low);
+  transpose(in[2].v, in[3].v, in[4].v, in[5].v, high);
+  for (int i = 0; i < kWidth; ++i) {
+    if (((bits >> i) & 1u) == 0) continue;
+    _mm256_storeu_pd(rows[i], low[i]);
+    _mm256_storeu_pd(rows[i] + 2, high[i]);
+  }
+}
+
 /// A mask from four flags in the low bits of `bits` (lane i = bit i).
 inline Mask MaskFromBits(unsigned bits) {
   const __m256i lane = _mm256_set_epi64x(8, 4, 2, 1);
@@ -140,6 +191,17 @@ inline Wide Select(Mask m, Wide a, Wide b) {
   return Map([&](int i) { return m.v[i] ? a.v[i] : b.v[i]; });
 }
 inline bool Any(Mask m) { return m.v[0] || m.v[1] || m.v[2] || m.v[3]; }
+inline void Transpose6(const double* const (&rows)[kWidth], Wide (&out)[6]) {
+  for (int k = 0; k < 6; ++k) {
+    for (int i = 0; i < kWidth; ++i) out[k].v[i] = rows[i][k];
+  }
+}
+inline void Untranspose6(const Wide (&in)[6], unsigned bits, double* const (&rows)[kWidth]) {
+  for (int i = 0; i < kWidth; ++i) {
+    if (((bits >> i) & 1u) == 0) continue;
+    for (int k = 0; k < 6; ++k) rows[i][k] = in[k].v[i];
+  }
+}
 inline Mask MaskFromBits(unsigned bits) {
   Mask m;
   for (int i = 0; i < kWidth; ++i) m.v[i] = ((bits >> i) & 1u) != 0;

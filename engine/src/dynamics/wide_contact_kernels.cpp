@@ -35,47 +35,34 @@ struct BundleVelocities {
   Vector vA, wA, vB, wB;
 };
 
-// Gathers six numbers per lane from the solver bodies (zero for an empty
-// lane) and transposes them into lanes.
+// The six velocities of a solver body lie contiguous (SolverVelocity is
+// two Vec3 = six doubles); an empty lane reads zeros.
+static_assert(sizeof(SolverVelocity) == 6 * sizeof(double), "v and w contiguous");
+constexpr double kNoBody[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+
+// Gathers the lanes' bodies and transposes them into lanes.
 void Gather(SolverBodies& bodies, const int (&index)[4], Vector& v, Vector& w) {
-  alignas(32) double t[6][4];
+  const double* rows[4];
   for (int lane = 0; lane < 4; ++lane) {
-    if (index[lane] < 0) {
-      for (auto& row : t) row[lane] = 0.0;
-      continue;
-    }
-    const SolverVelocity& s = bodies.Velocity(index[lane]);
-    const double* pv = s.v.data();
-    const double* pw = s.w.data();
-    for (int k = 0; k < 3; ++k) {
-      t[k][lane] = pv[k];
-      t[3 + k][lane] = pw[k];
-    }
+    rows[lane] = index[lane] < 0 ? kNoBody : reinterpret_cast<const double*>(&bodies.Velocity(index[lane]));
   }
-  v = {lanes::Load(t[0]), lanes::Load(t[1]), lanes::Load(t[2])};
-  w = {lanes::Load(t[3]), lanes::Load(t[4]), lanes::Load(t[5])};
+  Wide lanesOut[6];
+  lanes::Transpose6(rows, lanesOut);
+  v = {lanesOut[0], lanesOut[1], lanesOut[2]};
+  w = {lanesOut[3], lanesOut[4], lanesOut[5]};
 }
 
 // Writes the lanes in `bits` back (bodies contacts can move; immovable ones
 // are only read, so concurrent ranges never write a shared body).
 void Scatter(SolverBodies& bodies, const int (&index)[4], unsigned bits, const Vector& v, const Vector& w) {
-  alignas(32) double t[6][4];
-  lanes::Store(t[0], v.x);
-  lanes::Store(t[1], v.y);
-  lanes::Store(t[2], v.z);
-  lanes::Store(t[3], w.x);
-  lanes::Store(t[4], w.y);
-  lanes::Store(t[5], w.z);
+  double* rows[4];
   for (int lane = 0; lane < 4; ++lane) {
-    if (((bits >> lane) & 1u) == 0) continue;
-    SolverVelocity& s = bodies.Velocity(index[lane]);
-    double* pv = s.v.data();
-    double* pw = s.w.data();
-    for (int k = 0; k < 3; ++k) {
-      pv[k] = t[k][lane];
-      pw[k] = t[3 + k][lane];
-    }
+    // Lanes outside `bits` are skipped by Untranspose6, never written.
+    rows[lane] =
+        ((bits >> lane) & 1u) != 0 ? reinterpret_cast<double*>(&bodies.Velocity(index[lane])) : nullptr;
   }
+  const Wide values[6] = {v.x, v.y, v.z, w.x, w.y, w.z};
+  lanes::Untranspose6(values, bits, rows);
 }
 
 BundleVelocities Load(SolverBodies& bodies, const WideContactSolver::Bundle& bundle) {

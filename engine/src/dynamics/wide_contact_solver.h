@@ -105,12 +105,16 @@ class WideContactSolver {
     unsigned storeBitsA = 0;    ///< lanes whose A contacts can move (written back)
     unsigned storeBitsB = 0;
   };
-  // The byte budget of the hot records: a wide row is 16 four-lane arrays
-  // (512 bytes, two per cache line pair... 8 lines for 4 rows: 128 bytes per
-  // scalar row, about the scalar NormalRow's 120), a bundle header 34 arrays
-  // and 80 bytes of indices (1,168 bytes for four pairs, 292 per pair).
+  // The byte budget of the hot records. A wide row is 16 four-lane arrays,
+  // 512 bytes: 128 bytes per pair's row, against the scalar NormalRow's 120
+  // and FrictionRow's 112 (the lane arrays add the mass-aligned target and
+  // tracking flag). A bundle header is 28 four-lane arrays (normal,
+  // tangents, inverse masses, friction, the 4x4 block inverse: 896 bytes)
+  // plus 76 bytes of indices and flags, 992 bytes with the alignment: 248
+  // bytes per pair against the scalar PairRows' 136 plus its 128-byte block
+  // inverse. Growing either is a choice to make on purpose.
   static_assert(sizeof(WideRow) == 16 * 32, "wide row: 16 lanes of 4 doubles");
-  static_assert(sizeof(Bundle) <= 34 * 32 + 96, "bundle header: 34 lane arrays plus indices");
+  static_assert(sizeof(Bundle) <= 28 * 32 + 96, "bundle header: 28 lane arrays plus indices and flags");
 
  private:
   std::vector<Bundle> m_bundles;
