@@ -37,6 +37,8 @@ struct PointCold {
   double pseudoImpulse = 0.0;        ///< N s, accumulated split impulse
   Vec3 localAnchorA = Vec3::Zero();  ///< A's surface point, A's axes, from its centre of mass
   Vec3 localAnchorB = Vec3::Zero();  ///< B's surface point, B's axes, from its centre of mass
+  Vec3 armA = Vec3::Zero();          ///< rA = p - cA, world, metres (the wide solver's input)
+  Vec3 armB = Vec3::Zero();          ///< rB = p - cB
 };
 
 struct PairRows {

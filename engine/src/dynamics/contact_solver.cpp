@@ -130,6 +130,8 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
         row.target = correction;
       }
       PointCold cold;
+      cold.armA = rA;
+      cold.armB = rB;
       const bool split = settings.positionCorrection == PositionCorrection::SplitImpulses;
       cold.positionTarget = split && cp.depth > 0.0 ? correction : 0.0;
       if (settings.positionCorrection == PositionCorrection::NonlinearGaussSeidel) {
@@ -174,7 +176,7 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
   }
   m_useWide = settings.contactSolver == ContactSolverKind::ColouredWide;
   if (m_useWide) {
-    m_wide.Build(m_pairs, m_normals, m_frictions, m_blockInverses, m_bodies);
+    m_wide.Build(m_pairs, m_normals, m_frictions, m_cold, m_blockInverses, m_bodies);
     stats.solverColours = m_wide.ColourCount();
     stats.overflowPairs = static_cast<std::int32_t>(m_wide.OverflowPairs().size());
   }

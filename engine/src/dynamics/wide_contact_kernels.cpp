@@ -77,29 +77,69 @@ void Store(SolverBodies& bodies, const WideContactSolver::Bundle& bundle, const 
   Scatter(bodies, bundle.bodyB, bundle.storeBitsB, v.vB, v.wB);
 }
 
+Vector Cross(const Vector& a, const Vector& b) {
+  // Eigen's cross product for a Vector3d, term by term.
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// A world inverse inertia, row-major, of four lanes.
+struct Inertia {
+  Wide m[9];
+};
+
+Inertia LoadInertia(const WideContactSolver::Lanes (&lanes)[9]) {
+  Inertia inertia;
+  for (int k = 0; k < 9; ++k) inertia.m[k] = L(lanes[k]);
+  return inertia;
+}
+
+// I v in Eigen's order for a Mat3 times a Vec3 in this build (SSE2 packets
+// for rows 0 and 1, summed in column order; row 2 reduced as x + (y + z);
+// measured on 1e5 random products, and the bit-for-bit test would catch a
+// change).
+Vector Times(const Inertia& inertia, const Vector& v) {
+  const Wide* m = inertia.m;
+  return {(m[0] * v.x + m[1] * v.y) + m[2] * v.z, (m[3] * v.x + m[4] * v.y) + m[5] * v.z,
+          m[6] * v.x + (m[7] * v.y + m[8] * v.z)};
+}
+
+// The angular parts of four rows along d and their images, as the scalar
+// ContactSolver::MakeJacobian forms them in Prepare.
+struct Jacobian {
+  Vector angularA, angularB, imageA, imageB;
+};
+
+Jacobian MakeJacobian(const Vector& d, const WideContactSolver::WidePoint& point, const Inertia& inertiaA,
+                      const Inertia& inertiaB) {
+  Jacobian j;
+  j.angularA = Cross(LoadVector(point.armA), d);
+  j.angularB = Cross(LoadVector(point.armB), d);
+  j.imageA = Times(inertiaA, j.angularA);
+  j.imageB = Times(inertiaB, j.angularB);
+  return j;
+}
+
 // Cdot of four rows along d.
-Wide Along(const BundleVelocities& v, const Vector& d, const WideContactSolver::WideRow& row) {
+Wide Along(const BundleVelocities& v, const Vector& d, const Jacobian& j) {
   const Vector dv{v.vA.x - v.vB.x, v.vA.y - v.vB.y, v.vA.z - v.vB.z};
-  return Dot(d, dv) + Dot(LoadVector(row.angularA), v.wA) - Dot(LoadVector(row.angularB), v.wB);
+  return Dot(d, dv) + Dot(j.angularA, v.wA) - Dot(j.angularB, v.wB);
 }
 
 // Adds the impulses `delta` along d: +d on A, -d on B.
-void Apply(BundleVelocities& v, Wide delta, const Vector& d, const WideContactSolver::WideRow& row,
-           Wide invMassA, Wide invMassB) {
+void Apply(BundleVelocities& v, Wide delta, const Vector& d, const Jacobian& j, Wide invMassA,
+           Wide invMassB) {
   const Vector impulse{delta * d.x, delta * d.y, delta * d.z};
   v.vA = {v.vA.x + invMassA * impulse.x, v.vA.y + invMassA * impulse.y, v.vA.z + invMassA * impulse.z};
-  const Vector imageA = LoadVector(row.imageA);
-  v.wA = {v.wA.x + delta * imageA.x, v.wA.y + delta * imageA.y, v.wA.z + delta * imageA.z};
+  v.wA = {v.wA.x + delta * j.imageA.x, v.wA.y + delta * j.imageA.y, v.wA.z + delta * j.imageA.z};
   v.vB = {v.vB.x - invMassB * impulse.x, v.vB.y - invMassB * impulse.y, v.vB.z - invMassB * impulse.z};
-  const Vector imageB = LoadVector(row.imageB);
-  v.wB = {v.wB.x - delta * imageB.x, v.wB.y - delta * imageB.y, v.wB.z - delta * imageB.z};
+  v.wB = {v.wB.x - delta * j.imageB.x, v.wB.y - delta * j.imageB.y, v.wB.z - delta * j.imageB.z};
 }
 
-// The velocity change |delta| / m of a row of a new pair (0 for an old
-// pair's row or an empty one), as the scalar NoteChange computes it.
-Wide Change(Wide delta, const WideContactSolver::WideRow& row) {
-  const lanes::Mask tracked = lanes::GreaterEqual(L(row.track), lanes::Splat(1.0));
-  return lanes::Select(tracked, lanes::Abs(delta) / L(row.mass), lanes::Zero());
+// The velocity change |delta| / m of a row of a new pair with m > 0 (0
+// otherwise), as the scalar NoteChange computes it.
+Wide Change(Wide delta, Wide mass, lanes::Mask newPair) {
+  const lanes::Mask tracked = newPair & !lanes::GreaterEqual(lanes::Zero(), mass);
+  return lanes::Select(tracked, lanes::Abs(delta) / mass, lanes::Zero());
 }
 
 double Largest(Wide change) {
@@ -118,27 +158,26 @@ void WideContactSolver::WarmStartRange(SolverBodies& bodies, int colour, int beg
     const Bundle& bundle = m_bundles[static_cast<std::size_t>(b)];
     BundleVelocities v = Load(bodies, bundle);
     const Vector n = LoadVector(bundle.normal);
+    const Vector t[2] = {LoadVector(bundle.tangent[0]), LoadVector(bundle.tangent[1])};
+    const Inertia inertiaA = LoadInertia(bundle.invInertiaA);
+    const Inertia inertiaB = LoadInertia(bundle.invInertiaB);
     const Wide invMassA = L(bundle.invMassA);
     const Wide invMassB = L(bundle.invMassB);
     const bool friction = bundle.frictionBits != 0;
     for (int i = 0; i < bundle.points; ++i) {
-      const WideRow& row = m_normals[static_cast<std::size_t>(bundle.firstNormal + i)];
-      const Wide lambda = L(row.impulse);
+      const WidePoint& point = m_points[static_cast<std::size_t>(bundle.firstPoint + i)];
+      const Jacobian jn = MakeJacobian(n, point, inertiaA, inertiaB);
+      const Wide lambda = L(point.normalImpulse);
       Vector impulse{lambda * n.x, lambda * n.y, lambda * n.z};
-      Vector turnA = LoadVector(row.imageA);
-      turnA = {lambda * turnA.x, lambda * turnA.y, lambda * turnA.z};
-      Vector turnB = LoadVector(row.imageB);
-      turnB = {lambda * turnB.x, lambda * turnB.y, lambda * turnB.z};
+      Vector turnA{lambda * jn.imageA.x, lambda * jn.imageA.y, lambda * jn.imageA.z};
+      Vector turnB{lambda * jn.imageB.x, lambda * jn.imageB.y, lambda * jn.imageB.z};
       if (friction) {
         for (int k = 0; k < 2; ++k) {
-          const WideRow& f = m_frictions[static_cast<std::size_t>(bundle.firstFriction + 2 * i + k)];
-          const Wide fl = L(f.impulse);
-          const Vector t = LoadVector(bundle.tangent[k]);
-          impulse = {impulse.x + fl * t.x, impulse.y + fl * t.y, impulse.z + fl * t.z};
-          const Vector ia = LoadVector(f.imageA);
-          const Vector ib = LoadVector(f.imageB);
-          turnA = {turnA.x + fl * ia.x, turnA.y + fl * ia.y, turnA.z + fl * ia.z};
-          turnB = {turnB.x + fl * ib.x, turnB.y + fl * ib.y, turnB.z + fl * ib.z};
+          const Jacobian jt = MakeJacobian(t[k], point, inertiaA, inertiaB);
+          const Wide fl = L(point.tangentImpulse[k]);
+          impulse = {impulse.x + fl * t[k].x, impulse.y + fl * t[k].y, impulse.z + fl * t[k].z};
+          turnA = {turnA.x + fl * jt.imageA.x, turnA.y + fl * jt.imageA.y, turnA.z + fl * jt.imageA.z};
+          turnB = {turnB.x + fl * jt.imageB.x, turnB.y + fl * jt.imageB.y, turnB.z + fl * jt.imageB.z};
         }
       }
       v.vA = {v.vA.x + invMassA * impulse.x, v.vA.y + invMassA * impulse.y, v.vA.z + invMassA * impulse.z};
@@ -155,56 +194,63 @@ double WideContactSolver::SolveNormalRange(SolverBodies& bodies, int colour, int
   Wide largest = lanes::Zero();
   for (int b = first + begin; b < first + end; ++b) {
     const Bundle& bundle = m_bundles[static_cast<std::size_t>(b)];
-    WideRow* rows = &m_normals[static_cast<std::size_t>(bundle.firstNormal)];
+    WidePoint* points = &m_points[static_cast<std::size_t>(bundle.firstPoint)];
     BundleVelocities v = Load(bodies, bundle);
     const Vector n = LoadVector(bundle.normal);
     const Wide invMassA = L(bundle.invMassA);
     const Wide invMassB = L(bundle.invMassB);
-    const int points = bundle.points;
+    const lanes::Mask newPair = lanes::MaskFromBits(bundle.newBits);
+    const int count = bundle.points;
+    Jacobian j[kMaxBundlePoints];
+    {
+      const Inertia inertiaA = LoadInertia(bundle.invInertiaA);
+      const Inertia inertiaB = LoadInertia(bundle.invInertiaB);
+      for (int i = 0; i < count; ++i) j[i] = MakeJacobian(n, points[i], inertiaA, inertiaB);
+    }
     lanes::Mask rowByRow = lanes::MaskFromBits(0xFu);
     if (bundle.blockBits != 0) {
       // dlambda = K+ (target - J v) for every lane with a block, accepted
       // where no accumulated impulse would become negative.
       const Vector dv{v.vA.x - v.vB.x, v.vA.y - v.vB.y, v.vA.z - v.vB.z};
       const Wide vn0 = Dot(n, dv);
-      // Rows past `points` are zero, as the scalar solver's padded 4x4.
+      // Rows past `count` are zero, as the scalar solver's padded 4x4.
       Wide rhs[kMaxBundlePoints] = {lanes::Zero(), lanes::Zero(), lanes::Zero(), lanes::Zero()};
-      for (int i = 0; i < points; ++i) {
-        const Wide vn =
-            vn0 + Dot(LoadVector(rows[i].angularA), v.wA) - Dot(LoadVector(rows[i].angularB), v.wB);
-        rhs[i] = L(rows[i].target) - vn;
+      for (int i = 0; i < count; ++i) {
+        const Wide vn = vn0 + Dot(j[i].angularA, v.wA) - Dot(j[i].angularB, v.wB);
+        rhs[i] = L(points[i].target) - vn;
       }
       Wide delta[kMaxBundlePoints];
       lanes::Mask accept = lanes::MaskFromBits(bundle.blockBits);
-      for (int i = 0; i < points; ++i) {
+      for (int i = 0; i < count; ++i) {
         Wide sum = L(bundle.block[4 * i]) * rhs[0];
-        for (int j = 1; j < kMaxBundlePoints; ++j) sum = sum + L(bundle.block[4 * i + j]) * rhs[j];
+        for (int k = 1; k < kMaxBundlePoints; ++k) sum = sum + L(bundle.block[4 * i + k]) * rhs[k];
         delta[i] = sum;
-        accept = accept & lanes::GreaterEqual(L(rows[i].impulse) + delta[i], lanes::Zero());
+        accept = accept & lanes::GreaterEqual(L(points[i].normalImpulse) + delta[i], lanes::Zero());
       }
       if (lanes::Any(accept)) {
-        for (int i = 0; i < points; ++i) {
-          const Wide lambda = L(rows[i].impulse);
+        for (int i = 0; i < count; ++i) {
+          const Wide lambda = L(points[i].normalImpulse);
           const Wide d = lanes::Select(accept, delta[i], lanes::Zero());
-          S(rows[i].impulse, lanes::Select(accept, lambda + delta[i], lambda));
-          if (track) largest = lanes::Max(largest, Change(d, rows[i]));
-          Apply(v, d, n, rows[i], invMassA, invMassB);
+          S(points[i].normalImpulse, lanes::Select(accept, lambda + delta[i], lambda));
+          if (track) largest = lanes::Max(largest, Change(d, L(points[i].normalMass), newPair));
+          Apply(v, d, n, j[i], invMassA, invMassB);
         }
       }
       rowByRow = !accept;
     }
     if (lanes::Any(rowByRow)) {
-      for (int i = 0; i < points; ++i) {
-        WideRow& row = rows[i];
-        const Wide vn = Along(v, n, row);
-        const Wide previous = L(row.impulse);
+      for (int i = 0; i < count; ++i) {
+        WidePoint& point = points[i];
+        const Wide mass = L(point.normalMass);
+        const Wide vn = Along(v, n, j[i]);
+        const Wide previous = L(point.normalImpulse);
         // Max(0, x) = (0 > x) ? 0 : x, std::max(x, 0.0)'s value bit for bit.
-        const Wide solved = lanes::Max(lanes::Zero(), previous - L(row.mass) * (vn - L(row.target)));
+        const Wide solved = lanes::Max(lanes::Zero(), previous - mass * (vn - L(point.target)));
         const Wide impulse = lanes::Select(rowByRow, solved, previous);
-        S(row.impulse, impulse);
+        S(point.normalImpulse, impulse);
         const Wide delta = impulse - previous;
-        if (track) largest = lanes::Max(largest, Change(delta, row));
-        Apply(v, delta, n, row, invMassA, invMassB);
+        if (track) largest = lanes::Max(largest, Change(delta, mass, newPair));
+        Apply(v, delta, n, j[i], invMassA, invMassB);
       }
     }
     Store(bodies, bundle, v);
@@ -219,26 +265,30 @@ double WideContactSolver::SolveFrictionRange(SolverBodies& bodies, int colour, i
   for (int b = first + begin; b < first + end; ++b) {
     const Bundle& bundle = m_bundles[static_cast<std::size_t>(b)];
     if (bundle.frictionBits == 0) continue;
-    const WideRow* normals = &m_normals[static_cast<std::size_t>(bundle.firstNormal)];
-    WideRow* rows = &m_frictions[static_cast<std::size_t>(bundle.firstFriction)];
+    WidePoint* points = &m_points[static_cast<std::size_t>(bundle.firstPoint)];
     BundleVelocities v = Load(bodies, bundle);
     const Vector t[2] = {LoadVector(bundle.tangent[0]), LoadVector(bundle.tangent[1])};
+    const Inertia inertiaA = LoadInertia(bundle.invInertiaA);
+    const Inertia inertiaB = LoadInertia(bundle.invInertiaB);
     const Wide mu = L(bundle.friction);
     const Wide invMassA = L(bundle.invMassA);
     const Wide invMassB = L(bundle.invMassB);
+    const lanes::Mask newPair = lanes::MaskFromBits(bundle.newBits);
     for (int i = 0; i < bundle.points; ++i) {
-      const Wide bound = mu * L(normals[i].impulse);
+      WidePoint& point = points[i];
+      const Wide bound = mu * L(point.normalImpulse);
       for (int k = 0; k < 2; ++k) {
-        WideRow& row = rows[2 * i + k];
-        const Wide vt = Along(v, t[k], row);
-        const Wide old = L(row.impulse);
+        const Jacobian j = MakeJacobian(t[k], point, inertiaA, inertiaB);
+        const Wide mass = L(point.tangentMass[k]);
+        const Wide vt = Along(v, t[k], j);
+        const Wide old = L(point.tangentImpulse[k]);
         // std::clamp(x, lo, hi) = x < lo ? lo : (hi < x ? hi : x) for lo <=
         // hi, which is Min(hi, Max(lo, x)) with the lanes' rules, bit for bit.
-        const Wide impulse = lanes::Min(bound, lanes::Max(-bound, old - L(row.mass) * vt));
-        S(row.impulse, impulse);
+        const Wide impulse = lanes::Min(bound, lanes::Max(-bound, old - mass * vt));
+        S(point.tangentImpulse[k], impulse);
         const Wide delta = impulse - old;
-        if (track) largest = lanes::Max(largest, Change(delta, row));
-        Apply(v, delta, t[k], row, invMassA, invMassB);
+        if (track) largest = lanes::Max(largest, Change(delta, mass, newPair));
+        Apply(v, delta, t[k], j, invMassA, invMassB);
       }
     }
     Store(bodies, bundle, v);

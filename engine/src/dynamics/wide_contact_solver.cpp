@@ -17,25 +17,13 @@ void Put(WideContactSolver::Lanes* xyz, int lane, const Vec3& value) {
   for (int k = 0; k < 3; ++k) xyz[k].v[lane] = value[k];
 }
 
-void PutRow(WideContactSolver::WideRow& wide, int lane, const RowJacobian& j, double mass, double impulse,
-            bool persisted) {
-  Put(wide.angularA, lane, j.angularA);
-  Put(wide.angularB, lane, j.angularB);
-  Put(wide.imageA, lane, j.imageA);
-  Put(wide.imageB, lane, j.imageB);
-  wide.mass.v[lane] = mass;
-  wide.impulse.v[lane] = impulse;
-  wide.track.v[lane] = !persisted && mass > 0.0 ? 1.0 : 0.0;
-}
-
 }  // namespace
 
 void WideContactSolver::Build(std::span<const PairRows> pairs, std::span<const NormalRow> normals,
-                              std::span<const FrictionRow> frictions, std::span<const Eigen::Matrix4d> blocks,
-                              const SolverBodies& bodies) {
+                              std::span<const FrictionRow> frictions, std::span<const PointCold> cold,
+                              std::span<const Eigen::Matrix4d> blocks, const SolverBodies& bodies) {
   m_bundles.clear();
-  m_normals.clear();
-  m_frictions.clear();
+  m_points.clear();
   m_overflow.clear();
   m_colourStart.clear();
 
@@ -72,17 +60,13 @@ void WideContactSolver::Build(std::span<const PairRows> pairs, std::span<const N
     for (int first = starts[c]; first < starts[c + 1]; first += kLanes) {
       const int lanesUsed = std::min(kLanes, starts[c + 1] - first);
       Bundle bundle;
-      bundle.firstNormal = static_cast<int>(m_normals.size());
+      bundle.firstPoint = static_cast<int>(m_points.size());
       for (int lane = 0; lane < lanesUsed; ++lane) {
         const PairRows& pair =
             pairs[static_cast<std::size_t>(m_order[static_cast<std::size_t>(first + lane)])];
         bundle.points = std::max(bundle.points, pair.pointCount);
-        if (pair.hasFriction) bundle.frictionBits |= 1u << lane;
       }
-      m_normals.resize(m_normals.size() + static_cast<std::size_t>(bundle.points));
-      bundle.firstFriction = static_cast<int>(m_frictions.size());
-      if (bundle.frictionBits != 0)
-        m_frictions.resize(m_frictions.size() + 2 * static_cast<std::size_t>(bundle.points));
+      m_points.resize(m_points.size() + static_cast<std::size_t>(bundle.points));
       for (int lane = 0; lane < lanesUsed; ++lane) {
         const int p = m_order[static_cast<std::size_t>(first + lane)];
         const PairRows& pair = pairs[static_cast<std::size_t>(p)];
@@ -91,12 +75,22 @@ void WideContactSolver::Build(std::span<const PairRows> pairs, std::span<const N
         bundle.bodyB[lane] = pair.bodyB;
         if (bodies.Moves(pair.bodyA)) bundle.storeBitsA |= 1u << lane;
         if (bodies.Moves(pair.bodyB)) bundle.storeBitsB |= 1u << lane;
+        if (pair.hasFriction) bundle.frictionBits |= 1u << lane;
+        if (!pair.persisted) bundle.newBits |= 1u << lane;
         Put(bundle.normal, lane, pair.normal);
         Put(bundle.tangent[0], lane, pair.tangent[0]);
         Put(bundle.tangent[1], lane, pair.tangent[1]);
         bundle.invMassA.v[lane] = pair.invMassA;
         bundle.invMassB.v[lane] = pair.invMassB;
         bundle.friction.v[lane] = pair.friction;
+        const Mat3& inertiaA = bodies.InvInertia(pair.bodyA);
+        const Mat3& inertiaB = bodies.InvInertia(pair.bodyB);
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) {
+            bundle.invInertiaA[3 * i + j].v[lane] = inertiaA(i, j);
+            bundle.invInertiaB[3 * i + j].v[lane] = inertiaB(i, j);
+          }
+        }
         if (pair.block >= 0) {
           bundle.blockBits |= 1u << lane;
           const Eigen::Matrix4d& k = blocks[static_cast<std::size_t>(pair.block)];
@@ -105,15 +99,19 @@ void WideContactSolver::Build(std::span<const PairRows> pairs, std::span<const N
           }
         }
         for (int i = 0; i < pair.pointCount; ++i) {
-          const NormalRow& row = normals[static_cast<std::size_t>(pair.firstPoint + i)];
-          WideRow& wide = m_normals[static_cast<std::size_t>(bundle.firstNormal + i)];
-          PutRow(wide, lane, row.j, row.mass, row.impulse, pair.persisted);
+          const std::size_t point = static_cast<std::size_t>(pair.firstPoint + i);
+          const NormalRow& row = normals[point];
+          WidePoint& wide = m_points[static_cast<std::size_t>(bundle.firstPoint + i)];
+          Put(wide.armA, lane, cold[point].armA);
+          Put(wide.armB, lane, cold[point].armB);
+          wide.normalMass.v[lane] = row.mass;
           wide.target.v[lane] = row.target;
+          wide.normalImpulse.v[lane] = row.impulse;
           if (!pair.hasFriction) continue;
           for (int k = 0; k < 2; ++k) {
             const FrictionRow& f = frictions[static_cast<std::size_t>(pair.firstFriction + 2 * i + k)];
-            PutRow(m_frictions[static_cast<std::size_t>(bundle.firstFriction + 2 * i + k)], lane, f.j, f.mass,
-                   f.impulse, pair.persisted);
+            wide.tangentMass[k].v[lane] = f.mass;
+            wide.tangentImpulse[k].v[lane] = f.impulse;
           }
         }
       }
@@ -130,12 +128,12 @@ void WideContactSolver::Unpack(std::span<const PairRows> pairs, std::span<Normal
       if (bundle.pair[lane] < 0) continue;
       const PairRows& pair = pairs[static_cast<std::size_t>(bundle.pair[lane])];
       for (int i = 0; i < pair.pointCount; ++i) {
-        normals[static_cast<std::size_t>(pair.firstPoint + i)].impulse =
-            m_normals[static_cast<std::size_t>(bundle.firstNormal + i)].impulse.v[lane];
+        const WidePoint& wide = m_points[static_cast<std::size_t>(bundle.firstPoint + i)];
+        normals[static_cast<std::size_t>(pair.firstPoint + i)].impulse = wide.normalImpulse.v[lane];
         if (!pair.hasFriction) continue;
         for (int k = 0; k < 2; ++k) {
           frictions[static_cast<std::size_t>(pair.firstFriction + 2 * i + k)].impulse =
-              m_frictions[static_cast<std::size_t>(bundle.firstFriction + 2 * i + k)].impulse.v[lane];
+              wide.tangentImpulse[k].v[lane];
         }
       }
     }

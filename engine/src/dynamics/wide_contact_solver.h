@@ -23,9 +23,9 @@
 // and the overflow pairs after all colours (ContactSolver does that).
 //
 // Layout (structure of arrays per bundle, 32-byte aligned lanes): a bundle
-// header (normals, tangents, inverse masses, friction, the block inverses,
-// body indices), then `points` wide normal rows and, when a lane has
-// friction, 2 `points` wide friction rows, each a run of four-lane arrays.
+// header (normals, tangents, inverse masses, friction, inverse inertias,
+// the block inverses, body indices), then `points` wide points (arms,
+// masses, target, impulses), each a run of four-lane arrays.
 // Empty lanes and the points past a lane's own count are zero rows: zero
 // mass and Jacobian, so they add exactly zero and keep zero impulse.
 #pragma once
@@ -54,8 +54,8 @@ class WideContactSolver {
   /// and `blocks` are the scalar solver's arrays the pairs index). Keeps
   /// capacity between steps.
   void Build(std::span<const PairRows> pairs, std::span<const NormalRow> normals,
-             std::span<const FrictionRow> frictions, std::span<const Eigen::Matrix4d> blocks,
-             const SolverBodies& bodies);
+             std::span<const FrictionRow> frictions, std::span<const PointCold> cold,
+             std::span<const Eigen::Matrix4d> blocks, const SolverBodies& bodies);
 
   /// Colours in use, 0 .. ColourCount() - 1 (empty colours are dropped).
   [[nodiscard]] int ColourCount() const { return static_cast<int>(m_colourStart.size()) - 1; }
@@ -85,42 +85,48 @@ class WideContactSolver {
   struct alignas(32) Lanes {
     double v[4] = {0.0, 0.0, 0.0, 0.0};
   };
-  /// Four rows along d: Jacobian parts, their images, mass, (target),
-  /// accumulated impulse, and 1 for a row of a new pair whose change the
-  /// extra sweeps track (0 for an old pair's row or an empty one).
-  struct WideRow {
-    Lanes angularA[3], angularB[3], imageA[3], imageB[3];
-    Lanes mass, target, impulse, track;
+  /// One point of four pairs: the arms, the rows' effective masses, the
+  /// normal target and the accumulated impulses. The Jacobians' angular
+  /// parts r x d and their images I^-1 (r x d) are formed in the sweep
+  /// from the arms and the bundle's inverse inertias, with the scalar
+  /// Prepare's operations in its order (so the same bits): the sweeps are
+  /// bound by memory traffic, and this is 13 lane arrays per point where
+  /// the precomputed rows took 48.
+  struct WidePoint {
+    Lanes armA[3], armB[3];
+    Lanes normalMass, target, normalImpulse;
+    Lanes tangentMass[2], tangentImpulse[2];
   };
   struct Bundle {
     Lanes normal[3], tangent[2][3];
     Lanes invMassA, invMassB, friction;
-    Lanes block[16];  ///< K+ row-major, zero in lanes without a block
+    Lanes invInertiaA[9], invInertiaB[9];  ///< world inverse inertia, row-major; zero when immovable
+    Lanes block[16];                       ///< K+ row-major, zero in lanes without a block
     int bodyA[4] = {-1, -1, -1, -1}, bodyB[4] = {-1, -1, -1, -1};  ///< solver bodies, -1 empty
     int pair[4] = {-1, -1, -1, -1};  ///< index of the pair in each lane, -1 empty
-    int firstNormal = 0, firstFriction = 0;
+    int firstPoint = 0;
     int points = 0;             ///< most points of a lane
     unsigned blockBits = 0;     ///< lanes solved as a block first
     unsigned frictionBits = 0;  ///< lanes with friction rows
+    unsigned newBits = 0;       ///< lanes of new pairs (the extra sweeps track their rows)
     unsigned storeBitsA = 0;    ///< lanes whose A contacts can move (written back)
     unsigned storeBitsB = 0;
   };
-  // The byte budget of the hot records. A wide row is 16 four-lane arrays,
-  // 512 bytes: 128 bytes per pair's row, against the scalar NormalRow's 120
-  // and FrictionRow's 112 (the lane arrays add the mass-aligned target and
-  // tracking flag). A bundle header is 28 four-lane arrays (normal,
-  // tangents, inverse masses, friction, the 4x4 block inverse: 896 bytes)
-  // plus 76 bytes of indices and flags, 992 bytes with the alignment: 248
-  // bytes per pair against the scalar PairRows' 136 plus its 128-byte block
-  // inverse. Growing either is a choice to make on purpose.
-  static_assert(sizeof(WideRow) == 16 * 32, "wide row: 16 lanes of 4 doubles");
-  static_assert(sizeof(Bundle) <= 28 * 32 + 96, "bundle header: 28 lane arrays plus indices and flags");
+  // The byte budget of the hot records. A wide point is 13 four-lane arrays,
+  // 416 bytes: 104 bytes per pair's point for its normal and two friction
+  // rows, against 120 + 2 x 112 = 344 bytes of scalar rows. A bundle header
+  // is 46 four-lane arrays (normal, tangents, inverse masses, friction, two
+  // inverse inertias, the 4x4 block inverse: 1,472 bytes) plus 80 bytes of
+  // indices and flags: 388 bytes per pair against the scalar PairRows' 136
+  // plus its 128-byte block inverse. Growing either is a choice to make on
+  // purpose: the sweeps stream these every pass.
+  static_assert(sizeof(WidePoint) == 13 * 32, "wide point: 13 lanes of 4 doubles");
+  static_assert(sizeof(Bundle) <= 46 * 32 + 96, "bundle header: 46 lane arrays plus indices and flags");
 
  private:
   std::vector<Bundle> m_bundles;
-  std::vector<WideRow> m_normals;
-  std::vector<WideRow> m_frictions;  ///< two per point (t1, t2) of bundles with friction
-  std::vector<int> m_colourStart;    ///< bundles of colour c: [m_colourStart[c], m_colourStart[c + 1])
+  std::vector<WidePoint> m_points;
+  std::vector<int> m_colourStart;  ///< bundles of colour c: [m_colourStart[c], m_colourStart[c + 1])
   std::vector<int> m_overflow;
   // Scratch kept between steps.
   std::vector<ColourInput> m_inputs;

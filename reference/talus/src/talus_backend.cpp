@@ -32,7 +32,7 @@ using harness::CombineRule;
 using harness::Run;
 
 /// Which engine options a variant uses.
-enum class Variant { Defaults, WriteUp, SplitImpulses, Sequential };
+enum class Variant { Defaults, WriteUp, SplitImpulses, Coloured };
 
 const char* VariantName(Variant variant) {
   switch (variant) {
@@ -42,8 +42,8 @@ const char* VariantName(Variant variant) {
       return "talus-writeup";
     case Variant::SplitImpulses:
       return "talus-split";
-    case Variant::Sequential:
-      return "talus-sequential";
+    case Variant::Coloured:
+      return "talus-coloured";
   }
   return "talus";
 }
@@ -160,8 +160,8 @@ WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine fric
     settings.maxVelocityIterations = 1;
     settings.positionCorrection = PositionCorrection::Baumgarte;
     settings.contactSolver = ContactSolverKind::SequentialImpulses;  // the write-up's scalar order
-  } else if (variant == Variant::Sequential) {
-    settings.contactSolver = ContactSolverKind::SequentialImpulses;
+  } else if (variant == Variant::Coloured) {
+    settings.contactSolver = ContactSolverKind::ColouredWide;
   } else if (variant == Variant::SplitImpulses) {
     settings.positionCorrection = PositionCorrection::SplitImpulses;
   }
@@ -339,10 +339,10 @@ void RegisterTalusBackends(harness::BackendRegistry& registry) {
                     [](const Run& run) { return TalusBackend::Create(run, Variant::WriteUp); });
   registry.Register("talus-split", "Talus (double): engine defaults plus split impulses",
                     [](const Run& run) { return TalusBackend::Create(run, Variant::SplitImpulses); });
-  registry.Register("talus-sequential",
-                    "Talus (double): engine defaults with the reference scalar sequential impulses "
-                    "(pair order) instead of the coloured wide solver",
-                    [](const Run& run) { return TalusBackend::Create(run, Variant::Sequential); });
+  registry.Register("talus-coloured",
+                    "Talus (double): engine defaults with the coloured wide solver (four pairs per SIMD "
+                    "bundle, colours splittable across threads) instead of the scalar pair order",
+                    [](const Run& run) { return TalusBackend::Create(run, Variant::Coloured); });
 }
 
 }  // namespace talus::reference

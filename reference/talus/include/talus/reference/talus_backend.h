@@ -9,10 +9,9 @@
 //                    warm starting, Baumgarte stabilisation.
 //   "talus-split"    the defaults plus split impulses (position correction
 //                    that adds no kinetic energy).
-//   "talus-sequential" the defaults with the reference solver order: scalar
-//                    sequential impulses pair after pair
-//                    (ContactSolverKind::SequentialImpulses) instead of the
-//                    coloured wide solver; the write-up variant uses it too.
+//   "talus-coloured" the defaults with the coloured wide solver
+//                    (ContactSolverKind::ColouredWide: pairs coloured, four
+//                    per SIMD bundle) instead of the scalar pair order.
 //
 // Common to all: double precision; one World::Step(h) per Step(); mass,
 // centre of mass and inertia from talus::reference::ComputeBodyMass (the
@@ -31,7 +30,7 @@
 
 namespace talus::reference {
 
-/// Registers "talus", "talus-writeup", "talus-split" and "talus-sequential".
+/// Registers "talus", "talus-writeup", "talus-split" and "talus-coloured".
 void RegisterTalusBackends(harness::BackendRegistry& registry);
 
 }  // namespace talus::reference
