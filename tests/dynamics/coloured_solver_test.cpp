@@ -192,7 +192,7 @@ std::uint64_t RunPyramid(int cuts, bool reverse, bool threads, int steps, StepSt
 }
 
 TEST(ColouredSolver, AnyCutOfAColourIntoRangesGivesBitIdenticalStates) {
-  constexpr int kSteps = 60;
+  constexpr int kSteps = 30;
   StepStatistics stats;
   const std::uint64_t whole = RunPyramid(0, false, false, kSteps, &stats);
   // The pyramid is coloured: more than one colour, so ranges cut real work.
