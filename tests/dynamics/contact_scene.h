@@ -14,6 +14,8 @@
 #include "dynamics/contact.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/integrator.h"
+#include "talus/pair_query.h"
+#include "talus/shape.h"
 #include "talus/step_statistics.h"
 #include "talus/world_settings.h"
 
@@ -72,6 +74,13 @@ class ContactScene {
     m_boxes.push_back({static_cast<int>(m_bodies.size()) - 1, halfExtents, friction, restitution});
     return m_boxes.back().body;
   }
+
+  /// Boxes also collide with each other, through the engine's narrow phase
+  /// (CollideShapes, clipped manifolds, this margin); off by default.
+  void EnableBoxPairs() { m_boxPairs = true; }
+  /// The solver, to set its range runner.
+  ContactSolver& Solver() { return m_solver; }
+  std::span<const BodySim> Bodies() const { return m_bodies; }
 
   BodySim& Body(int index) { return m_bodies[static_cast<std::size_t>(index)]; }
   const StepStatistics& LastStats() const { return m_stats; }
@@ -148,7 +157,43 @@ class ContactScene {
                         MixRestitution(box.restitution, plane.restitution, m_settings.restitutionCombine)));
       }
     }
+    if (m_boxPairs) CollideBoxPairs();
     std::sort(m_contacts.begin(), m_contacts.end(), Sorter{});
+  }
+
+  // Every pair of boxes through the narrow phase; the lower body index is A.
+  void CollideBoxPairs() {
+    const NarrowPhaseSettings narrow{.speculativeMargin = m_margin};
+    for (std::size_t i = 0; i < m_boxes.size(); ++i) {
+      for (std::size_t j = i + 1; j < m_boxes.size(); ++j) {
+        const TestBox& a = m_boxes[i];
+        const TestBox& b = m_boxes[j];
+        const BodySim& simA = m_bodies[static_cast<std::size_t>(a.body)];
+        const BodySim& simB = m_bodies[static_cast<std::size_t>(b.body)];
+        const double reach = a.halfExtents.norm() + b.halfExtents.norm() + m_margin;
+        if ((simA.center - simB.center).squaredNorm() > reach * reach) continue;
+        const Result<PairContact> pair = CollideShapes(
+            Shape::CreateBox(a.halfExtents).Value(), {.position = simA.center, .rotation = simA.orientation},
+            Shape::CreateBox(b.halfExtents).Value(), {.position = simB.center, .rotation = simB.orientation},
+            narrow);
+        if (!pair || !pair.Value().touching) continue;
+        const PairContact& found = pair.Value();
+        ContactManifold manifold{};
+        manifold.normal = found.normal;
+        manifold.depth = found.Depth();
+        manifold.pointCount = std::min(found.pointCount, kMaxManifoldPoints);
+        for (int k = 0; k < manifold.pointCount; ++k) {
+          const PairContactPoint& from = found.points[static_cast<std::size_t>(k)];
+          ContactPoint& to = manifold.points[static_cast<std::size_t>(k)];
+          to.position = from.position;
+          to.depth = from.depth;
+          to.featureId = from.featureId;
+        }
+        m_contacts.push_back(MakeContact(
+            a.body, b.body, manifold, MixFriction(a.friction, b.friction, m_settings.frictionCombine),
+            MixRestitution(a.restitution, b.restitution, m_settings.restitutionCombine)));
+      }
+    }
   }
 
   struct PlaneBody {
@@ -158,6 +203,7 @@ class ContactScene {
 
   WorldSettings m_settings;
   double m_margin = 0.01;
+  bool m_boxPairs = false;
   std::vector<BodySim> m_bodies;
   std::vector<PlaneBody> m_planes;
   std::vector<TestBox> m_boxes;

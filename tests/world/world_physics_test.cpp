@@ -87,6 +87,12 @@ TEST(WorldPhysics, ColumnOfTenBoxesStandsWithTheWriteUpSolver) {
   // 0.1 mm reuse distance and falls at 1 mm (measured), while the default
   // block solver keeps it within 1 mm with reuse (the test above).
   settings.narrowPhase.reuseDistance = 0.0;
+  // ... and its order: pair after pair up the column. Row by row in the
+  // coloured order (every other contact, then the rest) the load climbs
+  // the column half as fast per sweep and this marginal column falls
+  // (measured: 9 m); with the block solver (the default) both orders hold
+  // it (the test above).
+  settings.contactSolver = ContactSolverKind::SequentialImpulses;
   const ColumnDeviation writeUp = RunColumn(settings);
   EXPECT_LT(writeUp.vertical, 3e-2);
   EXPECT_LT(writeUp.horizontal, 0.1);

@@ -99,6 +99,22 @@ enum class TranslationIntegrator {
   ExactConstantAcceleration,
 };
 
+/// How the contact rows are visited in a velocity sweep.
+enum class ContactSolverKind {
+  /// The write-up's Sequential Impulses: one pair after another in pair
+  /// order, one row at a time, scalar. The reference.
+  SequentialImpulses,
+  /// The same rows, clamps and block solve, with the pairs coloured so that
+  /// no two pairs of a colour share a body contacts can move, and each
+  /// colour solved four pairs at a time in SIMD lanes (AVX2 when built with
+  /// TALUS_SIMD=AVX2, else the same arithmetic lane by lane), its bundles
+  /// splittable across threads with bit-identical results. Pairs that
+  /// find no colour (or have more than four points) are solved one by one
+  /// after the colours. A Gauss-Seidel sweep in another order: results
+  /// differ from SequentialImpulses by the order, not the method.
+  ColouredWide,
+};
+
 struct WorldSettings {
   /// Acceleration of gravity, m/s^2, any finite vector. Default Earth's,
   /// along -y.
@@ -126,6 +142,13 @@ struct WorldSettings {
   /// column sways by 8 cm; as a block it stays within 1e-7 m. Off is the
   /// write-up's one row at a time.
   bool blockSolver = true;
+  /// Order and width of the velocity sweeps (see ContactSolverKind).
+  /// Default SequentialImpulses, the write-up's reference: on one thread
+  /// the coloured solver measured no faster (the sweeps are bound by
+  /// memory traffic, and packing the bundles costs Prepare time;
+  /// docs/dynamics.md); ColouredWide is the order whose colours can be
+  /// split across threads with bit-identical results.
+  ContactSolverKind contactSolver = ContactSolverKind::SequentialImpulses;
   /// Position iterations, [1, 1000]: sweeps of the split-impulse
   /// pseudo-velocity rows, or at most this many non-linear Gauss-Seidel
   /// sweeps (they stop early once no point is deeper than 3 positionSlop).

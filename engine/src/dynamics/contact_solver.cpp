@@ -51,8 +51,8 @@ double EffectiveMass(const Vec3& axis, const Vec3& rA, const Vec3& rB, double in
 
 }  // namespace
 
-ContactSolver::RowJacobian ContactSolver::MakeJacobian(const Vec3& d, const Vec3& rA, const Vec3& rB,
-                                                       const Mat3& invInertiaA, const Mat3& invInertiaB) {
+RowJacobian ContactSolver::MakeJacobian(const Vec3& d, const Vec3& rA, const Vec3& rB,
+                                        const Mat3& invInertiaA, const Mat3& invInertiaB) {
   RowJacobian j;
   j.angularA = rA.cross(d);
   j.angularB = rB.cross(d);
@@ -130,6 +130,8 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
         row.target = correction;
       }
       PointCold cold;
+      cold.armA = rA;
+      cold.armB = rB;
       const bool split = settings.positionCorrection == PositionCorrection::SplitImpulses;
       cold.positionTarget = split && cp.depth > 0.0 ? correction : 0.0;
       if (settings.positionCorrection == PositionCorrection::NonlinearGaussSeidel) {
@@ -172,32 +174,49 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
     if (!pair.persisted) ++m_newPairs;
     m_pairs.push_back(pair);
   }
+  m_useWide = settings.contactSolver == ContactSolverKind::ColouredWide;
+  if (m_useWide) {
+    m_wide.Build(m_pairs, m_normals, m_frictions, m_cold, m_blockInverses, m_bodies);
+    stats.solverColours = m_wide.ColourCount();
+    stats.overflowPairs = static_cast<std::int32_t>(m_wide.OverflowPairs().size());
+  }
 }
 
 // Warm start: each point's accumulated impulse lambda_n n + lambda_1 t1 +
-// lambda_2 t2, applied through the rows' precomputed images.
+// lambda_2 t2, applied through the rows' precomputed images. Coloured: the
+// colours' bundles, then the overflow pairs.
 void ContactSolver::WarmStart() {
-  for (const PairRows& pair : m_pairs) {
-    SolverVelocity& a = m_bodies.Velocity(pair.bodyA);
-    SolverVelocity& b = m_bodies.Velocity(pair.bodyB);
-    for (int i = 0; i < pair.pointCount; ++i) {
-      const NormalRow& row = m_normals[static_cast<std::size_t>(pair.firstPoint + i)];
-      Vec3 impulse = row.impulse * pair.normal;
-      Vec3 turnA = row.impulse * row.j.imageA;
-      Vec3 turnB = row.impulse * row.j.imageB;
-      if (pair.hasFriction) {
-        for (int k = 0; k < 2; ++k) {
-          const FrictionRow& f = m_frictions[static_cast<std::size_t>(pair.firstFriction + 2 * i + k)];
-          impulse += f.impulse * pair.tangent[k];
-          turnA += f.impulse * f.j.imageA;
-          turnB += f.impulse * f.j.imageB;
-        }
+  if (m_useWide) {
+    ForEachColour([this](int colour, int begin, int end) {
+      m_wide.WarmStartRange(m_bodies, colour, begin, end);
+      return 0.0;
+    });
+    for (const int p : m_wide.OverflowPairs()) WarmStartPair(m_pairs[static_cast<std::size_t>(p)]);
+    return;
+  }
+  for (const PairRows& pair : m_pairs) WarmStartPair(pair);
+}
+
+void ContactSolver::WarmStartPair(const PairRows& pair) {
+  SolverVelocity& a = m_bodies.Velocity(pair.bodyA);
+  SolverVelocity& b = m_bodies.Velocity(pair.bodyB);
+  for (int i = 0; i < pair.pointCount; ++i) {
+    const NormalRow& row = m_normals[static_cast<std::size_t>(pair.firstPoint + i)];
+    Vec3 impulse = row.impulse * pair.normal;
+    Vec3 turnA = row.impulse * row.j.imageA;
+    Vec3 turnB = row.impulse * row.j.imageB;
+    if (pair.hasFriction) {
+      for (int k = 0; k < 2; ++k) {
+        const FrictionRow& f = m_frictions[static_cast<std::size_t>(pair.firstFriction + 2 * i + k)];
+        impulse += f.impulse * pair.tangent[k];
+        turnA += f.impulse * f.j.imageA;
+        turnB += f.impulse * f.j.imageB;
       }
-      a.v += pair.invMassA * impulse;
-      a.w += turnA;
-      b.v -= pair.invMassB * impulse;
-      b.w -= turnB;
     }
+    a.v += pair.invMassA * impulse;
+    a.w += turnA;
+    b.v -= pair.invMassB * impulse;
+    b.w -= turnB;
   }
 }
 

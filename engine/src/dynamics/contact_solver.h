@@ -79,12 +79,15 @@
 //   friction rows, e == 0 no restitution work.
 #pragma once
 
+#include <functional>
 #include <span>
 #include <vector>
 
 #include "dynamics/body_sim.h"
 #include "dynamics/contact.h"
+#include "dynamics/contact_rows.h"
 #include "dynamics/solver_body.h"
+#include "dynamics/wide_contact_solver.h"
 #include "talus/step_statistics.h"
 #include "talus/world_settings.h"
 
@@ -92,6 +95,16 @@ namespace talus {
 
 class ContactSolver {
  public:
+  /// Runs `body(begin, end)` on disjoint ranges covering [0, count),
+  /// possibly on several threads at once, and returns when all have run.
+  /// The coloured solver hands it each colour's bundles.
+  using RangeRunner = std::function<void(int count, const std::function<void(int begin, int end)>& body)>;
+
+  /// How the coloured solver spreads a colour's bundles (threads); unset,
+  /// each colour runs as one range on the caller's thread. Results do not
+  /// depend on how the ranges are cut (tested).
+  void SetRangeRunner(RangeRunner runner) { m_runner = std::move(runner); }
+
   /// Builds the rows of `contacts` for a step of `h` seconds and gathers the
   /// velocities of their bodies from `bodies` (the solver works on its own
   /// copy until Scatter), loading the accumulated impulses (zero, or last
@@ -122,48 +135,10 @@ class ContactSolver {
 
   /// Number of point rows built by the last Prepare.
   [[nodiscard]] int PointCount() const { return static_cast<int>(m_normals.size()); }
+  /// The coloured solver of the last Prepare (empty unless ColouredWide).
+  [[nodiscard]] const WideContactSolver& Wide() const { return m_wide; }
 
  private:
-  /// One row along direction d (the normal or a tangent) at one point:
-  /// the angular parts of J and their images under the inverse inertia.
-  struct RowJacobian {
-    Vec3 angularA = Vec3::Zero();  ///< rA x d, metres
-    Vec3 angularB = Vec3::Zero();  ///< rB x d, metres
-    Vec3 imageA = Vec3::Zero();    ///< IA^-1 (rA x d), 1/(kg m); zero when A cannot move
-    Vec3 imageB = Vec3::Zero();    ///< IB^-1 (rB x d), 1/(kg m); zero when B cannot move
-  };
-  struct NormalRow {
-    RowJacobian j;
-    double mass = 0.0;     ///< kg, effective mass
-    double target = 0.0;   ///< m/s, least normal separation speed
-    double impulse = 0.0;  ///< N s, accumulated
-  };
-  struct FrictionRow {
-    RowJacobian j;
-    double mass = 0.0;     ///< kg, effective mass
-    double impulse = 0.0;  ///< N s, accumulated
-  };
-  /// Per point, read only by the position passes and the split impulses.
-  struct PointCold {
-    double positionTarget = 0.0;       ///< m/s, split-impulse pseudo target
-    double pseudoImpulse = 0.0;        ///< N s, accumulated split impulse
-    Vec3 localAnchorA = Vec3::Zero();  ///< A's surface point, A's axes, from its centre of mass
-    Vec3 localAnchorB = Vec3::Zero();  ///< B's surface point, B's axes, from its centre of mass
-  };
-  struct PairRows {
-    int bodyA = -1, bodyB = -1;  ///< solver-body indices
-    int firstPoint = 0, pointCount = 0;
-    int firstFriction = 0;  ///< index into m_frictions of point 0's t1 row (t2 follows)
-    int block = -1;         ///< index into m_blockInverses, -1 when solved row by row
-    int contact = -1;       ///< index into the contacts handed to Prepare
-    Vec3 normal = Vec3::Zero();
-    Vec3 tangent[2] = {Vec3::Zero(), Vec3::Zero()};
-    double invMassA = 0.0, invMassB = 0.0;  ///< 1/kg; zero for bodies contacts cannot move
-    double friction = 0.0;
-    bool hasFriction = false;
-    bool persisted = false;  ///< the pair touched last step (see Contact::persisted)
-  };
-
   static RowJacobian MakeJacobian(const Vec3& d, const Vec3& rA, const Vec3& rB, const Mat3& invInertiaA,
                                   const Mat3& invInertiaB);
   /// 1 / (J M^-1 J^T) of a row (the effective mass), kg; 0 when nothing can move.
@@ -177,6 +152,14 @@ class ContactSolver {
   void SolveFriction(const PairRows& pair);
   template <bool kTrack>
   void Sweep();
+  /// One coloured sweep: each colour's normal rows, the overflow pairs';
+  /// then the friction rows likewise. Returns the tracked largest change.
+  double SweepWide(bool track);
+  /// Runs `pass(colour, begin, end)` over each colour's bundles in turn,
+  /// each colour through m_runner, and returns the largest value a range
+  /// returned (max is exact in any order, so the cut does not matter).
+  double ForEachColour(const std::function<double(int colour, int begin, int end)>& pass);
+  void WarmStartPair(const PairRows& pair);
   /// Records the velocity change (impulse / mass) of a row of a new pair.
   void NoteChange(const PairRows& pair, double impulse, double mass);
 
@@ -186,6 +169,9 @@ class ContactSolver {
   std::vector<FrictionRow> m_frictions;  ///< two per point (t1, t2) of the pairs with friction
   std::vector<PointCold> m_cold;         ///< one per point
   std::vector<Eigen::Matrix4d> m_blockInverses;
+  WideContactSolver m_wide;
+  bool m_useWide = false;  ///< ColouredWide selected at the last Prepare
+  RangeRunner m_runner;
   int m_newPairs = 0;            ///< pairs that did not persist
   double m_largestChange = 0.0;  ///< m/s, the largest row velocity change of this sweep
 };

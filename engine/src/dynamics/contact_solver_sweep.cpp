@@ -14,6 +14,7 @@
 // The change tracking the extra sweeps need (NoteChange) is compiled into a
 // second instance of each pass (kTrack) so the fixed sweeps pay nothing.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
@@ -200,16 +201,83 @@ void ContactSolver::Sweep() {
 // solver time on the 1240-cube pyramid (its warm-started rows never settle
 // to 1e-3 m/s in ten sweeps); sweeping the new pairs' rows alone pushed
 // bodies into the contacts left unsolved and the pyramid drifted 0.45 m.
+//
+// Coloured (ContactSolverKind::ColouredWide), the same sweeps visit each
+// colour's pairs four at a time, then the overflow pairs one by one; the
+// impulses go back to the scalar rows at the end, where the position
+// passes and StoreImpulses read them.
 int ContactSolver::SolveVelocities(int minIterations, int maxIterations, double tolerance) {
-  int sweeps = 0;
-  for (; sweeps < minIterations; ++sweeps) Sweep<false>();
-  if (m_newPairs == 0) return sweeps;
-  for (; sweeps < maxIterations; ++sweeps) {
+  const auto sweep = [this](bool track) {
     m_largestChange = 0.0;
-    Sweep<true>();
-    if (m_largestChange <= tolerance) return sweeps + 1;
+    if (m_useWide) {
+      m_largestChange = std::max(m_largestChange, SweepWide(track));
+    } else if (track) {
+      Sweep<true>();
+    } else {
+      Sweep<false>();
+    }
+    return m_largestChange;
+  };
+  int sweeps = 0;
+  for (; sweeps < minIterations; ++sweeps) sweep(false);
+  if (m_newPairs != 0) {
+    for (; sweeps < maxIterations;) {
+      ++sweeps;
+      if (sweep(true) <= tolerance) break;
+    }
   }
+  if (m_useWide) m_wide.Unpack(m_pairs, m_normals, m_frictions);
   return sweeps;
+}
+
+double ContactSolver::ForEachColour(const std::function<double(int colour, int begin, int end)>& pass) {
+  double largest = 0.0;
+  for (int colour = 0; colour < m_wide.ColourCount(); ++colour) {
+    const int count = m_wide.BundleCount(colour);
+    if (!m_runner) {
+      largest = std::max(largest, pass(colour, 0, count));
+      continue;
+    }
+    std::atomic<double> shared{largest};
+    m_runner(count, [&](int begin, int end) {
+      const double mine = pass(colour, begin, end);
+      double seen = shared.load(std::memory_order_relaxed);
+      while (mine > seen && !shared.compare_exchange_weak(seen, mine, std::memory_order_relaxed)) {
+      }
+    });
+    largest = shared.load(std::memory_order_relaxed);
+  }
+  return largest;
+}
+
+double ContactSolver::SweepWide(bool track) {
+  double largest = ForEachColour([this, track](int colour, int begin, int end) {
+    return m_wide.SolveNormalRange(m_bodies, colour, begin, end, track);
+  });
+  // The overflow pairs one by one, with the scalar passes (their own
+  // tracking goes through m_largestChange).
+  m_largestChange = 0.0;
+  for (const int p : m_wide.OverflowPairs()) {
+    const PairRows& pair = m_pairs[static_cast<std::size_t>(p)];
+    if (track) {
+      SolveNormals<true>(pair);
+    } else {
+      SolveNormals<false>(pair);
+    }
+  }
+  largest = std::max(largest, ForEachColour([this, track](int colour, int begin, int end) {
+                       return m_wide.SolveFrictionRange(m_bodies, colour, begin, end, track);
+                     }));
+  for (const int p : m_wide.OverflowPairs()) {
+    const PairRows& pair = m_pairs[static_cast<std::size_t>(p)];
+    if (!pair.hasFriction) continue;
+    if (track) {
+      SolveFriction<true>(pair);
+    } else {
+      SolveFriction<false>(pair);
+    }
+  }
+  return std::max(largest, m_largestChange);
 }
 
 }  // namespace talus

@@ -119,6 +119,11 @@ std::string ValidateSettings(const WorldSettings& s) {
     return "WorldSettings.rotation = " + std::to_string(static_cast<int>(s.rotation)) +
            " is not a RotationIntegrator";
   }
+  if (s.contactSolver != ContactSolverKind::SequentialImpulses &&
+      s.contactSolver != ContactSolverKind::ColouredWide) {
+    return "WorldSettings.contactSolver = " + std::to_string(static_cast<int>(s.contactSolver)) +
+           " is not a ContactSolverKind";
+  }
   if (s.translation != TranslationIntegrator::SymplecticEuler &&
       s.translation != TranslationIntegrator::ExactConstantAcceleration) {
     return "WorldSettings.translation = " + std::to_string(static_cast<int>(s.translation)) +

@@ -32,7 +32,7 @@ using harness::CombineRule;
 using harness::Run;
 
 /// Which engine options a variant uses.
-enum class Variant { Defaults, WriteUp, SplitImpulses };
+enum class Variant { Defaults, WriteUp, SplitImpulses, Coloured };
 
 const char* VariantName(Variant variant) {
   switch (variant) {
@@ -42,6 +42,8 @@ const char* VariantName(Variant variant) {
       return "talus-writeup";
     case Variant::SplitImpulses:
       return "talus-split";
+    case Variant::Coloured:
+      return "talus-coloured";
   }
   return "talus";
 }
@@ -159,6 +161,9 @@ WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine fric
     settings.blockSolver = false;
     settings.maxVelocityIterations = 1;
     settings.positionCorrection = PositionCorrection::Baumgarte;
+    settings.contactSolver = ContactSolverKind::SequentialImpulses;  // the write-up's scalar order
+  } else if (variant == Variant::Coloured) {
+    settings.contactSolver = ContactSolverKind::ColouredWide;
   } else if (variant == Variant::SplitImpulses) {
     settings.positionCorrection = PositionCorrection::SplitImpulses;
   }
@@ -285,7 +290,9 @@ void TalusBackend::AddSettings(const Run& run) {
       {"time step (s)", SettingNumber(run.timeStep)},
       {"stepping", "World::Step(h), one step per Step()"},
       {"integrator", "symplectic Euler (v += h a; x += h v)"},
-      {"solver", "sequential impulses"},
+      {"solver", s.contactSolver == ContactSolverKind::SequentialImpulses
+                     ? "sequential impulses (scalar, pair order)"
+                     : "sequential impulses, coloured, four pairs per SIMD bundle"},
       {"velocity iterations",
        std::to_string(s.velocityIterations) + (run.iterations > 0 ? "" : " (engine default)")},
       {"warm starting", OnOff(s.warmStarting)},
@@ -342,6 +349,10 @@ void RegisterTalusBackends(harness::BackendRegistry& registry, TalusBackendOptio
   registry.Register(
       "talus-split", "Talus (double): engine defaults plus split impulses",
       [options](const Run& run) { return TalusBackend::Create(run, Variant::SplitImpulses, options); });
+  registry.Register("talus-coloured",
+                    "Talus (double): engine defaults with the coloured wide solver (four pairs per SIMD "
+                    "bundle, colours splittable across threads) instead of the scalar pair order",
+                    [options](const Run& run) { return TalusBackend::Create(run, Variant::Coloured, options); });
 }
 
 }  // namespace talus::reference

@@ -9,6 +9,9 @@
 //                    warm starting, Baumgarte stabilisation.
 //   "talus-split"    the defaults plus split impulses (position correction
 //                    that adds no kinetic energy).
+//   "talus-coloured" the defaults with the coloured wide solver
+//                    (ContactSolverKind::ColouredWide: pairs coloured, four
+//                    per SIMD bundle) instead of the scalar pair order.
 //
 // Common to all: double precision; one World::Step(h) per Step(); mass,
 // centre of mass and inertia from talus::reference::ComputeBodyMass (the
@@ -36,7 +39,8 @@ struct TalusBackendOptions {
   int threads = 1;
 };
 
-/// Registers "talus", "talus-writeup" and "talus-split". A thread count
+/// Registers "talus", "talus-writeup", "talus-split" and
+/// "talus-coloured". A thread count
 /// outside [1, kMaxThreads] is refused by every backend's Create, naming it.
 void RegisterTalusBackends(harness::BackendRegistry& registry, TalusBackendOptions options = {});
 

@@ -1,0 +1,58 @@
+// The per-step rows of the contact solver (see dynamics/contact_solver.h
+// for the derivations): one header per touching pair, one normal row and
+// two friction rows per point, cold per-point data apart. Shared by the
+// scalar Sequential Impulses (contact_solver*.cpp) and the coloured wide
+// solver (wide_contact_solver.{h,cpp}), which packs them into lanes.
+#pragma once
+
+#include "talus/math.h"
+
+namespace talus {
+
+/// One row along direction d (the normal or a tangent) at one point: the
+/// angular parts of J and their images under the inverse inertia.
+struct RowJacobian {
+  Vec3 angularA = Vec3::Zero();  ///< rA x d, metres
+  Vec3 angularB = Vec3::Zero();  ///< rB x d, metres
+  Vec3 imageA = Vec3::Zero();    ///< IA^-1 (rA x d), 1/(kg m); zero when A cannot move
+  Vec3 imageB = Vec3::Zero();    ///< IB^-1 (rB x d), 1/(kg m); zero when B cannot move
+};
+
+struct NormalRow {
+  RowJacobian j;
+  double mass = 0.0;     ///< kg, effective mass
+  double target = 0.0;   ///< m/s, least normal separation speed
+  double impulse = 0.0;  ///< N s, accumulated
+};
+
+struct FrictionRow {
+  RowJacobian j;
+  double mass = 0.0;     ///< kg, effective mass
+  double impulse = 0.0;  ///< N s, accumulated
+};
+
+/// Per point, read only by the position passes and the split impulses.
+struct PointCold {
+  double positionTarget = 0.0;       ///< m/s, split-impulse pseudo target
+  double pseudoImpulse = 0.0;        ///< N s, accumulated split impulse
+  Vec3 localAnchorA = Vec3::Zero();  ///< A's surface point, A's axes, from its centre of mass
+  Vec3 localAnchorB = Vec3::Zero();  ///< B's surface point, B's axes, from its centre of mass
+  Vec3 armA = Vec3::Zero();          ///< rA = p - cA, world, metres (the wide solver's input)
+  Vec3 armB = Vec3::Zero();          ///< rB = p - cB
+};
+
+struct PairRows {
+  int bodyA = -1, bodyB = -1;  ///< solver-body indices
+  int firstPoint = 0, pointCount = 0;
+  int firstFriction = 0;  ///< index into the friction rows of point 0's t1 row (t2 follows)
+  int block = -1;         ///< index into the block inverses, -1 when solved row by row
+  int contact = -1;       ///< index into the contacts handed to Prepare
+  Vec3 normal = Vec3::Zero();
+  Vec3 tangent[2] = {Vec3::Zero(), Vec3::Zero()};
+  double invMassA = 0.0, invMassB = 0.0;  ///< 1/kg; zero for bodies contacts cannot move
+  double friction = 0.0;
+  bool hasFriction = false;
+  bool persisted = false;  ///< the pair touched last step (see Contact::persisted)
+};
+
+}  // namespace talus
