@@ -239,6 +239,21 @@ TEST(WorldThreads, EverySolverVariantIsBitIdentical) {
   ExpectSameBitsForEveryThreadCount(build, writeUp, 40);
 }
 
+// The coloured wide solver spreads each colour's bundles over the pool
+// (world_step.cpp's range runner): a pyramid has enough pairs per colour for
+// several chunks of bundles, and the result must not depend on who solved
+// which chunk.
+TEST(WorldThreads, ColouredSolverSpreadsColoursWithoutChangingABit) {
+  const auto build = [](World& world) {
+    AddGround(world);
+    AddPyramid(world, 7);
+  };
+  WorldSettings coloured;
+  coloured.contactSolver = ContactSolverKind::ColouredWide;
+  const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, coloured, 30);
+  EXPECT_GT(one.manifolds, 2 * 8 * 8);  // several chunks of 8 bundles of 4 pairs
+}
+
 // Changing the thread count between steps changes nothing either.
 TEST(WorldThreads, ChangingTheThreadCountMidRunChangesNoBit) {
   const auto build = [](World& world) {

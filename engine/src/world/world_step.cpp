@@ -22,6 +22,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <span>
 #include <string>
 
@@ -47,6 +48,12 @@ class StageClock {
   std::chrono::steady_clock::time_point m_last = std::chrono::steady_clock::now();
 };
 
+// Bundles (four contact pairs each) per ParallelFor chunk of a colour's
+// sweep: a bundle's two to four points cost about a microsecond, so a chunk
+// of 8 is well above the pool's hand-off cost without starving a second
+// thread on the smaller colours.
+constexpr int kBundleGrain = 8;
+
 void CountBodies(const WorldData& d, StepStatistics& stats) {
   stats.bodies = d.liveBodies;
   for (const BodySim& sim : d.sims) {
@@ -56,8 +63,19 @@ void CountBodies(const WorldData& d, StepStatistics& stats) {
 
 // Warm starting pairs this step's contacts with last step's by feature id;
 // then the solver's rows are built from the contacts.
+// The coloured solver hands each colour's bundles to the world's pool; the
+// scalar solver ignores the runner. With one thread no runner is set, so a
+// colour runs as one range on the caller (the results are the same bits
+// either way: tests/threads, tests/dynamics/coloured_solver_test.cpp).
 void PrepareContacts(WorldData& d, double h, StepStatistics& stats) {
   if (d.settings.warmStarting) stats.warmStartedPoints = CarryImpulses(d.previousContacts, d.contacts);
+  if (d.jobs->ThreadCount() > 1) {
+    d.solver.SetRangeRunner([&d](int count, const std::function<void(int, int)>& body) {
+      d.jobs->ParallelFor(count, kBundleGrain, body);
+    });
+  } else {
+    d.solver.SetRangeRunner(nullptr);
+  }
   d.solver.Prepare(d.sims, d.contacts, d.settings, h, stats);
 }
 
