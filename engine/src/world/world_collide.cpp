@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "collision/collide.h"
+#include "collision/manifold_persistence.h"
 #include "talus/transform.h"
 
 namespace talus {
@@ -154,8 +155,24 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
     // A is the lower slot: the manifold's normal points from b towards a.
     if (Collide(*d.shapes[a], xfA, *d.shapes[b], xfB, d.settings.narrowPhase, &cache.cache,
                 &stats.narrowPhase, &manifold)) {
-      addContact(manifold, d.settings.narrowPhase.reuseDistance > 0.0 ? RecordAnchors(manifold, xfA, xfB)
-                                                                      : ManifoldAnchors{});
+      const NarrowPhaseSettings& narrow = d.settings.narrowPhase;
+      // Spheres get exact single points from a closed form; only polyhedron
+      // pairs remember points.
+      const bool persists = narrow.persistence == ManifoldPersistence::Accumulate &&
+                            d.shapes[a]->Type() != ShapeType::Sphere &&
+                            d.shapes[b]->Type() != ShapeType::Sphere;
+      ManifoldAnchors anchors =
+          narrow.reuseDistance > 0.0 || persists ? RecordAnchors(manifold, xfA, xfB) : ManifoldAnchors{};
+      if (persists) SnapAnchorsToSurfaces(*d.shapes[a], xfA, *d.shapes[b], xfB, manifold, &anchors);
+      if (persists && hadContact) {
+        const Contact& before = d.previousContacts[oldContact];
+        const double breakDistance =
+            PersistentBreakDistance(narrow.persistenceDistance, d.shapes[a]->LocalBoundingSphere().radius,
+                                    d.shapes[b]->LocalBoundingSphere().radius);
+        stats.persistentPoints += MergePersistentPoints(before.manifold, before.anchors, xfA, xfB,
+                                                        breakDistance, &manifold, &anchors);
+      }
+      addContact(manifold, anchors);
     }
     d.satCaches.push_back(cache);
   }
