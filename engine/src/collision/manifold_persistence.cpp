@@ -40,6 +40,52 @@ double PersistentBreakDistance(double setting, double radiusA, double radiusB) {
 // exactness the narrow phase asks of positions, kMissRelative there).
 constexpr double kSnapRelative = 1e-9;
 
+namespace {
+
+// A feature this close to parallel with the line (sine squared for an
+// edge, cosine for a face normal) has no reliable crossing (unitless; as
+// kParallelFaceCosine in polyhedron_manifold.cpp: round-off divided by a
+// round-off rate is garbage).
+constexpr double kParallelLine = 1e-9;
+
+// Where the line p + t n (n unit) meets feature `feature` (16-bit packed,
+// contact_manifold.h) of `hull`: its t, or NaN when the feature is none,
+// out of range (indices wrap above 16383), parallel to the line, or farther
+// from the line than `tolerance` (metres). A vertex is its own point; an
+// edge gives its point closest to the line; a face the line's crossing of
+// its plane.
+double FeatureOnLine(const PosedHull& hull, std::uint32_t feature, const Vec3& p, const Vec3& n,
+                     double tolerance) {
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  const auto type = static_cast<FeatureType>(feature >> 14);
+  const int index = static_cast<int>(feature & 0x3FFFu);
+  Vec3 point = Vec3::Zero();
+  if (type == FeatureType::Vertex && index < hull.hull->VertexCount()) {
+    point = hull.Vertex(index);
+  } else if (type == FeatureType::Edge && index < hull.hull->EdgeCount()) {
+    // The segment a + s d (s in [0, 1]) against the line p + t n: the s
+    // that minimises |a + s d - p - t n| once t takes its best value.
+    const Vec3 a = hull.Vertex(hull.EdgeStart(index));
+    const Vec3 d = hull.Vertex(hull.EdgeEnd(index)) - a;
+    const Vec3 w = a - p;
+    const double across = d.squaredNorm() - n.dot(d) * n.dot(d);  // |d|^2 sin^2
+    if (!(across > kParallelLine * d.squaredNorm())) return none;
+    const double s = std::clamp((n.dot(d) * n.dot(w) - d.dot(w)) / across, 0.0, 1.0);
+    point = a + s * d;
+  } else if (type == FeatureType::Face && index < hull.hull->FaceCount()) {
+    const Plane plane = hull.FacePlane(index);
+    const double rate = plane.normal.dot(n);
+    if (!(std::abs(rate) > kParallelLine)) return none;
+    return -plane.SignedDistance(p) / rate;
+  } else {
+    return none;
+  }
+  const double t = n.dot(point - p);
+  return ((point - p) - t * n).norm() <= tolerance ? t : none;
+}
+
+}  // namespace
+
 void SnapAnchorsToSurfaces(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
                            const ContactManifold& manifold, ManifoldAnchors* anchors) {
   assert(a.IsPolyhedron() && b.IsPolyhedron() && anchors->pointCount == manifold.pointCount);
@@ -49,28 +95,34 @@ void SnapAnchorsToSurfaces(const Shape& a, const Transform& xfA, const Shape& b,
   const Vec3& n = manifold.normal;
   for (std::size_t i = 0; i < static_cast<std::size_t>(manifold.pointCount); ++i) {
     const ContactPoint& point = manifold.points[i];
-    double loA = 0.0;
-    double hiA = 0.0;
-    double loB = 0.0;
-    double hiB = 0.0;
-    LineInterval(hullA, point.position, n, &loA, &hiA);
-    LineInterval(hullB, point.position, n, &loB, &hiB);
-    // A lies on the +n side: the line enters A at loA and leaves B at hiB.
-    if (!std::isfinite(loA) || !std::isfinite(hiB) || loA > hiA || loB > hiB) continue;
     const double roundOff = kDepthRoundOffUlps * std::numeric_limits<double>::epsilon() *
                             (point.position.cwiseAbs().maxCoeff() + size);
-    if (!(std::abs((hiB - loA) - point.depth) <= kSnapRelative * size + roundOff)) continue;
-    anchors->localPointA[i] = xfA.ApplyInverse(point.position + loA * n);
-    anchors->localPointB[i] = xfB.ApplyInverse(point.position + hiB * n);
+    const double tolerance = kSnapRelative * size + roundOff;
+    // First the two features that made the point, where they meet its
+    // normal line; else where the line enters A and leaves B (A lies on
+    // the +n side).
+    double onA = FeatureOnLine(hullA, point.featureId >> 16, point.position, n, tolerance);
+    double onB = FeatureOnLine(hullB, point.featureId & 0xFFFFu, point.position, n, tolerance);
+    if (!std::isfinite(onA) || !std::isfinite(onB) || !(std::abs((onB - onA) - point.depth) <= tolerance)) {
+      double hiA = 0.0;
+      double loB = 0.0;
+      LineInterval(hullA, point.position, n, &onA, &hiA);
+      LineInterval(hullB, point.position, n, &loB, &onB);
+      if (!std::isfinite(onA) || !std::isfinite(onB) || onA > hiA || loB > onB) continue;
+      if (!(std::abs((onB - onA) - point.depth) <= tolerance)) continue;
+    }
+    anchors->localPointA[i] = xfA.ApplyInverse(point.position + onA * n);
+    anchors->localPointB[i] = xfB.ApplyInverse(point.position + onB * n);
   }
 }
 
 int MergePersistentPoints(const ContactManifold& previous, const ManifoldAnchors& previousAnchors,
-                          const Transform& xfA, const Transform& xfB, double distance, ContactManifold* fresh,
-                          ManifoldAnchors* freshAnchors) {
+                          const Transform& xfA, const Transform& xfB, double distance, int maxFreshPoints,
+                          ContactManifold* fresh, ManifoldAnchors* freshAnchors) {
   assert(std::isfinite(distance) && distance > 0.0);
   assert(freshAnchors->recorded && freshAnchors->pointCount == fresh->pointCount);
-  if (!previousAnchors.recorded || fresh->pointCount <= 0 || fresh->pointCount >= kPersistentMaxPoints)
+  if (!previousAnchors.recorded || fresh->pointCount <= 0 || fresh->pointCount > maxFreshPoints ||
+      fresh->pointCount >= kPersistentMaxPoints)
     return 0;
   const Vec3& n = fresh->normal;
   const std::size_t freshCount = static_cast<std::size_t>(fresh->pointCount);

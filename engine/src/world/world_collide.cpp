@@ -169,8 +169,9 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
         const double breakDistance =
             PersistentBreakDistance(narrow.persistenceDistance, d.shapes[a]->LocalBoundingSphere().radius,
                                     d.shapes[b]->LocalBoundingSphere().radius);
-        stats.persistentPoints += MergePersistentPoints(before.manifold, before.anchors, xfA, xfB,
-                                                        breakDistance, &manifold, &anchors);
+        stats.persistentPoints +=
+            MergePersistentPoints(before.manifold, before.anchors, xfA, xfB, breakDistance,
+                                  kPersistentFreshPoints, &manifold, &anchors);
       }
       addContact(manifold, anchors);
     }
