@@ -34,6 +34,7 @@ struct StepStatistics {
   std::int32_t manifolds = 0;             ///< touching pairs handed to the solver
   std::int32_t manifoldsReused = 0;       ///< of those, rebuilt without the narrow phase (reuseDistance)
   std::int32_t reusedContactPoints = 0;   ///< points of the reused manifolds
+  std::int32_t persistentPoints = 0;      ///< remembered points added to fresh manifolds (persistence)
   std::int32_t contactPoints = 0;         ///< normal rows solved
   std::int32_t frictionRows = 0;          ///< tangent rows solved (two per point with mu > 0)
   std::int32_t frictionRowsSkipped = 0;   ///< tangent rows not built because mu = 0

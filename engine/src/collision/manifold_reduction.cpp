@@ -42,6 +42,15 @@ double HullArea(std::array<Vec2, kMaxManifoldPoints + 1> points, std::size_t cou
 
 }  // namespace
 
+double ContactPolygonArea(std::span<const Vec3> points, const Vec3& normal) {
+  assert(points.size() <= kMaxManifoldPoints + 1);
+  const Vec3 u = normal.unitOrthogonal();
+  const Vec3 v = normal.cross(u);
+  std::array<Vec2, kMaxManifoldPoints + 1> planar{};
+  for (std::size_t i = 0; i < points.size(); ++i) planar[i] = {u.dot(points[i]), v.dot(points[i])};
+  return HullArea(planar, points.size());
+}
+
 int ReduceContactPoints(std::span<const ContactPoint> candidates, const Vec3& normal, int maxCount,
                         ContactPoint* out) {
   assert(maxCount >= 1 && maxCount <= kMaxManifoldPoints);

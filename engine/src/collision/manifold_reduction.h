@@ -23,4 +23,9 @@ namespace talus {
 int ReduceContactPoints(std::span<const ContactPoint> candidates, const Vec3& normal, int maxCount,
                         ContactPoint* out);
 
+/// The area (square metres) of the convex hull of `points` (at most
+/// kMaxManifoldPoints + 1) projected on the plane with unit normal
+/// `normal`; 0 for fewer than three points.
+double ContactPolygonArea(std::span<const Vec3> points, const Vec3& normal);
+
 }  // namespace talus

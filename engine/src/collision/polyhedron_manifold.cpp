@@ -59,27 +59,6 @@ constexpr double kParallelFaceCosine = 1e-9;
 // asks of positions).
 constexpr double kMissRelative = 1e-9;
 
-// The parameters t for which p + t * n lies inside `hull` (n unit, world):
-// [*lo, *hi], empty when *lo > *hi. A face parallel to the line excludes it
-// only when p is farther out than the hull's own tolerance.
-void LineInterval(const PosedHull& hull, const Vec3& p, const Vec3& n, double* lo, double* hi) {
-  const Vec3 local = hull.rotation.transpose() * (p - hull.position);
-  const Vec3 direction = hull.rotation.transpose() * n;
-  *lo = -std::numeric_limits<double>::infinity();
-  *hi = std::numeric_limits<double>::infinity();
-  for (const HullFace& face : hull.hull->Faces()) {
-    const double distance = face.plane.SignedDistance(local);  // <= 0 inside
-    const double rate = face.plane.normal.dot(direction);
-    if (rate > kParallelFaceCosine) {
-      *hi = std::min(*hi, -distance / rate);
-    } else if (rate < -kParallelFaceCosine) {
-      *lo = std::max(*lo, -distance / rate);
-    } else if (distance > hull.hull->Tolerance()) {
-      *lo = std::numeric_limits<double>::infinity();  // parallel to the face, outside it
-    }
-  }
-}
-
 // How far world point p lies outside `hull` (metres; <= 0 inside).
 double OutsideDistance(const PosedHull& hull, const Vec3& p) {
   const Vec3 local = hull.rotation.transpose() * (p - hull.position);
@@ -357,6 +336,26 @@ int BuildWriteUpPoints(const FaceContact& contact, const Vec3& normal, double de
 }
 
 }  // namespace
+
+// A face parallel to the line excludes it only when p is farther out than
+// the hull's own tolerance.
+void LineInterval(const PosedHull& hull, const Vec3& p, const Vec3& n, double* lo, double* hi) {
+  const Vec3 local = hull.rotation.transpose() * (p - hull.position);
+  const Vec3 direction = hull.rotation.transpose() * n;
+  *lo = -std::numeric_limits<double>::infinity();
+  *hi = std::numeric_limits<double>::infinity();
+  for (const HullFace& face : hull.hull->Faces()) {
+    const double distance = face.plane.SignedDistance(local);  // <= 0 inside
+    const double rate = face.plane.normal.dot(direction);
+    if (rate > kParallelFaceCosine) {
+      *hi = std::min(*hi, -distance / rate);
+    } else if (rate < -kParallelFaceCosine) {
+      *lo = std::max(*lo, -distance / rate);
+    } else if (distance > hull.hull->Tolerance()) {
+      *lo = std::numeric_limits<double>::infinity();  // parallel to the face, outside it
+    }
+  }
+}
 
 double WriteUpTolerance(const Hull& a, const Hull& b) {
   static_assert(kWriteUpPlaneTolerance == kWriteUpInsideTolerance, "one slop for both tests");

@@ -59,6 +59,10 @@ inline constexpr int kClippedMaxPoints = 4;
 void BuildPolyhedronManifold(const PosedHull& a, const PosedHull& b, const SatResult& sat, ManifoldMode mode,
                              double margin, ContactManifold* out);
 
+/// The parameters t for which p + t n (world, n unit) lies inside `hull`:
+/// [*lo, *hi], empty when *lo > *hi, infinite ends when unbounded.
+void LineInterval(const PosedHull& hull, const Vec3& p, const Vec3& n, double* lo, double* hi);
+
 /// The closest points of segments p0-p1 and q0-q1 (Ericson, Real-Time
 /// Collision Detection 5.1.9), written to `onP` and `onQ`.
 void ClosestPointsOfSegments(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, Vec3* onP,

@@ -145,6 +145,15 @@ std::string ValidateSettings(const WorldSettings& s) {
     return "WorldSettings.narrowPhase.reuseDistance = " + std::to_string(s.narrowPhase.reuseDistance) +
            " m must be finite and >= 0 (0 turns manifold reuse off)";
   }
+  if (s.narrowPhase.persistence != ManifoldPersistence::Fresh &&
+      s.narrowPhase.persistence != ManifoldPersistence::Accumulate) {
+    return "WorldSettings.narrowPhase.persistence = " +
+           std::to_string(static_cast<int>(s.narrowPhase.persistence)) + " is not a ManifoldPersistence";
+  }
+  if (!std::isfinite(s.narrowPhase.persistenceDistance) || !(s.narrowPhase.persistenceDistance > 0.0)) {
+    return "WorldSettings.narrowPhase.persistenceDistance = " +
+           std::to_string(s.narrowPhase.persistenceDistance) + " m must be finite and > 0";
+  }
   constexpr double kHuge = 1e300;
   for (const std::string& error :
        {CheckRange("baumgarte", s.baumgarte, 0.0, 1.0), CheckRange("slop", s.slop, 0.0, 1.0),

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "collision/collide.h"
+#include "collision/manifold_persistence.h"
 #include "talus/transform.h"
 
 namespace talus {
@@ -126,11 +127,25 @@ void CollidePair(const WorldData& d, const BroadPhasePair& pair, PairOutcome& ou
                                         ? d.previousSatCaches[static_cast<std::size_t>(out.oldCache)].cache
                                         : SatCache{}};
   // A is the lower slot: the manifold's normal points from b towards a.
-  if (Collide(*d.shapes[a], xfA, *d.shapes[b], xfB, d.settings.narrowPhase, &out.cache.cache, &out.stats,
-              &manifold)) {
-    setContact(manifold, d.settings.narrowPhase.reuseDistance > 0.0 ? RecordAnchors(manifold, xfA, xfB)
-                                                                    : ManifoldAnchors{});
+  out.persistentPoints = 0;
+  const NarrowPhaseSettings& narrow = d.settings.narrowPhase;
+  if (!Collide(*d.shapes[a], xfA, *d.shapes[b], xfB, narrow, &out.cache.cache, &out.stats, &manifold)) return;
+  // Spheres get exact single points from a closed form; only polyhedron
+  // pairs remember points.
+  const bool persists = narrow.persistence == ManifoldPersistence::Accumulate &&
+                        d.shapes[a]->Type() != ShapeType::Sphere && d.shapes[b]->Type() != ShapeType::Sphere;
+  ManifoldAnchors anchors =
+      narrow.reuseDistance > 0.0 || persists ? RecordAnchors(manifold, xfA, xfB) : ManifoldAnchors{};
+  if (persists) SnapAnchorsToSurfaces(*d.shapes[a], xfA, *d.shapes[b], xfB, manifold, &anchors);
+  if (persists && out.oldContact >= 0) {
+    const Contact& before = d.previousContacts[static_cast<std::size_t>(out.oldContact)];
+    const double breakDistance =
+        PersistentBreakDistance(narrow.persistenceDistance, d.shapes[a]->LocalBoundingSphere().radius,
+                                d.shapes[b]->LocalBoundingSphere().radius);
+    out.persistentPoints = MergePersistentPoints(before.manifold, before.anchors, xfA, xfB, breakDistance,
+                                                 kPersistentFreshPoints, &manifold, &anchors);
   }
+  setContact(manifold, anchors);
 }
 
 }  // namespace
@@ -218,6 +233,7 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
         break;
       case PairOutcome::Kind::Tested:
         stats.narrowPhase += outcome.stats;
+        stats.persistentPoints += outcome.persistentPoints;
         d.satCaches.push_back(outcome.cache);
         break;
     }

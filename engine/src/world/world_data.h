@@ -73,6 +73,7 @@ struct PairOutcome {
   std::int32_t oldContact = -1;  ///< index of last step's contact of the pair, or -1
   std::int32_t oldCache = -1;    ///< index of last step's SAT cache of the pair, or -1
   NarrowPhaseStats stats;        ///< Tested: the narrow phase's counts for this pair
+  std::int32_t persistentPoints = 0;  ///< Tested: last step's points merged back (manifold_persistence.h)
   Contact contact;
   PairSatCache cache;
 };

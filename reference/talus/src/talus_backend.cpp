@@ -155,6 +155,7 @@ WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine fric
     settings.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
     settings.narrowPhase.useSatCache = false;
     settings.narrowPhase.reuseDistance = 0.0;  // the write-up runs the narrow phase every step
+    settings.narrowPhase.persistence = ManifoldPersistence::Fresh;  // and keeps only its points
     settings.warmStarting = false;
     // The write-up's solver: plain row-by-row Gauss-Seidel, a fixed number
     // of sweeps (a cap below the iteration count means no extra sweeps).
@@ -317,6 +318,9 @@ void TalusBackend::AddSettings(const Run& run) {
       {"manifold reuse (m of relative motion)",
        s.narrowPhase.reuseDistance > 0.0 ? SettingNumber(s.narrowPhase.reuseDistance) : "off"},
       {"manifolds", manifold},
+      {"persistent points (m break distance)", s.narrowPhase.persistence == ManifoldPersistence::Accumulate
+                                                   ? SettingNumber(s.narrowPhase.persistenceDistance)
+                                                   : "off"},
       {"speculative margin (m)", SettingNumber(s.narrowPhase.speculativeMargin)},
       {"gyroscopic term", s.rotation == RotationIntegrator::ConstantRate
                               ? "off (WorldSettings::rotation = ConstantRate)"

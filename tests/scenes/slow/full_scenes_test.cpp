@@ -11,6 +11,7 @@
 
 #include "talus/harness/bench_run.h"
 #include "talus/reference/talus_backend.h"
+#include "talus/world_settings.h"
 
 namespace talus::harness {
 namespace {
@@ -31,9 +32,15 @@ TEST(FullScenes, TalusHullPileOfSideTenKeepsEveryBodyInside) {
   ASSERT_TRUE(report.kineticEnergy.has_value());
   std::printf("hull_pile 10 at step %d: kinetic energy %.3f J, max penetration %.4f m\n", kBenchDefaultSteps,
               *report.kineticEnergy, report.maxPenetration.value_or(-1.0));
-  // 5 cm: a tenth of a hull's size; deeper means bodies sink into each other.
+  // The Baumgarte bias pushes only depth beyond the slop, so a resting
+  // contact settles at the slop (5 mm, WorldSettings::slop); a contact the
+  // velocity solve failed to hold for a whole step sinks at most one step of
+  // free fall, g h^2 (2.7 mm at 1/60 s), deeper. Issue 15: with single-point
+  // edge contacts the pile ended at 1.6-4.1 cm; persistent points hold it
+  // at 5.0 mm.
   ASSERT_TRUE(report.maxPenetration.has_value());
-  EXPECT_LT(*report.maxPenetration, 0.05);
+  const double gravity = 9.81;
+  EXPECT_LE(*report.maxPenetration, talus::WorldSettings{}.slop + gravity * kBenchTimeStep * kBenchTimeStep);
 }
 
 }  // namespace
