@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "report_writer.h"
-#include "talus/harness/bench_run.h"
-#include "talus/harness/bench_scenes.h"
+#include "talus/harness/scenes/bench_run.h"
+#include "talus/harness/scenes/bench_scenes.h"
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/mujoco_backend.h"
 #include "talus/reference/ode_backend.h"

@@ -3,7 +3,7 @@
 
 #include <cstdio>
 
-#include "talus/harness/bench_report_json.h"
+#include "talus/harness/scenes/bench_report_json.h"
 
 namespace talus::scenes {
 namespace {

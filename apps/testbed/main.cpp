@@ -5,7 +5,7 @@
 #include <string>
 
 #include "sweep_commands.h"
-#include "talus/harness/scenario_limits.h"
+#include "talus/harness/scenario/scenario_limits.h"
 #include "testbed_commands.h"
 
 int main(int argc, char** argv) {

@@ -11,7 +11,7 @@
 #include <memory>
 
 #include "sweep_commands.h"
-#include "talus/harness/stress.h"
+#include "talus/harness/stress/stress.h"
 #include "testbed_commands.h"
 
 namespace talus::testbed {

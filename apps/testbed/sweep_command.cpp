@@ -9,11 +9,11 @@
 #include <thread>
 
 #include "sweep_commands.h"
-#include "talus/harness/atomic_file.h"
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
-#include "talus/harness/scenario_limits.h"
-#include "talus/harness/sweep.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_limits.h"
+#include "talus/harness/support/atomic_file.h"
+#include "talus/harness/sweep/sweep.h"
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/mujoco_backend.h"
 #include "talus/reference/ode_backend.h"

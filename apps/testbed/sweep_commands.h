@@ -10,7 +10,7 @@
 #include <functional>
 #include <string>
 
-#include "talus/harness/backend.h"
+#include "talus/harness/backend/backend.h"
 
 namespace talus::testbed {
 

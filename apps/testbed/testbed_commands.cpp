@@ -10,12 +10,12 @@
 #include <thread>
 
 #include "sweep_commands.h"
-#include "talus/harness/bench_report_json.h"
-#include "talus/harness/regression_check.h"
-#include "talus/harness/report.h"
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
-#include "talus/harness/stress.h"
+#include "talus/harness/report/regression_check.h"
+#include "talus/harness/report/report.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenes/bench_report_json.h"
+#include "talus/harness/stress/stress.h"
 
 namespace talus::testbed {
 namespace {

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <string>
 
-#include "talus/harness/scenario_loader.h"
-#include "talus/harness/truth_check.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
 namespace {

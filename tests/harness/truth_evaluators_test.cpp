@@ -7,11 +7,11 @@
 #include <numbers>
 #include <string>
 
-#include "talus/harness/hull_rest.h"
-#include "talus/harness/scenario_loader.h"
-#include "talus/harness/torque_free.h"
-#include "talus/harness/truth_check.h"
-#include "talus/harness/truths.h"
+#include "talus/harness/analytic/hull_rest_analysis.h"
+#include "talus/harness/analytic/torque_free_motion.h"
+#include "talus/harness/analytic/truths.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
 namespace {

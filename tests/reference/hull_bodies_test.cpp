@@ -11,9 +11,9 @@
 #include <map>
 #include <string>
 
-#include "talus/harness/backend.h"
-#include "talus/harness/hull_rest.h"
-#include "talus/harness/scenario_loader.h"
+#include "talus/harness/analytic/hull_rest_analysis.h"
+#include "talus/harness/backend/backend.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/hull_builder.h"
 #include "talus/mass_properties.h"
 #include "talus/reference/bullet_backend.h"

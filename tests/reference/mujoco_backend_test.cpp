@@ -7,10 +7,10 @@
 #include <cmath>
 #include <string>
 
-#include "talus/harness/backend.h"
-#include "talus/harness/bench_scenes.h"
-#include "talus/harness/scenario_loader.h"
-#include "talus/harness/truths.h"
+#include "talus/harness/analytic/truths.h"
+#include "talus/harness/backend/backend.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/scenes/bench_scenes.h"
 #include "talus/reference/body_mass.h"
 #include "talus/reference/mujoco_backend.h"
 

@@ -9,9 +9,9 @@
 #include <cstring>
 #include <string>
 
-#include "talus/harness/backend.h"
-#include "talus/harness/scenario_loader.h"
-#include "talus/harness/truths.h"
+#include "talus/harness/analytic/truths.h"
+#include "talus/harness/backend/backend.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/ode_backend.h"
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "talus/harness/backend.h"
-#include "talus/harness/scenario_loader.h"
+#include "talus/harness/backend/backend.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/mujoco_backend.h"
 #include "talus/reference/ode_backend.h"

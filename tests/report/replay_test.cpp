@@ -1,10 +1,10 @@
 // Replay recording and its JSON form: what the report's 3D view reads.
 #include <gtest/gtest.h>
 
-#include "talus/harness/replay.h"
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
-#include "talus/harness/scenario_loader.h"
+#include "talus/harness/run/replay.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/reference/talus_backend.h"
 
 namespace talus::harness {

@@ -1,7 +1,7 @@
 // The scene generators against the definitions of SCENES.md: counts,
 // positions, materials, walls, the random stream, and the body-frame /
 // centre-of-mass mapping each backend applies to the hull pile.
-#include "talus/harness/bench_scenes.h"
+#include "talus/harness/scenes/bench_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <set>
 #include <string>
 
-#include "talus/harness/split_mix64.h"
+#include "talus/harness/support/split_mix64.h"
 #include "talus/reference/body_mass.h"
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/ode_backend.h"

@@ -9,7 +9,7 @@
 
 #include "all_backends.h"
 #include "report_writer.h"
-#include "talus/harness/bench_run.h"
+#include "talus/harness/scenes/bench_run.h"
 
 namespace talus::harness {
 namespace {

@@ -2,7 +2,7 @@
 // steppers, MuJoCo's two configurations) in one registry, shared by the testbed suites.
 #pragma once
 
-#include "talus/harness/backend.h"
+#include "talus/harness/backend/backend.h"
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/mujoco_backend.h"
 #include "talus/reference/ode_backend.h"

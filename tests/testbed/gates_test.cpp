@@ -13,8 +13,8 @@
 #include <numbers>
 #include <string>
 
-#include "talus/harness/regression_check.h"
-#include "talus/harness/runner.h"
+#include "talus/harness/report/regression_check.h"
+#include "talus/harness/run/runner.h"
 #include "testbed/all_backends.h"
 
 namespace talus::harness {

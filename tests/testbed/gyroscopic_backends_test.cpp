@@ -12,8 +12,8 @@
 #include <memory>
 #include <string>
 
-#include "talus/harness/backend.h"
-#include "talus/harness/scenario_loader.h"
+#include "talus/harness/backend/backend.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "testbed/all_backends.h"
 
 namespace talus::harness {

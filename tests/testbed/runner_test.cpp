@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string>
 
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
 #include "testbed/all_backends.h"
 
 namespace talus::harness {

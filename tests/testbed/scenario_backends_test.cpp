@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
-#include "talus/harness/scenario_loader.h"
-#include "talus/harness/sweep.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/sweep/sweep.h"
 #include "testbed/all_backends.h"
 
 namespace talus::harness {

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "all_backends.h"
-#include "talus/harness/runner.h"
-#include "talus/harness/scenario_limits.h"
-#include "talus/harness/truth_check.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_limits.h"
+#include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
 namespace {

@@ -10,9 +10,9 @@
 #include <set>
 
 #include "all_backends.h"
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
-#include "talus/harness/sweep.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/sweep/sweep.h"
 
 namespace talus::harness {
 namespace {

@@ -6,9 +6,9 @@
 
 #include <cmath>
 
-#include "talus/harness/run_metrics.h"
-#include "talus/harness/truth_check.h"
-#include "talus/harness/truths.h"
+#include "talus/harness/analytic/truths.h"
+#include "talus/harness/run/run_metrics.h"
+#include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
 namespace {

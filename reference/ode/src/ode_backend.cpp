@@ -31,7 +31,7 @@
 #include <sstream>
 #include <utility>
 
-#include "talus/harness/scenario_limits.h"
+#include "talus/harness/scenario/scenario_limits.h"
 #include "talus/reference/body_mass.h"
 
 namespace talus::reference {

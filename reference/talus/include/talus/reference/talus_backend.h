@@ -23,7 +23,7 @@
 // refused); iterations from the run (0 = the engine's default, 10).
 #pragma once
 
-#include "talus/harness/backend.h"
+#include "talus/harness/backend/backend.h"
 
 namespace talus::reference {
 
