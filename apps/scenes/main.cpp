@@ -15,10 +15,7 @@
 #include "report_writer.h"
 #include "talus/harness/scenes/bench_run.h"
 #include "talus/harness/scenes/bench_scenes.h"
-#include "talus/reference/bullet_backend.h"
-#include "talus/reference/mujoco_backend.h"
-#include "talus/reference/ode_backend.h"
-#include "talus/reference/talus_backend.h"
+#include "talus/reference/all_backends.h"
 
 namespace {
 
@@ -51,11 +48,7 @@ struct Job {
 }  // namespace
 
 int main(int argc, char** argv) {
-  talus::harness::BackendRegistry registry;
-  talus::reference::RegisterTalusBackends(registry);
-  talus::reference::RegisterBulletBackends(registry);
-  talus::reference::RegisterOdeBackends(registry);
-  talus::reference::RegisterMujocoBackends(registry);
+  const talus::harness::BackendRegistry& registry = talus::reference::AllBackends();
 
   Options options;
   CLI::App app{"talus-scenes: the reference benchmark scenes (pyramid, hull_pile) on every engine"};

@@ -25,7 +25,4 @@ void AddStressCommand(CLI::App& app, CommandAction& chosen);
 /// "talus-testbed: PATH: cannot write" on stderr) when it fails.
 bool WriteText(const std::filesystem::path& path, const std::string& text);
 
-/// Every backend the testbed knows (Talus's variants, Bullet, ODE).
-const harness::BackendRegistry& AllBackends();
-
 }  // namespace talus::testbed

@@ -14,8 +14,10 @@
 #include "talus/harness/report/report.h"
 #include "talus/harness/run/results_file.h"
 #include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/harness/scenes/bench_report_json.h"
 #include "talus/harness/stress/stress.h"
+#include "talus/reference/all_backends.h"
 
 namespace talus::testbed {
 namespace {
@@ -60,7 +62,7 @@ std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
   if (!quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   // Shown even with --quiet: a run that ran nowhere must not vanish unseen.
   options.notice = [](const std::string& line) { std::cout << "talus-testbed: " << line << "\n"; };
-  auto results = harness::RunAll(AllBackends(), runs.Value(), options);
+  auto results = harness::RunAll(reference::AllBackends(), runs.Value(), options);
   if (!results) {
     std::cerr << "talus-testbed: " << results.GetError().message << "\n";
     return std::nullopt;
@@ -92,7 +94,7 @@ std::vector<std::string> DefaultBackends() {
                                     "bullet-tuned",   "bullet-f32",    "bullet-f32-tuned",    "ode-step",
                                     "ode-step-tuned", "ode-quickstep", "ode-quickstep-tuned", "mujoco",
                                     "mujoco-tuned"};
-  std::erase_if(names, [](const std::string& name) { return !AllBackends().Has(name); });
+  std::erase_if(names, [](const std::string& name) { return !reference::AllBackends().Has(name); });
   return names;
 }
 
@@ -191,7 +193,7 @@ int CheckCommand(const CheckOptions& options) {
     if (backends.empty()) backends = harness::TalusVariants(file.backends);
   } else {
     // By default every registered Talus variant.
-    if (backends.empty()) backends = harness::TalusVariants(AllBackends().Names());
+    if (backends.empty()) backends = harness::TalusVariants(reference::AllBackends().Names());
     auto ran = LoadAndRun(options.scenarios, backends, options.jobs, true, options.quiet);
     if (!ran) return kExitBadInput;
     file = std::move(*ran);

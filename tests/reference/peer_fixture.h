@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -47,6 +48,13 @@ inline std::unique_ptr<harness::Backend> Build(const std::string& name, const ha
   auto backend = PeerRegistry().Create(name, run);
   EXPECT_TRUE(backend) << name << ": " << backend.GetError().message;
   return backend ? std::move(backend).Value() : nullptr;
+}
+
+/// A peer's name as a test name: gtest allows no '-' ("ode-step" -> "ode_step").
+inline std::string PeerTestName(const ::testing::TestParamInfo<std::string>& info) {
+  std::string name = info.param;
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
 }
 
 }  // namespace talus::reference::test

@@ -106,7 +106,7 @@ TEST(Replay, ContactsAreRecordedWithBodiesAndUnitNormals) {
   const RunResult result = RunOne(MakeRegistry(), runs.Value().front(), "talus", options);
   const ReplayFrame& last = result.replay.frames.back();
   ASSERT_FALSE(last.contacts.empty());
-  for (const ContactPoint& c : last.contacts) {
+  for (const ContactReading& c : last.contacts) {
     EXPECT_NEAR(c.normal.norm(), 1.0, 1e-9);  // unit by contract; rounding only
     EXPECT_NE(c.bodyA, c.bodyB);
   }

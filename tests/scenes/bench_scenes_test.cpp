@@ -204,7 +204,7 @@ TEST(HullPileScene, EveryBackendPlacesFramesAndCentresOfMassAsSpecified) {
     for (int b = 0; b < 40; ++b) {
       const BodySpec& body = scene.bodies[static_cast<size_t>(b)];
       const Vec3 centroid = reference::ComputeBodyMass(body).Value().centroid;
-      const BodyState state = backend.Value()->GetBodyState(b);
+      const BodyReading state = backend.Value()->GetBodyState(b);
       // 1e-12 m: a few roundings of coordinates of size ~10 m (the frame
       // round trip through the principal axes rotation).
       EXPECT_LT((state.origin - body.position).norm(), 1e-12) << engine << " body " << b;

@@ -18,6 +18,7 @@
 #include "talus/harness/report/report.h"
 #include "talus/harness/run/results_file.h"
 #include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/reference/talus_backend.h"
 
 namespace talus::harness {

@@ -1,5 +1,4 @@
-// Closed-form ground truths (see talus/harness/analytic/truths.h), and the combine
-// rules of scenario.h, which are the same kind of small exact formula.
+// Closed-form ground truths (see talus/harness/analytic/truths.h).
 #include "talus/harness/analytic/truths.h"
 
 #include <algorithm>
@@ -7,43 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "talus/harness/scenario/scenario.h"
-
 namespace talus::harness {
-
-double Combine(CombineRule rule, double a, double b) {
-  switch (rule) {
-    case CombineRule::Sqrt:
-      return std::sqrt(a * b);
-    case CombineRule::Min:
-      return std::min(a, b);
-    case CombineRule::Max:
-      return std::max(a, b);
-    case CombineRule::Multiply:
-      return a * b;
-    case CombineRule::Average:
-      return 0.5 * (a + b);
-  }
-  assert(false && "unknown combine rule");
-  return 0.0;
-}
-
-const char* CombineRuleName(CombineRule rule) {
-  switch (rule) {
-    case CombineRule::Sqrt:
-      return "sqrt";
-    case CombineRule::Min:
-      return "min";
-    case CombineRule::Max:
-      return "max";
-    case CombineRule::Multiply:
-      return "multiply";
-    case CombineRule::Average:
-      return "average";
-  }
-  assert(false && "unknown combine rule");
-  return "";
-}
 
 double FreeFallHeight(double y0, double v0, double g, double t) { return y0 + v0 * t - 0.5 * g * t * t; }
 

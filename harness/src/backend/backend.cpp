@@ -6,9 +6,10 @@
 
 namespace talus::harness {
 
-void BackendRegistry::Register(std::string name, std::string description, BackendFactory factory) {
+void BackendRegistry::Register(std::string name, std::string description, ThreadSafety safety,
+                               BackendFactory factory) {
   assert(!m_entries.contains(name) && "backend registered twice");
-  m_entries.emplace(std::move(name), Entry{std::move(description), std::move(factory)});
+  m_entries.emplace(std::move(name), Entry{std::move(description), std::move(safety), std::move(factory)});
 }
 
 std::vector<std::string> BackendRegistry::Names() const {
@@ -24,6 +25,11 @@ std::string BackendRegistry::Description(std::string_view name) const {
   return it == m_entries.end() ? std::string() : it->second.description;
 }
 
+ThreadSafety BackendRegistry::GetThreadSafety(std::string_view name) const {
+  const auto it = m_entries.find(name);
+  return it == m_entries.end() ? ThreadSafety::Independent() : it->second.safety;
+}
+
 Result<std::unique_ptr<Backend>> BackendRegistry::Create(std::string_view name, const Run& run) const {
   const auto it = m_entries.find(name);
   if (it == m_entries.end()) {
@@ -37,7 +43,7 @@ Result<std::unique_ptr<Backend>> BackendRegistry::Create(std::string_view name, 
 WorldMeasures MeasureWorld(const Backend& backend, const Vec3& gravity) {
   WorldMeasures measures;
   for (int i = 0; i < backend.BodyCount(); ++i) {
-    const BodyState state = backend.GetBodyState(i);
+    const BodyReading state = backend.GetBodyState(i);
     if (state.mass <= 0.0) continue;
     const Vec3 momentum = state.mass * state.linearVelocity;
     const Vec3 spin = state.worldInertia * state.angularVelocity;

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "report/markdown_html.h"
 #include "support/text_util.h"
 #include "talus/harness/report/sat_check_results.h"
 

@@ -8,7 +8,7 @@
 
 #include "report/report_peers.h"
 #include "support/text_util.h"
-#include "talus/harness/scenes/bench_summary.h"
+#include "talus/harness/report/bench_summary.h"
 #include "talus/harness/sweep/sweep.h"
 
 namespace talus::harness {

@@ -10,18 +10,11 @@
 #include "report/report_peers.h"
 #include "report/report_scorecard.h"
 #include "support/text_util.h"
+#include "talus/harness/report/bench_summary.h"
 #include "talus/harness/report/report.h"
-#include "talus/harness/scenes/bench_summary.h"
 #include "talus/harness/sweep/sweep.h"
 
 namespace talus::harness {
-
-std::string FormatNumber(double value, int digits) {
-  if (std::isnan(value)) return "n/a";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-  return buffer;
-}
 
 namespace {
 

@@ -81,16 +81,10 @@ SatMethod ReadMethod(JsonChecker& check, const Json& method, const std::string& 
   return m;
 }
 
-std::string Format(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
-
 std::string Percentiles(const SatDistribution& d) {
   if (d.count == 0) return "-";
-  return Concat({Format("%.1e", d.p50), " / ", Format("%.1e", d.p90), " / ", Format("%.1e", d.p99), " / ",
-                 Format("%.1e", d.max)});
+  return Concat({FormatPrintf("%.1e", d.p50), " / ", FormatPrintf("%.1e", d.p90), " / ",
+                 FormatPrintf("%.1e", d.p99), " / ", FormatPrintf("%.1e", d.max)});
 }
 
 // How many of each method's worst depth and normal cases are listed.
@@ -101,8 +95,9 @@ void WorstRows(std::ostringstream& out, const SatMethod& m, const char* kind,
   for (std::size_t i = 0; i < cases.size() && i < limit; ++i) {
     const SatCase& c = cases[i];
     out << "| " << m.name << " | " << kind << " | " << c.pair << " | `" << c.configuration << "` | "
-        << Format("%.3e", c.trueSignedDistance) << " | " << (c.methodIntersecting ? "yes" : "no") << " | "
-        << (unit[0] == '\0' ? std::string("-") : Concat({Format("%.3e", c.value), " ", unit})) << " |\n";
+        << FormatPrintf("%.3e", c.trueSignedDistance) << " | " << (c.methodIntersecting ? "yes" : "no")
+        << " | " << (unit[0] == '\0' ? std::string("-") : Concat({FormatPrintf("%.3e", c.value), " ", unit}))
+        << " |\n";
   }
 }
 
@@ -161,7 +156,7 @@ std::string SatCheckMarkdown(const SatCheckSummary& s) {
     out << (i ? ", " : "") << s.alignments[i].second << " " << s.alignments[i].first;
   }
   out << ". The truth is exact (Minkowski difference): " << s.truthIntersecting << " intersecting, "
-      << s.truthTouchingBand << " within the touching band (" << Format("%.0e", s.touchingBand)
+      << s.truthTouchingBand << " within the touching band (" << FormatPrintf("%.0e", s.touchingBand)
       << " m, either verdict accepted); Minkowski hull vs qhull: " << s.qhullMismatches << " mismatches in "
       << s.qhullChecks << ".\n\n";
 
@@ -170,8 +165,8 @@ std::string SatCheckMarkdown(const SatCheckSummary& s) {
          "|---|---|---|---|---|---|\n";
   for (const SatMethod& m : s.methods) {
     out << "| " << m.name << " | " << m.family << " | "
-        << (s.pairCount == 0 ? std::string("-") : Format("%.2f%%", 100.0 * m.agree / s.pairCount)) << " | "
-        << m.disagree << " | " << m.touchingBandDisagree << " | " << m.oracleFailures << " |\n";
+        << (s.pairCount == 0 ? std::string("-") : FormatPrintf("%.2f%%", 100.0 * m.agree / s.pairCount))
+        << " | " << m.disagree << " | " << m.touchingBandDisagree << " | " << m.oracleFailures << " |\n";
   }
 
   out << "\n### SAT validation: error distributions and time\n\n"
@@ -183,7 +178,7 @@ std::string SatCheckMarkdown(const SatCheckSummary& s) {
   for (const SatMethod& m : s.methods) {
     out << "| " << m.name << " | " << Percentiles(m.depthError) << " | " << Percentiles(m.normalAngle)
         << " | " << Percentiles(m.normalExcess) << " | "
-        << (m.timeNs.count ? Format("%.0f", m.timeNs.p50) : std::string("-")) << " |\n";
+        << (m.timeNs.count ? FormatPrintf("%.0f", m.timeNs.p50) : std::string("-")) << " |\n";
   }
 
   out << "\n### SAT validation: worst cases\n\n"

@@ -191,16 +191,11 @@ Result<Replay> MakeReplay(const Run& run, const Trajectory& trajectory, int maxF
   if (count == 0) return replay;
   for (const StepCounter& counter : trajectory.samples.back().counters)
     replay.counterNames.push_back(counter.name);
-  const auto frames = std::min(count, static_cast<std::size_t>(maxFrames));
-  std::size_t last = count;  // no index yet
-  for (std::size_t i = 0; i < frames; ++i) {
-    const std::size_t index = frames == 1 ? 0 : i * (count - 1) / (frames - 1);
-    if (index == last) continue;
-    last = index;
+  for (const std::size_t index : SpreadIndices(count, static_cast<std::size_t>(maxFrames))) {
     const Sample& sample = trajectory.samples[index];
     ReplayFrame frame;
     frame.time = sample.time;
-    for (const BodyState& state : sample.bodies) {
+    for (const BodyReading& state : sample.bodies) {
       frame.positions.push_back(state.origin);
       frame.orientations.push_back(state.orientation);
     }
@@ -238,7 +233,7 @@ Json ReplayToJson(const Replay& replay) {
     f["q"] = Json::array();
     for (const Quat& q : frame.orientations) f["q"].push_back(Json::array({q.w(), q.x(), q.y(), q.z()}));
     f["c"] = Json::array();
-    for (const ContactPoint& c : frame.contacts) {
+    for (const ContactReading& c : frame.contacts) {
       f["c"].push_back(Json::array({c.bodyA, c.bodyB, c.point.x(), c.point.y(), c.point.z(), c.normal.x(),
                                     c.normal.y(), c.normal.z(), c.depth}));
     }

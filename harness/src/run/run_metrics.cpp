@@ -30,7 +30,7 @@ struct SystemState {
 SystemState System(const Sample& sample) {
   SystemState system;
   Vec3 moment = Vec3::Zero();
-  for (const BodyState& body : sample.bodies) {
+  for (const BodyReading& body : sample.bodies) {
     system.mass += body.mass;
     moment += body.mass * body.centerOfMass;
   }

@@ -1,6 +1,6 @@
-// The runner: scenario discovery, one job per (run, backend), the thread
-// pool with serialised lanes for backends that are not thread-safe, and
-// the per-job recording and metrics (see runner.h).
+// The runner: one job per (run, backend), the thread pool with serialised
+// lanes for backends that are not thread-safe, and the per-job recording
+// and metrics (see runner.h).
 #include "talus/harness/run/runner.h"
 
 #include <algorithm>
@@ -17,12 +17,9 @@
 #include "support/text_util.h"
 #include "talus/harness/run/run_metrics.h"
 #include "talus/harness/scenario/scenario_limits.h"
-#include "talus/harness/scenario/scenario_loader.h"
 
 namespace talus::harness {
 namespace {
-
-namespace fs = std::filesystem;
 
 // The most per-step wall times a run keeps (8 MB): enough for a stable
 // median, bounded for runs of a billion steps.
@@ -40,13 +37,6 @@ bool Measures(const Run& run, Quantity quantity) {
   return std::find(list.begin(), list.end(), quantity) != list.end();
 }
 
-// The family of a backend ("ode-step" -> "ode"); "" for the thread-safe
-// Talus backends, whose worlds share no state.
-std::string SerialFamily(const std::string& backend) {
-  const std::string family = backend.substr(0, backend.find('-'));
-  return family == "talus" ? std::string() : family;
-}
-
 double Median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   const std::size_t mid = values.size() / 2;
@@ -61,15 +51,10 @@ double Median(std::vector<double> values) {
 
 PlotSeries MakeSeries(const Run& run, const Trajectory& trajectory, int plotPoints) {
   PlotSeries series;
-  const std::size_t count = trajectory.samples.size();
-  const auto points = std::min(count, static_cast<std::size_t>(plotPoints));
   const Vec3 up = UpAxis(run);
   series.heights.resize(run.scenario.bodies.size());
-  std::size_t last = count;  // no index yet
-  for (std::size_t i = 0; i < points; ++i) {
-    const std::size_t index = points == 1 ? 0 : i * (count - 1) / (points - 1);
-    if (index == last) continue;
-    last = index;
+  for (const std::size_t index :
+       SpreadIndices(trajectory.samples.size(), static_cast<std::size_t>(plotPoints))) {
     const Sample& sample = trajectory.samples[index];
     series.time.push_back(sample.time);
     series.energy.push_back(sample.measures.kineticEnergy + sample.measures.potentialEnergy);
@@ -106,14 +91,13 @@ std::string NonFiniteBody(const Backend& backend, const Run& run) {
   const auto describe = [](const char* what, const auto& v) {
     std::string values;
     for (Eigen::Index i = 0; i < v.size(); ++i) {
-      char number[32];
-      std::snprintf(number, sizeof number, "%g", v[i]);  // "nan", "inf", "-inf" as printf writes them
-      values.append(i == 0 ? "" : ", ").append(number);
+      // "nan", "inf", "-inf" as printf writes them (FormatNumber says "n/a").
+      values.append(i == 0 ? "" : ", ").append(FormatPrintf("%g", v[i]));
     }
     return Concat({"non-finite ", what, " (", values, ")"});
   };
   for (int b = 0; b < backend.BodyCount(); ++b) {
-    const BodyState state = backend.GetBodyState(b);
+    const BodyReading state = backend.GetBodyState(b);
     std::string problem;
     if (!state.origin.allFinite()) {
       problem = describe("position", state.origin);
@@ -154,51 +138,6 @@ Result<std::vector<std::string>> BackendsForRun(const BackendRegistry& registry,
     if (std::find(listed.begin(), listed.end(), name) != listed.end()) chosen.push_back(name);
   }
   return chosen;
-}
-
-Result<std::vector<Run>> LoadScenarios(const std::vector<fs::path>& paths) {
-  std::vector<fs::path> files;
-  for (const fs::path& path : paths) {
-    std::error_code error;
-    if (fs::is_directory(path, error)) {
-      std::vector<fs::path> found;
-      for (auto it = fs::recursive_directory_iterator(path, error); !error && it != fs::end(it);
-           it.increment(error)) {
-        if (it->is_regular_file() && it->path().extension() == ".json" &&
-            it->path().filename() != "schema.json") {
-          found.push_back(it->path());
-        }
-      }
-      if (error) return Error{Concat({path.string(), ": ", error.message()})};
-      if (found.empty()) {
-        return Error{
-            Concat({path.string(), ": no scenario files (*.json other than schema.json) in this folder"})};
-      }
-      std::sort(found.begin(), found.end());
-      files.insert(files.end(), found.begin(), found.end());
-    } else if (fs::is_regular_file(path, error)) {
-      files.push_back(path);
-    } else {
-      return Error{Concat({path.string(), ": no such scenario file or folder"})};
-    }
-  }
-  if (files.empty()) return Error{"no scenario files found"};
-  std::vector<Run> runs;
-  std::map<std::string, std::string> fileOfScenario;  // two files must not share a scenario name
-  for (const fs::path& file : files) {
-    auto loaded = LoadScenarioFile(file);
-    if (!loaded) return loaded.GetError();
-    if (!loaded.Value().empty()) {
-      const std::string& name = loaded.Value().front().scenario.name;
-      const auto [it, added] = fileOfScenario.emplace(name, file.string());
-      if (!added) {
-        return Error{Concat({file.string(), ": scenario name \"", name, "\" is already used by ", it->second,
-                             " (run ids and results are keyed by it)"})};
-      }
-    }
-    for (Run& run : loaded.Value()) runs.push_back(std::move(run));
-  }
-  return runs;
 }
 
 Result<std::vector<Run>> ExpandStepping(const std::vector<Run>& runs, const std::vector<double>& timeSteps,
@@ -267,7 +206,7 @@ Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
     for (int b = 0; b < backend.BodyCount(); ++b) s.bodies.push_back(backend.GetBodyState(b));
     s.measures = MeasureWorld(backend, run.scenario.world.gravity);
     if (step > 0) {
-      for (const ContactPoint& contact : backend.GetContacts()) {
+      for (const ContactReading& contact : backend.GetContacts()) {
         ++s.contactCount;
         s.maxPenetration = std::max(s.maxPenetration, contact.depth);
         if (detail) s.contacts.push_back(contact);
@@ -493,11 +432,12 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
     for (std::size_t i = 0; i < jobs.size(); ++i) execute(i);
     return results;
   }
-  // Free jobs go to a shared queue; each serial family gets one lane.
+  // Jobs of independent worlds go to a shared queue; each library with
+  // process-wide state gets one lane (ThreadSafety, declared at registration).
   std::vector<std::size_t> freeJobs;
   std::map<std::string, std::vector<std::size_t>> lanes;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
-    const std::string family = SerialFamily(jobs[i].backend);
+    const std::string family = registry.GetThreadSafety(jobs[i].backend).sharedStateOf;
     if (family.empty()) {
       freeJobs.push_back(i);
     } else {

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -106,8 +107,8 @@ std::optional<std::string> FindNonFinite(const json& value, const std::string& p
   return std::nullopt;
 }
 
-Result<WorldSettings> MapWorld(const json& world, std::string_view file) {
-  WorldSettings settings;
+Result<WorldSpec> MapWorld(const json& world, std::string_view file) {
+  WorldSpec settings;
   if (world.contains("gravity")) settings.gravity = ReadVec3(world["gravity"]);
   if (const double g = ScaleSafeNorm(settings.gravity); g > kMaxGravity) {
     return FieldError(file, "/world/gravity",
@@ -160,13 +161,13 @@ Result<Quat> MapOrientation(const json& orientation, std::string_view file, cons
   return Quat(Eigen::AngleAxisd(orientation["angle"].get<double>(), ScaleSafeNormalized(axis)));
 }
 
-Result<Shape> MapShape(const json& shape) {
+Result<ShapeSpec> MapShape(const json& shape) {
   const std::string kind = shape["kind"].get<std::string>();
-  if (kind == "box") return Shape(BoxShape{ReadVec3(shape["halfExtents"])});
-  if (kind == "sphere") return Shape(SphereShape{shape["radius"].get<double>()});
+  if (kind == "box") return ShapeSpec(BoxShape{ReadVec3(shape["halfExtents"])});
+  if (kind == "sphere") return ShapeSpec(SphereShape{shape["radius"].get<double>()});
   HullShape hull;
   for (const json& point : shape["points"]) hull.points.push_back(ReadVec3(point));
-  return Shape(std::move(hull));
+  return ShapeSpec(std::move(hull));
 }
 
 // The body's sizes, position and speeds against scenario_limits.h, each
@@ -280,7 +281,7 @@ struct TruthContext {
   const json& entry;
   const std::vector<BodySpec>& bodies;
   const BodyIndex& bodyIndex;
-  const WorldSettings& world;
+  const WorldSpec& world;
   std::string_view file;
   std::string pointer;  // "/truths/<i>"
   int body = -1;        // index of the named body, -1 when none is named
@@ -817,6 +818,52 @@ Result<std::vector<Run>> LoadScenarioFile(const std::filesystem::path& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return ParseScenarioText(text.str(), path.string());
+}
+
+Result<std::vector<Run>> LoadScenarios(const std::vector<std::filesystem::path>& paths) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> files;
+  for (const fs::path& path : paths) {
+    std::error_code error;
+    if (fs::is_directory(path, error)) {
+      std::vector<fs::path> found;
+      for (auto it = fs::recursive_directory_iterator(path, error); !error && it != fs::end(it);
+           it.increment(error)) {
+        if (it->is_regular_file() && it->path().extension() == ".json" &&
+            it->path().filename() != "schema.json") {
+          found.push_back(it->path());
+        }
+      }
+      if (error) return Error{Concat({path.string(), ": ", error.message()})};
+      if (found.empty()) {
+        return Error{
+            Concat({path.string(), ": no scenario files (*.json other than schema.json) in this folder"})};
+      }
+      std::sort(found.begin(), found.end());
+      files.insert(files.end(), found.begin(), found.end());
+    } else if (fs::is_regular_file(path, error)) {
+      files.push_back(path);
+    } else {
+      return Error{Concat({path.string(), ": no such scenario file or folder"})};
+    }
+  }
+  if (files.empty()) return Error{"no scenario files found"};
+  std::vector<Run> runs;
+  std::map<std::string, std::string> fileOfScenario;  // two files must not share a scenario name
+  for (const fs::path& file : files) {
+    auto loaded = LoadScenarioFile(file);
+    if (!loaded) return loaded.GetError();
+    if (!loaded.Value().empty()) {
+      const std::string& name = loaded.Value().front().scenario.name;
+      const auto [it, added] = fileOfScenario.emplace(name, file.string());
+      if (!added) {
+        return Error{Concat({file.string(), ": scenario name \"", name, "\" is already used by ", it->second,
+                             " (run ids and results are keyed by it)"})};
+      }
+    }
+    for (Run& run : loaded.Value()) runs.push_back(std::move(run));
+  }
+  return runs;
 }
 
 }  // namespace talus::harness

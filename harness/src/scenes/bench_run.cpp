@@ -41,7 +41,7 @@ double Median(std::vector<double> values) {
 void MeasureHullPile(const Backend& backend, const Scenario& scene, int dynamicBodies, int side,
                      BenchReport& report) {
   double deepest = 0.0;
-  for (const ContactPoint& contact : backend.GetContacts()) deepest = std::max(deepest, contact.depth);
+  for (const ContactReading& contact : backend.GetContacts()) deepest = std::max(deepest, contact.depth);
   report.maxPenetration = deepest;
   report.kineticEnergy = MeasureWorld(backend, scene.world.gravity).kineticEnergy;
   const double w = HullPileWallInnerHalfWidth(side);

@@ -19,12 +19,10 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string Number(double value) {
   if (std::isnan(value)) return "-";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", value);
-  return text;
+  return FormatNumber(value, 4);
 }
 
-bool Finite(const BodyState& state) {
+bool Finite(const BodyReading& state) {
   return state.centerOfMass.allFinite() && state.linearVelocity.allFinite() &&
          state.angularVelocity.allFinite();
 }
@@ -216,7 +214,7 @@ EnvelopeProbe ProbeStress(const BackendRegistry& registry, const std::string& ba
     case StressAxis::TimeStep:
       return Stands(value, run, trajectory, 0.05, 0.05);
     case StressAxis::Speed: {
-      const BodyState& last = trajectory.samples.back().bodies[1];
+      const BodyReading& last = trajectory.samples.back().bodies[1];
       probe.measure = last.centerOfMass.x();
       if (!Finite(last)) {
         probe.detail = "non-finite state";

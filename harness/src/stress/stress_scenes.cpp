@@ -25,10 +25,8 @@ BodySpec Ground(const Vec3& halfExtents, const Vec3& offset) {
 }
 
 Run MakeRun(std::string name, double value, double timeStep, int steps, std::vector<BodySpec> bodies) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
   Run run;
-  run.id = Concat({name, "[", text, "]"});
+  run.id = Concat({name, "[", FormatNumber(value), "]"});
   run.scenario.name = name;
   run.scenario.world.timeStep = timeStep;
   run.scenario.world.steps = steps;

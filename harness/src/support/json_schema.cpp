@@ -10,7 +10,9 @@
 
 #include <cassert>
 #include <cmath>
-#include <sstream>
+#include <string>
+
+#include "talus/harness/support/number_text.h"
 
 namespace talus::harness {
 namespace {
@@ -30,12 +32,6 @@ std::string EscapePointerToken(const std::string& token) {
     }
   }
   return out;
-}
-
-std::string FormatNumber(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
 }
 
 [[maybe_unused]] bool IsKnownKeyword(const std::string& key) {

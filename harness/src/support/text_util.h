@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "talus/harness/support/number_text.h"
 #include "talus/result.h"
 
 namespace talus::harness {
@@ -20,14 +21,6 @@ inline std::string Concat(std::initializer_list<std::string_view> pieces) {
   for (std::string_view piece : pieces) text.append(piece);
   return text;
 }
-
-/// `value` with up to `digits` significant digits, shortest form ("%.*g").
-std::string FormatNumber(double value, int digits = 6);
-
-/// HTML for summary.md's Markdown subset: headings (#, ##, ###), pipe
-/// tables (cells ending in FAIL / ok coloured), paragraphs, `code`
-/// (report_html.cpp).
-std::string MarkdownToHtml(const std::string& markdown);
 
 /// `text` with every "</" written "<\\/", so inlined script or JSON cannot
 /// end its <script> element early (text_util.cpp).

@@ -36,9 +36,7 @@ std::string InstanceId(const RunResult& result) {
 std::string Number(double value) {
   if (std::isnan(value)) return "-";
   if (std::isinf(value)) return "inf";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
+  return FormatNumber(value, 3);
 }
 
 nlohmann::ordered_json JsonNumber(double value) {

@@ -101,12 +101,4 @@ void ApplyGate(const Truth& truth, std::string_view backend, std::vector<MetricR
   }
 }
 
-int SampleStride(int steps, int maxSamples) {
-  assert(maxSamples >= 1);
-  if (steps <= maxSamples) return 1;
-  return 1 + (steps - 1) / maxSamples;  // ceil(steps / maxSamples) without steps + maxSamples overflowing
-}
-
-bool IsSampled(int step, int steps, int stride) { return step % stride == 0 || step == steps; }
-
 }  // namespace talus::harness

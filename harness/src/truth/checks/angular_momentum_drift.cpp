@@ -18,7 +18,7 @@ std::vector<MetricResult> EvaluateAngularMomentumDrift(const Run& run, const Tru
   assert(truth.body >= 0);
   const auto body = static_cast<std::size_t>(truth.body);
   const auto momentum = [body](const Sample& sample) {
-    const BodyState& state = sample.bodies[body];
+    const BodyReading& state = sample.bodies[body];
     return Vec3(state.worldInertia * state.angularVelocity);
   };
   const Vec3 initial = momentum(trajectory.samples.front());

@@ -26,7 +26,7 @@ namespace talus::harness {
 namespace {
 
 // Height along `up` of the lowest point of `shape` placed at `state`.
-double LowestPoint(const Shape& shape, const BodyState& state, const Vec3& up) {
+double LowestPoint(const ShapeSpec& shape, const BodyReading& state, const Vec3& up) {
   const Vec3 localDown = state.orientation.conjugate() * Vec3(-up);
   Vec3 support = Vec3::Zero();
   if (const auto* box = std::get_if<BoxShape>(&shape)) {
@@ -68,7 +68,7 @@ std::vector<MetricResult> EvaluateBounceHeights(const Run& run, const Truth& tru
                                                 const Trajectory& trajectory) {
   assert(truth.body >= 0);
   const auto body = static_cast<std::size_t>(truth.body);
-  const Shape& shape = run.scenario.bodies[body].shape;
+  const ShapeSpec& shape = run.scenario.bodies[body].shape;
   const Vec3 up = UpAxis(run);
   const double floor = LowestPoint(shape, trajectory.samples.front().bodies[body], up) - kind.h;
 
@@ -77,7 +77,7 @@ std::vector<MetricResult> EvaluateBounceHeights(const Run& run, const Truth& tru
   bool fell = false;
   double apex = 0.0;
   for (const Sample& sample : trajectory.samples) {
-    const BodyState& state = sample.bodies[body];
+    const BodyReading& state = sample.bodies[body];
     const double speed = state.linearVelocity.dot(up);
     if (!rising && fell && speed > 0.0) {
       rising = true;

@@ -13,7 +13,7 @@
 namespace talus::harness {
 namespace {
 
-double Kinetic(const BodyState& body) {
+double Kinetic(const BodyReading& body) {
   return 0.5 * body.mass * body.linearVelocity.squaredNorm() +
          0.5 * body.angularVelocity.dot(body.worldInertia * body.angularVelocity);
 }
@@ -33,7 +33,7 @@ std::vector<MetricResult> EvaluateEnergyDrift(const Run& run, const Truth& truth
     double total = 0.0;
     for (std::size_t i = 0; i < sample.bodies.size(); ++i) {
       if (!included(i)) continue;
-      const BodyState& body = sample.bodies[i];
+      const BodyReading& body = sample.bodies[i];
       total += Kinetic(body) - body.mass * g.dot(body.centerOfMass - first.bodies[i].centerOfMass);
     }
     return total;

@@ -28,7 +28,7 @@ std::vector<MetricResult> EvaluateFlipPeriod(const Run& run, const Truth& truth,
   double previousTime = 0.0;
   for (size_t i = 0; i < trajectory.samples.size(); ++i) {
     const Sample& sample = trajectory.samples[i];
-    const BodyState& state = sample.bodies[body];
+    const BodyReading& state = sample.bodies[body];
     const double component = (state.orientation.conjugate() * state.angularVelocity)[axis];
     if (i > 0 && (previous > 0.0) != (component > 0.0)) {
       const double fraction = previous / (previous - component);

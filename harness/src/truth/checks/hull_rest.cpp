@@ -18,7 +18,7 @@ std::vector<MetricResult> EvaluateHullRest(const Run& run, const Truth& truth, c
   assert(truth.body >= 0);
   const auto body = static_cast<std::size_t>(truth.body);
   const Vec3 up = UpAxis(run);
-  const BodyState& state = trajectory.samples.back().bodies[body];
+  const BodyReading& state = trajectory.samples.back().bodies[body];
   const Vec3 worldNormal = state.orientation * kind.faceNormal;
   MetricResult face = MakeMetric("hull_rest.face_angle", "rad");
   face.measured = std::acos(std::clamp(worldNormal.dot(-up), -1.0, 1.0));

@@ -17,7 +17,7 @@ std::vector<MetricResult> EvaluateRotationalEnergyDrift(const Run& run, const Tr
   assert(truth.body >= 0);
   const auto body = static_cast<std::size_t>(truth.body);
   const auto energy = [body](const Sample& sample) {
-    const BodyState& state = sample.bodies[body];
+    const BodyReading& state = sample.bodies[body];
     return 0.5 * state.angularVelocity.dot(state.worldInertia * state.angularVelocity);
   };
   const double initial = energy(trajectory.samples.front());

@@ -46,7 +46,7 @@ std::vector<MetricResult> EvaluateSlidingStop(const Run& run, const Truth& truth
   double lateral = 0.0;
   const Vec3 direction = (kind.direction - kind.direction.dot(up) * up).normalized();
   for (const Sample& sample : trajectory.samples) {
-    const BodyState& state = sample.bodies[body];
+    const BodyReading& state = sample.bodies[body];
     const Vec3 velocity = state.linearVelocity - state.linearVelocity.dot(up) * up;
     if (std::isnan(time.measured) && velocity.norm() < kStoppedSpeed) time.measured = sample.time;
     const Vec3 offset = state.centerOfMass - start;

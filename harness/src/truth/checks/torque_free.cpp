@@ -20,12 +20,12 @@ std::vector<MetricResult> EvaluateTorqueFree(const Run& run, const Truth& truth,
   assert(truth.body >= 0);
   const auto body = static_cast<std::size_t>(truth.body);
   const SpinInvariants invariants = ComputeSpinInvariants(kind.inertia, kind.omega);
-  const BodyState& first = trajectory.samples.front().bodies[body];
+  const BodyReading& first = trajectory.samples.front().bodies[body];
   const Vec3 momentum0 = first.worldInertia * first.angularVelocity;
   double momentumDrift = 0.0;
   double energyDrift = 0.0;
   for (const Sample& sample : trajectory.samples) {
-    const BodyState& state = sample.bodies[body];
+    const BodyReading& state = sample.bodies[body];
     const Vec3 momentum = state.worldInertia * state.angularVelocity;
     const double energy = 0.5 * state.angularVelocity.dot(momentum);
     momentumDrift = std::max(momentumDrift, (momentum - momentum0).norm() / invariants.angularMomentum);

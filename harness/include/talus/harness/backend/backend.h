@@ -16,6 +16,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "talus/harness/scenario/scenario.h"
@@ -25,7 +26,7 @@
 namespace talus::harness {
 
 /// One body's state as the engine reports it.
-struct BodyState {
+struct BodyReading {
   Vec3 centerOfMass = Vec3::Zero();     ///< metres, world
   Vec3 origin = Vec3::Zero();           ///< metres, world: where the scenario's body frame is now
   Quat orientation = Quat::Identity();  ///< of the scenario's body frame
@@ -36,7 +37,7 @@ struct BodyState {
 };
 
 /// One contact point as the engine reports it.
-struct ContactPoint {
+struct ContactReading {
   int bodyA = -1;               ///< scenario body index
   int bodyB = -1;               ///< scenario body index
   Vec3 point = Vec3::Zero();    ///< metres, world
@@ -81,15 +82,33 @@ class Backend {
   [[nodiscard]] virtual std::string StepFailure() const { return {}; }
   [[nodiscard]] virtual int BodyCount() const = 0;
   /// State of scenario body `index` (0 <= index < BodyCount()).
-  [[nodiscard]] virtual BodyState GetBodyState(int index) const = 0;
+  [[nodiscard]] virtual BodyReading GetBodyState(int index) const = 0;
   /// Contacts found by the last Step (empty before the first).
-  [[nodiscard]] virtual std::vector<ContactPoint> GetContacts() const = 0;
+  [[nodiscard]] virtual std::vector<ContactReading> GetContacts() const = 0;
   /// Every setting this world was built with, in a fixed order.
   [[nodiscard]] virtual std::vector<Setting> Settings() const = 0;
   /// Counts of what the last Step did (bodies, candidate pairs, SAT tests,
   /// contact points...), in a fixed order, for the report's broad-phase
   /// figure; empty (the default) when the engine reports none.
   [[nodiscard]] virtual std::vector<StepCounter> StepCounters() const { return {}; }
+};
+
+/// Whether a backend's worlds may step on several threads at once: declared
+/// by the backend where it registers, read by the runner's thread pool.
+struct ThreadSafety {
+  /// Empty when every world of the backend is independent (it shares no
+  /// state with any other world), so its jobs may run on any thread at the
+  /// same time. Otherwise the library whose process-wide state its worlds
+  /// share ("ode": library-wide state and per-thread collision data;
+  /// "bullet": globals such as gContactAddedCallback and the profiler):
+  /// every job of every backend naming the same library runs, in order, on
+  /// one thread of its own.
+  std::string sharedStateOf;
+
+  /// Worlds that share nothing: any thread, any number at once.
+  static ThreadSafety Independent() { return {}; }
+  /// Worlds that share `library`'s process-wide state: one thread per library.
+  static ThreadSafety SharesStateOf(std::string library) { return {std::move(library)}; }
 };
 
 /// Builds a world for a run.
@@ -101,13 +120,15 @@ using BackendFactory = std::function<Result<std::unique_ptr<Backend>>(const Run&
 /// static libraries would silently drop.
 class BackendRegistry {
  public:
-  /// Adds a backend; `name` must be new (asserted).
-  void Register(std::string name, std::string description, BackendFactory factory);
+  /// Adds a backend with its thread safety; `name` must be new (asserted).
+  void Register(std::string name, std::string description, ThreadSafety safety, BackendFactory factory);
   /// Registered names, sorted.
   [[nodiscard]] std::vector<std::string> Names() const;
   [[nodiscard]] bool Has(std::string_view name) const;
   /// One-line description of a registered backend ("" if unknown).
   [[nodiscard]] std::string Description(std::string_view name) const;
+  /// The thread safety a registered backend declared (Independent if unknown).
+  [[nodiscard]] ThreadSafety GetThreadSafety(std::string_view name) const;
   /// Builds `run` with the named backend; an unknown name is an Error
   /// listing the known ones.
   [[nodiscard]] Result<std::unique_ptr<Backend>> Create(std::string_view name, const Run& run) const;
@@ -115,6 +136,7 @@ class BackendRegistry {
  private:
   struct Entry {
     std::string description;
+    ThreadSafety safety;
     BackendFactory factory;
   };
   std::map<std::string, Entry, std::less<>> m_entries;

@@ -18,15 +18,15 @@ namespace talus::harness {
 
 /// The state of the world after `step` steps.
 struct Sample {
-  int step = 0;                   ///< steps taken so far (0 = initial state)
-  double time = 0.0;              ///< seconds: step * the run's time step
-  std::vector<BodyState> bodies;  ///< one per scenario body, in scenario order
-  WorldMeasures measures;         ///< energies and momenta of the dynamic bodies
-  int contactCount = 0;           ///< contact points the backend reported after this step
-  double maxPenetration = 0.0;    ///< metres: the largest contact depth (0 when none overlap)
+  int step = 0;                     ///< steps taken so far (0 = initial state)
+  double time = 0.0;                ///< seconds: step * the run's time step
+  std::vector<BodyReading> bodies;  ///< one per scenario body, in scenario order
+  WorldMeasures measures;           ///< energies and momenta of the dynamic bodies
+  int contactCount = 0;             ///< contact points the backend reported after this step
+  double maxPenetration = 0.0;      ///< metres: the largest contact depth (0 when none overlap)
   /// The contacts themselves and the backend's step counters: only when the
   /// trajectory was recorded with detail (for replays), else empty.
-  std::vector<ContactPoint> contacts;
+  std::vector<ContactReading> contacts;
   std::vector<StepCounter> counters;
 };
 
@@ -48,5 +48,10 @@ int SampleStride(int steps, int maxSamples);
 
 /// Whether step `step` of a run of `steps` steps with `stride` is recorded.
 bool IsSampled(int step, int steps, int stride);
+
+/// At most `most` indices into `count` samples, spread evenly from the first
+/// to the last (both kept when most >= 2; only the first when most is 1),
+/// increasing, none repeated: which samples a plot series or a replay keeps.
+std::vector<std::size_t> SpreadIndices(std::size_t count, std::size_t most);
 
 }  // namespace talus::harness

@@ -34,11 +34,11 @@ struct ReplayShape {
 
 /// One recorded instant.
 struct ReplayFrame {
-  double time = 0.0;                   ///< seconds
-  std::vector<Vec3> positions;         ///< metres: each body's origin (scenario frame), scenario order
-  std::vector<Quat> orientations;      ///< each body's orientation, scenario order
-  std::vector<ContactPoint> contacts;  ///< as the backend reported them after this step (none at step 0)
-  std::vector<double> counters;        ///< values of Replay::counterNames after this step
+  double time = 0.0;                     ///< seconds
+  std::vector<Vec3> positions;           ///< metres: each body's origin (scenario frame), scenario order
+  std::vector<Quat> orientations;        ///< each body's orientation, scenario order
+  std::vector<ContactReading> contacts;  ///< as the backend reported them after this step (none at step 0)
+  std::vector<double> counters;          ///< values of Replay::counterNames after this step
 };
 
 /// A run's replay; empty `frames` means none was recorded.

@@ -7,15 +7,13 @@
 // Work is split into independent jobs, one per (run, backend), executed by
 // a pool of threads; results come back in job order (runs in file order,
 // backends in the order asked for) whatever the threads' timing, so the
-// output is deterministic. Backends that are not known to be thread-safe
-// (everything but the "talus" family: ODE keeps library-wide state and
-// per-thread collision data, Bullet has process-wide globals such as
-// gContactAddedCallback and its profiler) are serialised: all jobs of one
-// family (the name up to its first '-') run in order on one dedicated
-// thread, concurrently with the other families and the thread-safe jobs.
+// output is deterministic. Each backend declares its thread safety where it
+// registers (ThreadSafety, backend.h): the jobs of backends whose worlds
+// share a library's process-wide state (ODE, Bullet, MuJoCo) run in order on
+// one dedicated thread per library, concurrently with the other libraries
+// and with the jobs of independent worlds (Talus's).
 #pragma once
 
-#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -91,11 +89,6 @@ struct RunnerOptions {
   /// (bullet) and those asked for (talus) have none in common"; may be empty.
   std::function<void(const std::string&)> notice;
 };
-
-/// Scenario files from `paths`: files as given, folders searched
-/// recursively for *.json except schema.json, each folder's files sorted.
-/// Every run of every file, in that order; the first bad file is an Error.
-Result<std::vector<Run>> LoadScenarios(const std::vector<std::filesystem::path>& paths);
 
 /// The runs again for every (time step, iterations) pair: each run's
 /// duration is kept (steps = round(duration / h), at least 1), its

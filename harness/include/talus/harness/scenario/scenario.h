@@ -35,7 +35,7 @@ double Combine(CombineRule rule, double a, double b);
 const char* CombineRuleName(CombineRule rule);
 
 /// World settings shared by every body.
-struct WorldSettings {
+struct WorldSpec {
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);  ///< m/s^2
   double timeStep = 1.0 / 60.0;          ///< seconds, in (0, 1]
   int iterations = 0;                    ///< solver iterations; 0 = the engine's own default
@@ -62,14 +62,14 @@ struct SphereShape {
 struct HullShape {
   std::vector<Vec3> points;  ///< metres, at least 4, spanning a volume
 };
-using Shape = std::variant<BoxShape, SphereShape, HullShape>;
+using ShapeSpec = std::variant<BoxShape, SphereShape, HullShape>;
 
 enum class Motion { Static, Dynamic };
 
 /// One body of a scenario.
 struct BodySpec {
   std::string name;  ///< unique within the scenario
-  Shape shape;
+  ShapeSpec shape;
   Motion motion = Motion::Dynamic;
   Vec3 position = Vec3::Zero();         ///< metres, of the body origin
   Quat orientation = Quat::Identity();  ///< unit
@@ -251,7 +251,7 @@ struct Scenario {
   std::string name;
   std::string description;
   std::string file;  ///< where it was read from ("" when parsed from text)
-  WorldSettings world;
+  WorldSpec world;
   std::vector<BodySpec> bodies;  ///< at least one
   /// Backends (registry names) the scenario runs on, file order, no
   /// duplicates; empty (the default) = every backend the runner is given.

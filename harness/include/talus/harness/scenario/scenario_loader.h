@@ -29,4 +29,9 @@ Result<std::vector<Run>> ParseScenarioText(std::string_view text, std::string_vi
 /// Reads and parses a scenario file (see ParseScenarioText).
 Result<std::vector<Run>> LoadScenarioFile(const std::filesystem::path& path);
 
+/// Scenario files from `paths`: files as given, folders searched
+/// recursively for *.json except schema.json, each folder's files sorted.
+/// Every run of every file, in that order; the first bad file is an Error.
+Result<std::vector<Run>> LoadScenarios(const std::vector<std::filesystem::path>& paths);
+
 }  // namespace talus::harness

@@ -1,4 +1,4 @@
-// The large-scene section of the report (talus/harness/scenes/bench_summary.h).
+// The large-scene section of the report (talus/harness/report/bench_summary.h).
 //
 // Rows are grouped by scene (in BenchScenes() order, unknown scenes after,
 // by name), then parameter ascending, then engine in the order the reports
@@ -7,7 +7,7 @@
 // (any of "bullet", "bullet-tuned", "bullet-f32", "bullet-f32-tuned" that
 // ran): talus-scenes runs every engine in one invocation, so they were
 // measured on the same machine at the same moment.
-#include "talus/harness/scenes/bench_summary.h"
+#include "talus/harness/report/bench_summary.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +16,7 @@
 #include <optional>
 #include <sstream>
 
+#include "report/markdown_html.h"
 #include "support/text_util.h"
 #include "talus/harness/scenes/bench_scenes.h"
 
