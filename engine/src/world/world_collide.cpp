@@ -9,10 +9,6 @@
 namespace talus {
 namespace {
 
-std::uint64_t PairKeyOf(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
-
 Transform BodyTransform(const BodySim& sim) {
   return {.position = sim.Origin(), .rotation = sim.orientation};
 }
@@ -103,7 +99,7 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
   std::size_t oldContact = 0;
   std::size_t oldCache = 0;
   for (const BroadPhasePair& pair : d.pairs) {
-    const std::uint64_t key = PairKeyOf(pair.a, pair.b);
+    const std::uint64_t key = PairKey(pair.a, pair.b);
     while (oldContact < d.previousContacts.size() && d.previousContacts[oldContact].PairKey() < key)
       ++oldContact;
     while (oldCache < d.previousSatCaches.size() && d.previousSatCaches[oldCache].pairKey < key) ++oldCache;
