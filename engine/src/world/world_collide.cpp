@@ -91,7 +91,7 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
   d.previousSatCaches.swap(d.satCaches);
   d.satCaches.clear();
   d.broadPhase.FindPairs(d.pairs, stats.broadPhase);
-  stats.candidatePairs = static_cast<std::int32_t>(d.pairs.size());
+  stats.spherePairs = static_cast<std::int64_t>(d.pairs.size());
   stats.staticPairsSkipped = static_cast<std::int32_t>(stats.broadPhase.skippedStaticPairs);
 
   // Pairs come sorted by (a, b), which is pair-key order, so last step's

@@ -234,7 +234,7 @@ std::vector<harness::StepCounter> TalusBackend::StepCounters() const {
       {"sphere pairs", static_cast<double>(s.broadPhase.spherePairs)},
       {"SAT tests", static_cast<double>(s.narrowPhase.satTests)},
       {"intersecting pairs", static_cast<double>(s.narrowPhase.pairsTouching) + s.manifoldsReused},
-      {"contact points", static_cast<double>(s.narrowPhase.contactPoints) + s.reusedContactPoints},
+      {"contact points", static_cast<double>(s.narrowPhase.manifoldPoints) + s.reusedContactPoints},
   };
 }
 
