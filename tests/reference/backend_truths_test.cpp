@@ -171,9 +171,7 @@ TEST_P(BackendTruths, SettingsRecordSolverStepAndCombineRules) {
   EXPECT_EQ(departures.contains(tunedKey), tuned) << tunedKey;
 }
 
-INSTANTIATE_TEST_SUITE_P(Peers, BackendTruths,
-                         ::testing::Values("bullet", "bullet-tuned", "ode-step", "ode-step-tuned",
-                                           "ode-quickstep", "ode-quickstep-tuned"),
+INSTANTIATE_TEST_SUITE_P(Peers, BackendTruths, ::testing::ValuesIn(test::BulletAndOdePeers()),
                          test::PeerTestName);
 
 }  // namespace

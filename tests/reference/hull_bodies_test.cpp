@@ -119,9 +119,7 @@ TEST_P(HullBodies, HullComesToRestOnItsBottomFaceAtTheAnalyticHeight) {
   EXPECT_LT(state.linearVelocity.norm(), limits.speed);
 }
 
-INSTANTIATE_TEST_SUITE_P(Peers, HullBodies,
-                         ::testing::Values("bullet", "bullet-tuned", "ode-step", "ode-step-tuned",
-                                           "ode-quickstep", "ode-quickstep-tuned"),
+INSTANTIATE_TEST_SUITE_P(Peers, HullBodies, ::testing::ValuesIn(test::BulletAndOdePeers()),
                          test::PeerTestName);
 
 }  // namespace

@@ -50,6 +50,12 @@ inline std::unique_ptr<harness::Backend> Build(const std::string& name, const ha
   return backend ? std::move(backend).Value() : nullptr;
 }
 
+/// The double-precision Bullet and both ODE steppers, each in its defaults
+/// and tuned configuration: the peers every build has.
+inline std::vector<std::string> BulletAndOdePeers() {
+  return {"bullet", "bullet-tuned", "ode-step", "ode-step-tuned", "ode-quickstep", "ode-quickstep-tuned"};
+}
+
 /// A peer's name as a test name: gtest allows no '-' ("ode-step" -> "ode_step").
 inline std::string PeerTestName(const ::testing::TestParamInfo<std::string>& info) {
   std::string name = info.param;
