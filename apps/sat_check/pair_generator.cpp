@@ -4,35 +4,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <sstream>
 
+#include "talus/harness/support/random_draw.h"
 #include "talus/hull_builder.h"
 
 namespace talus::validation {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-struct Draw {
-  std::mt19937_64 rng;
-  double Uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
-  int Integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
-  Vec3 UnitVector() {
-    std::normal_distribution<double> normal(0.0, 1.0);
-    for (;;) {
-      const Vec3 v(normal(rng), normal(rng), normal(rng));
-      if (v.norm() > 1e-3) return v.normalized();
-    }
-  }
-  Quat Rotation() {
-    std::normal_distribution<double> normal(0.0, 1.0);
-    for (;;) {
-      Quat q(normal(rng), normal(rng), normal(rng), normal(rng));
-      if (q.norm() > 1e-3) return q.normalized();
-    }
-  }
-};
+using Draw = harness::RandomDraw;
 
 // Half extents: the largest log-uniform in [lo, hi] m, the others that
 // times an aspect ratio in [0.2, 1].
@@ -158,8 +140,8 @@ std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
     } else if (alignment == Alignment::Edge) {
       const int first = draw.Integer(0, 2);
       const int second = (first + 1 + draw.Integer(0, 1)) % 3;
-      rotationB = rotationA * Quat(Eigen::AngleAxisd(0.25 * kPi, Vec3::Unit(first))) *
-                  Quat(Eigen::AngleAxisd(0.25 * kPi, Vec3::Unit(second)));
+      rotationB = rotationA * Quat(Eigen::AngleAxisd(0.25 * std::numbers::pi, Vec3::Unit(first))) *
+                  Quat(Eigen::AngleAxisd(0.25 * std::numbers::pi, Vec3::Unit(second)));
     }
 
     double gap = 0.0;

@@ -14,6 +14,7 @@
 #include "collision/collide.h"
 #include "collision/polyhedron_manifold.h"
 #include "collision/sat.h"
+#include "talus/harness/support/number_text.h"
 #include "talus/pair_query.h"
 #include "talus/reference/bullet_narrow_phase.h"
 #include "talus/reference/ccd_oracle.h"
@@ -229,11 +230,7 @@ double LargestCoordinate(const std::vector<Vec3>& a, const std::vector<Vec3>& b)
   return largest;
 }
 
-std::string Sci(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3e", value);
-  return buffer;
-}
+std::string Sci(double value) { return harness::FormatPrintf("%.3e", value); }
 
 }  // namespace
 

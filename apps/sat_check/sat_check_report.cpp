@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "sat_check.h"
+#include "talus/harness/support/number_text.h"
 
 namespace talus::validation {
 namespace {
@@ -41,13 +42,9 @@ Json FamiliesToJson(const std::vector<FamilyReport>& families) {
   return out;
 }
 
-std::string Format(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
+std::string Percent(int part, int whole) {
+  return whole == 0 ? "-" : harness::FormatPrintf("%.2f%%", 100.0 * part / whole);
 }
-
-std::string Percent(int part, int whole) { return whole == 0 ? "-" : Format("%.2f%%", 100.0 * part / whole); }
 
 }  // namespace
 
@@ -143,10 +140,10 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
   for (std::size_t i = 0; i < report.alignmentCounts.size(); ++i)
     out << (i ? ", " : "") << report.alignmentCounts[i] << " " << ToString(static_cast<Alignment>(i));
   out << ". Truth: " << t.intersecting << " intersecting, " << t.touchingBand << " within the touching band ("
-      << Format("%.0e", report.settings.touchingBand) << " m), " << t.tiedMinimum
+      << harness::FormatPrintf("%.0e", report.settings.touchingBand) << " m), " << t.tiedMinimum
       << " with a tied minimum direction; Minkowski hull vs qhull: " << t.qhullMismatches << " mismatches in "
       << t.qhullChecks << "; face-aligned boxes vs closed form: " << t.boxClosedFormChecks
-      << " checked, max error " << Format("%.2e", t.boxClosedFormMaxError) << " m, "
+      << " checked, max error " << harness::FormatPrintf("%.2e", t.boxClosedFormMaxError) << " m, "
       << t.boxClosedFormVerdictMismatches << " verdict mismatches.\n\n";
 
   out << "### Verdicts\n\n| method | agree | disagree | in band | oracle failures |\n|---|---|---|---|---|\n";
@@ -159,26 +156,28 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
          "along "
          "the reported normal minus the true depth, m), contact points outside either shape (m); p50 / p99 / "
          "max. Points > tol: points farther out of either shape than the true depth + "
-      << Format("%.0e", report.settings.pointTolerance)
+      << harness::FormatPrintf("%.0e", report.settings.pointTolerance)
       << " m.\n\n"
          "| method | depth error | normal angle | normal excess | point outside | points > tol | time p50 "
          "(ns) |\n"
          "|---|---|---|---|---|---|---|\n";
   const auto triple = [](const Distribution& d) {
     if (d.count == 0) return std::string("-");
-    return Format("%.1e", d.p50) + " / " + Format("%.1e", d.p99) + " / " + Format("%.1e", d.max);
+    return harness::FormatPrintf("%.1e", d.p50) + " / " + harness::FormatPrintf("%.1e", d.p99) + " / " +
+           harness::FormatPrintf("%.1e", d.max);
   };
   for (const MethodReport& m : report.methods) {
     out << "| " << m.name << " | " << triple(m.depthError) << " | " << triple(m.normalAngle) << " | "
         << triple(m.normalExcess) << " | " << triple(m.pointOutside) << " | " << m.pointsOverTolerance
-        << " | " << (m.timeNs.count ? Format("%.0f", m.timeNs.p50) : std::string("-")) << " |\n";
+        << " | " << (m.timeNs.count ? harness::FormatPrintf("%.0f", m.timeNs.p50) : std::string("-"))
+        << " |\n";
   }
   out << "\n### By family (Talus modes)\n\n"
          "Depth error and normal excess (m), p50 / max, per family of pairs (pair_generator.h).\n\n"
          "| method | family | depth error | normal excess | point outside |\n|---|---|---|---|---|\n";
   const auto pair = [](const Distribution& d) {
     if (d.count == 0) return std::string("-");
-    return Format("%.1e", d.p50) + " / " + Format("%.1e", d.max);
+    return harness::FormatPrintf("%.1e", d.p50) + " / " + harness::FormatPrintf("%.1e", d.max);
   };
   for (const MethodReport& m : report.methods) {
     if (m.family != "talus") continue;
@@ -196,11 +195,12 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
     if (!m.disagreements.empty()) {
       out << ": wrong verdicts (the truth is right) on " << m.disagreements.size() << " pairs, e.g. pair "
           << m.disagreements.front().pair << " (" << m.disagreements.front().configuration
-          << ", true distance " << Format("%.3e", m.disagreements.front().trueSignedDistance) << " m)";
+          << ", true distance " << harness::FormatPrintf("%.3e", m.disagreements.front().trueSignedDistance)
+          << " m)";
     }
     if (!m.worstDepth.empty() && m.worstDepth.front().value >= 1e-6) {
-      out << "; worst depth error " << Format("%.3e", m.worstDepth.front().value) << " m on pair "
-          << m.worstDepth.front().pair << " (" << m.worstDepth.front().configuration << ")";
+      out << "; worst depth error " << harness::FormatPrintf("%.3e", m.worstDepth.front().value)
+          << " m on pair " << m.worstDepth.front().pair << " (" << m.worstDepth.front().configuration << ")";
     }
     out << "\n";
   }

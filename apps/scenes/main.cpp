@@ -14,12 +14,9 @@
 #include <vector>
 
 #include "report_writer.h"
-#include "talus/harness/bench_run.h"
-#include "talus/harness/bench_scenes.h"
-#include "talus/reference/bullet_backend.h"
-#include "talus/reference/mujoco_backend.h"
-#include "talus/reference/ode_backend.h"
-#include "talus/reference/talus_backend.h"
+#include "talus/harness/scenes/bench_run.h"
+#include "talus/harness/scenes/bench_scenes.h"
+#include "talus/reference/all_backends.h"
 #include "talus/world_settings.h"
 
 namespace {
@@ -72,11 +69,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, talus::kMaxThreads));
   CLI11_PARSE(app, argc, argv);
 
-  talus::harness::BackendRegistry registry;
-  talus::reference::RegisterTalusBackends(registry, {.threads = options.threads});
-  talus::reference::RegisterBulletBackends(registry);
-  talus::reference::RegisterOdeBackends(registry);
-  talus::reference::RegisterMujocoBackends(registry);
+  const talus::harness::BackendRegistry registry = talus::reference::MakeAllBackends(options.threads);
 
   if (!options.series && options.scene.empty()) {
     std::cerr << "talus-scenes: --scene is required unless --series is given\n";

@@ -1,9 +1,11 @@
 // CSV and JSON-lines formatting of benchmark reports (see report_writer.h).
 #include "report_writer.h"
 
-#include <cstdio>
+#include <cmath>
+#include <string>
 
-#include "talus/harness/bench_report_json.h"
+#include "talus/harness/scenes/bench_report_json.h"
+#include "talus/harness/support/number_text.h"
 
 namespace talus::scenes {
 namespace {
@@ -11,9 +13,7 @@ namespace {
 // Six significant digits: enough for milliseconds and millimetres, short
 // enough to read in a terminal.
 std::string Number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.6g", value);
-  return text;
+  return std::isnan(value) ? std::string("nan") : harness::FormatNumber(value);
 }
 
 std::string Optional(const std::optional<double>& value) { return value ? Number(*value) : std::string(); }

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "talus/harness/bench_run.h"
+#include "talus/harness/scenes/bench_run.h"
 
 namespace talus::scenes {
 

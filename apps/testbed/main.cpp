@@ -5,7 +5,7 @@
 #include <string>
 
 #include "sweep_commands.h"
-#include "talus/harness/scenario_limits.h"
+#include "talus/harness/scenario/scenario_limits.h"
 #include "talus/world_settings.h"
 #include "testbed_commands.h"
 

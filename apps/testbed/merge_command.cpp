@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "sweep_commands.h"
-#include "talus/harness/results_file.h"
-#include "talus/harness/sweep.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/sweep/sweep.h"
 #include "testbed_commands.h"
 
 namespace talus::testbed {

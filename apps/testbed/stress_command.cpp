@@ -11,7 +11,8 @@
 #include <memory>
 
 #include "sweep_commands.h"
-#include "talus/harness/stress.h"
+#include "talus/harness/stress/stress.h"
+#include "talus/reference/all_backends.h"
 #include "testbed_commands.h"
 
 namespace talus::testbed {
@@ -57,7 +58,7 @@ int Stress(const StressOptions& options) {
     limits[name] = limit;
   }
   for (const std::string& backend : options.backends) {
-    if (!AllBackends().Has(backend)) {
+    if (!reference::AllBackends().Has(backend)) {
       std::cerr << "talus-testbed: unknown backend \"" << backend << "\"\n";
       return kExitBadInput;
     }
@@ -70,7 +71,8 @@ int Stress(const StressOptions& options) {
       const auto start = std::chrono::steady_clock::now();
       harness::StressEntry entry{info.name, backend, {}};
       entry.envelope = harness::SearchEnvelope(search, [&](double value) {
-        harness::EnvelopeProbe probe = harness::ProbeStress(AllBackends(), backend, info.axis, value);
+        harness::EnvelopeProbe probe =
+            harness::ProbeStress(reference::AllBackends(), backend, info.axis, value);
         if (!options.quiet) {
           std::fprintf(stderr, "[stress] %s %s %.4g: %s%s%s\n", info.name.c_str(), backend.c_str(), value,
                        probe.pass ? "ok" : "FAIL", probe.detail.empty() ? "" : " - ", probe.detail.c_str());

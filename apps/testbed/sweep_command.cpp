@@ -9,15 +9,13 @@
 #include <thread>
 
 #include "sweep_commands.h"
-#include "talus/harness/atomic_file.h"
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
-#include "talus/harness/scenario_limits.h"
-#include "talus/harness/sweep.h"
-#include "talus/reference/bullet_backend.h"
-#include "talus/reference/mujoco_backend.h"
-#include "talus/reference/ode_backend.h"
-#include "talus/reference/talus_backend.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_limits.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/support/atomic_file.h"
+#include "talus/harness/sweep/sweep.h"
+#include "talus/reference/all_backends.h"
 #include "testbed_commands.h"
 
 namespace talus::testbed {
@@ -80,14 +78,14 @@ int Sweep(const SweepOptions& options) {
   runner.plotPoints = 2;  // a sweep's report shows costs and errors, not time series
   if (!options.quiet) runner.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   runner.notice = [](const std::string& line) { std::cout << "talus-testbed: " << line << "\n"; };
-  auto results = harness::RunAll(AllBackends(), runs, runner);
+  auto results = harness::RunAll(reference::AllBackends(), runs, runner);
   if (!results) {
     std::cerr << "talus-testbed: " << results.GetError().message << "\n";
     return kExitBadInput;
   }
   for (const harness::Run& run : runs) {
     // RunAll accepted every list, so this cannot fail here.
-    auto chosen = harness::BackendsForRun(AllBackends(), run, runner.backends);
+    auto chosen = harness::BackendsForRun(reference::AllBackends(), run, runner.backends);
     part.resultCounts.push_back(chosen ? static_cast<int>(chosen.Value().size()) : 0);
   }
   part.results.backends = runner.backends;
@@ -124,20 +122,6 @@ bool WriteText(const fs::path& path, const std::string& text) {
   auto written = harness::WriteFileAtomically(path, text);
   if (!written) std::cerr << "talus-testbed: " << written.GetError().message << "\n";
   return static_cast<bool>(written);
-}
-
-harness::BackendRegistry MakeAllBackends(int talusThreads) {
-  harness::BackendRegistry r;
-  reference::RegisterTalusBackends(r, {.threads = talusThreads});
-  reference::RegisterBulletBackends(r);
-  reference::RegisterOdeBackends(r);
-  reference::RegisterMujocoBackends(r);
-  return r;
-}
-
-const harness::BackendRegistry& AllBackends() {
-  static const harness::BackendRegistry registry = MakeAllBackends(1);
-  return registry;
 }
 
 void AddSweepCommand(CLI::App& app, CommandAction& chosen) {

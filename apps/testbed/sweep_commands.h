@@ -10,7 +10,7 @@
 #include <functional>
 #include <string>
 
-#include "talus/harness/backend.h"
+#include "talus/harness/backend/backend.h"
 
 namespace talus::testbed {
 
@@ -24,11 +24,5 @@ void AddStressCommand(CLI::App& app, CommandAction& chosen);
 /// Writes `text` to `path`, creating its folder; false (after printing
 /// "talus-testbed: PATH: cannot write" on stderr) when it fails.
 bool WriteText(const std::filesystem::path& path, const std::string& text);
-
-/// Every backend the testbed knows (Talus's variants, Bullet, ODE), the
-/// Talus worlds on one thread.
-const harness::BackendRegistry& AllBackends();
-/// The same backends with the Talus worlds on `talusThreads` threads.
-harness::BackendRegistry MakeAllBackends(int talusThreads);
 
 }  // namespace talus::testbed

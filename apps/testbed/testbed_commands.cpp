@@ -10,12 +10,14 @@
 #include <thread>
 
 #include "sweep_commands.h"
-#include "talus/harness/bench_report_json.h"
-#include "talus/harness/regression_check.h"
-#include "talus/harness/report.h"
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
-#include "talus/harness/stress.h"
+#include "talus/harness/report/regression_check.h"
+#include "talus/harness/report/report.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/scenes/bench_report_json.h"
+#include "talus/harness/stress/stress.h"
+#include "talus/reference/all_backends.h"
 
 namespace talus::testbed {
 namespace {
@@ -63,8 +65,8 @@ std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
   options.notice = [](const std::string& line) { std::cout << "talus-testbed: " << line << "\n"; };
   // The shared registry unless the Talus worlds need another thread count.
   const std::optional<harness::BackendRegistry> threaded =
-      talusThreads == 1 ? std::nullopt : std::optional(MakeAllBackends(talusThreads));
-  auto results = harness::RunAll(threaded ? *threaded : AllBackends(), runs.Value(), options);
+      talusThreads == 1 ? std::nullopt : std::optional(reference::MakeAllBackends(talusThreads));
+  auto results = harness::RunAll(threaded ? *threaded : reference::AllBackends(), runs.Value(), options);
   if (!results) {
     std::cerr << "talus-testbed: " << results.GetError().message << "\n";
     return std::nullopt;
@@ -96,7 +98,7 @@ std::vector<std::string> DefaultBackends() {
                                     "bullet-tuned",   "bullet-f32",    "bullet-f32-tuned",    "ode-step",
                                     "ode-step-tuned", "ode-quickstep", "ode-quickstep-tuned", "mujoco",
                                     "mujoco-tuned"};
-  std::erase_if(names, [](const std::string& name) { return !AllBackends().Has(name); });
+  std::erase_if(names, [](const std::string& name) { return !reference::AllBackends().Has(name); });
   return names;
 }
 
@@ -196,7 +198,7 @@ int CheckCommand(const CheckOptions& options) {
     if (backends.empty()) backends = harness::TalusVariants(file.backends);
   } else {
     // By default every registered Talus variant.
-    if (backends.empty()) backends = harness::TalusVariants(AllBackends().Names());
+    if (backends.empty()) backends = harness::TalusVariants(reference::AllBackends().Names());
     auto ran = LoadAndRun(options.scenarios, backends, options.jobs, true, options.quiet);
     if (!ran) return kExitBadInput;
     file = std::move(*ran);

@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "collision/broad_phase_proxy.h"
-#include "talus/harness/split_mix64.h"
+#include "talus/harness/support/split_mix64.h"
 
 namespace talus::testing {
 
-/// The SplitMix64 stream of the benchmark scenes (talus/harness/split_mix64.h,
+/// The SplitMix64 stream of the benchmark scenes (talus/harness/support/split_mix64.h,
 /// header-only), so the worlds are the same on every standard library, with
 /// the ranges these tests draw from.
 class SplitMix64 : public harness::SplitMix64 {

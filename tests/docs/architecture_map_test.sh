@@ -4,7 +4,7 @@
 # that rule, run over the source files git tracks.
 #
 # A source file is on the map when the map names it: by file name (the map
-# writes pairs as `name.{h,cpp}`), by a glob such as `src/truth_checks/*.cpp`,
+# writes pairs as `name.{h,cpp}`), by a glob such as `src/truth/checks/*.cpp`,
 # or, outside engine/ and harness/ (mapped file by file), by a folder of its
 # path written as `folder/` (the reference/ and apps/ tables describe whole
 # folders); `<name>` in the map stands for any name. A file-like name in

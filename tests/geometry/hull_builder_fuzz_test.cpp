@@ -11,11 +11,13 @@
 
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "geometry/hull_check.h"
+#include "talus/harness/support/random_draw.h"
 #include "talus/hull_builder.h"
 #include "talus/math.h"
 #include "talus/reference/qhull_oracle.h"
@@ -23,27 +25,7 @@
 namespace talus {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-struct Draw {
-  std::mt19937_64 rng;
-  double Uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
-  int Integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
-  Vec3 UnitVector() {
-    std::normal_distribution<double> normal(0.0, 1.0);
-    for (;;) {
-      const Vec3 v(normal(rng), normal(rng), normal(rng));
-      if (v.norm() > 1e-3) return v.normalized();
-    }
-  }
-  Quat Rotation() {
-    std::normal_distribution<double> normal(0.0, 1.0);
-    for (;;) {
-      Quat q(normal(rng), normal(rng), normal(rng), normal(rng));
-      if (q.norm() > 1e-3) return q.normalized();
-    }
-  }
-};
+using Draw = harness::RandomDraw;
 
 // The local vertices of a box (half extents log-uniform in [0.1, 2] m,
 // aspect ratios [0.2, 1]) or of the hull of 8 to 64 points on such an
@@ -81,8 +63,8 @@ std::vector<Vec3> MinkowskiDifferenceSet(std::uint64_t seed, const Vec3& center)
   const int alignment = draw.Integer(0, 2);
   if (alignment == 1) rotationB = rotationA;
   if (alignment == 2) {
-    rotationB = rotationA * Quat(Eigen::AngleAxisd(kPi / 4, Vec3::UnitX())) *
-                Quat(Eigen::AngleAxisd(kPi / 4, Vec3::UnitY()));
+    rotationB = rotationA * Quat(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitX())) *
+                Quat(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitY()));
   }
   const Vec3 positionA = center + Vec3(draw.Uniform(-5, 5), draw.Uniform(-5, 5), draw.Uniform(-5, 5));
   const Vec3 positionB = positionA + draw.Uniform(0.0, 3.0) * draw.UnitVector();

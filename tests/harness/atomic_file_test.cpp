@@ -1,6 +1,6 @@
 // WriteFileAtomically: a file is replaced whole or not at all, failures
 // leave no temporary behind, and concurrent writers never interleave.
-#include "talus/harness/atomic_file.h"
+#include "talus/harness/support/atomic_file.h"
 
 #include <gtest/gtest.h>
 

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <string>
 
-#include "talus/harness/scenario_loader.h"
-#include "talus/harness/truth_check.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
 namespace {
@@ -28,10 +28,10 @@ Run Gazebo() {
 // The exact motion at step n: on the parabola, spinning with the start's w
 // about fixed axes (L and energy constant), `shift` added to the position
 // and w scaled by `spin`.
-BodyState Exact(const Run& run, int n, const Vec3& shift = Vec3::Zero(), double spin = 1.0) {
+BodyReading Exact(const Run& run, int n, const Vec3& shift = Vec3::Zero(), double spin = 1.0) {
   const BodySpec& body = run.scenario.bodies[0];
   const double t = n * run.timeStep;
-  BodyState state;
+  BodyReading state;
   state.mass = 10.0;
   state.centerOfMass =
       body.position + body.linearVelocity * t + 0.5 * run.scenario.world.gravity * t * t + shift;
@@ -42,7 +42,7 @@ BodyState Exact(const Run& run, int n, const Vec3& shift = Vec3::Zero(), double 
   return state;
 }
 
-Sample At(const Run& run, int n, const BodyState& state) {
+Sample At(const Run& run, int n, const BodyReading& state) {
   Sample sample;
   sample.step = n;
   sample.time = n * run.timeStep;
@@ -50,7 +50,7 @@ Sample At(const Run& run, int n, const BodyState& state) {
   return sample;
 }
 
-Trajectory Track(const Run& run, const BodyState& last) {
+Trajectory Track(const Run& run, const BodyReading& last) {
   Trajectory trajectory;
   trajectory.timeStep = run.timeStep;
   for (int n = 0; n < run.steps; n += 1000) {
@@ -124,7 +124,7 @@ TEST(FreeBodyTruths, AngularMomentumMagnitudeAndVectorDiffer) {
   Truth vector = run.scenario.truths[1];
   vector.kind = AngularMomentumDriftTruth{MomentumMetric::Vector};
   Truth magnitude = run.scenario.truths[1];
-  BodyState turned = Exact(run, run.steps);
+  BodyReading turned = Exact(run, run.steps);
   const Vec3 l = kInertia.cwiseProduct(turned.angularVelocity);
   const Vec3 l2 = Quat(Eigen::AngleAxisd(0.1, l.unitOrthogonal())) * l;
   turned.angularVelocity = l2.cwiseQuotient(kInertia);

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "talus/harness/hull_rest.h"
+#include "talus/harness/analytic/hull_rest_analysis.h"
 
 namespace talus::harness {
 namespace {

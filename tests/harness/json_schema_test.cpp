@@ -1,8 +1,8 @@
 // The JSON-Schema subset validator, keyword by keyword.
 #include <gtest/gtest.h>
 
-#include "talus/harness/json_schema.h"
-#include "talus/harness/scenario_loader.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/support/json_schema.h"
 
 namespace talus::harness {
 namespace {

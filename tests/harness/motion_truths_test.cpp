@@ -7,7 +7,7 @@
 #include <numbers>
 #include <random>
 
-#include "talus/harness/truths.h"
+#include "talus/harness/analytic/truths.h"
 
 namespace talus::harness {
 namespace {

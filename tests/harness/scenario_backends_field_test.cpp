@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "talus/harness/scenario_loader.h"
+#include "talus/harness/scenario/scenario_loader.h"
 
 namespace talus::harness {
 namespace {

@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <string>
 
-#include "talus/harness/runner.h"
-#include "talus/harness/scenario_limits.h"
-#include "talus/harness/scenario_loader.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_limits.h"
+#include "talus/harness/scenario/scenario_loader.h"
 
 namespace talus::harness {
 namespace {

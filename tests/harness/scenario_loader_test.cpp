@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "talus/harness/scenario_loader.h"
+#include "talus/harness/scenario/scenario_loader.h"
 
 namespace talus::harness {
 namespace {

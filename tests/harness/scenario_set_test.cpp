@@ -9,10 +9,10 @@
 #include <numbers>
 #include <string>
 
-#include "talus/harness/hull_rest.h"
-#include "talus/harness/scenario_loader.h"
-#include "talus/harness/torque_free.h"
-#include "talus/harness/truths.h"
+#include "talus/harness/analytic/hull_rest_analysis.h"
+#include "talus/harness/analytic/torque_free_motion.h"
+#include "talus/harness/analytic/truths.h"
+#include "talus/harness/scenario/scenario_loader.h"
 
 namespace talus::harness {
 namespace {

@@ -7,7 +7,7 @@
 #include <array>
 #include <cmath>
 
-#include "talus/harness/torque_free.h"
+#include "talus/harness/analytic/torque_free_motion.h"
 
 namespace talus::harness {
 namespace {

@@ -7,11 +7,11 @@
 #include <numbers>
 #include <string>
 
-#include "talus/harness/hull_rest.h"
-#include "talus/harness/scenario_loader.h"
-#include "talus/harness/torque_free.h"
-#include "talus/harness/truth_check.h"
-#include "talus/harness/truths.h"
+#include "talus/harness/analytic/hull_rest_analysis.h"
+#include "talus/harness/analytic/torque_free_motion.h"
+#include "talus/harness/analytic/truths.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
 namespace {
@@ -23,10 +23,10 @@ harness::Run LoadRun(const std::string& file, size_t index = 0) {
 }
 
 // Initial states of the run's bodies: positions as centres of mass (boxes).
-std::vector<BodyState> StartStates(const harness::Run& run) {
-  std::vector<BodyState> states;
+std::vector<BodyReading> StartStates(const harness::Run& run) {
+  std::vector<BodyReading> states;
   for (const BodySpec& body : run.scenario.bodies) {
-    BodyState state;
+    BodyReading state;
     state.centerOfMass = body.position;
     state.origin = body.position;
     state.orientation = body.orientation;
@@ -37,7 +37,7 @@ std::vector<BodyState> StartStates(const harness::Run& run) {
   return states;
 }
 
-Sample MakeSample(const harness::Run& run, int step, std::vector<BodyState> bodies) {
+Sample MakeSample(const harness::Run& run, int step, std::vector<BodyReading> bodies) {
   Sample sample;
   sample.step = step;
   sample.time = step * run.timeStep;
@@ -91,7 +91,7 @@ TEST(TruthEvaluators, HullOnItsFaceAtTheCentroidHeightPassesAndOnItsSideFails) {
   const Truth& truth = run.scenario.truths[0];
   const auto& kind = std::get<HullRestTruth>(truth.kind);
   Trajectory trajectory = Begin(run);
-  std::vector<BodyState> rest = StartStates(run);
+  std::vector<BodyReading> rest = StartStates(run);
   rest[1].orientation = Quat::Identity();
   rest[1].centerOfMass = Vec3(0.4, kind.height, 0.1);
   trajectory.samples.push_back(MakeSample(run, run.steps, rest));
@@ -112,7 +112,7 @@ TEST(TruthEvaluators, InclineSlideIsJudgedAgainstTheIntegratorSum) {
   const Truth& truth = run.scenario.truths[0];
   const auto& kind = std::get<InclineSlideTruth>(truth.kind);
   Trajectory trajectory = Begin(run);
-  std::vector<BodyState> end = StartStates(run);
+  std::vector<BodyReading> end = StartStates(run);
   const Vec3 downhill = run.scenario.bodies[0].orientation * Vec3(-1, 0, 0);
   const double slid = InclineDistanceSymplecticEuler(kind.angle, kind.mu, kind.g, run.timeStep, run.steps);
   end[1].centerOfMass += slid * downhill;
@@ -138,7 +138,7 @@ TEST(TruthEvaluators, TippingIsAThresholdOnTheLargestTilt) {
     const bool tips = index == 2;
     for (const double tilt : {0.01, 1.2}) {
       Trajectory trajectory = Begin(run);
-      std::vector<BodyState> turned = StartStates(run);
+      std::vector<BodyReading> turned = StartStates(run);
       turned[1].orientation = Quat(Eigen::AngleAxisd(tilt, Vec3::UnitZ())) * turned[1].orientation;
       trajectory.samples.push_back(MakeSample(run, run.steps / 2, turned));
       trajectory.samples.push_back(MakeSample(run, run.steps, StartStates(run)));
@@ -159,7 +159,7 @@ TEST(TruthEvaluators, TorqueFreeCatchesAMomentumThatTurnsWithTheBody) {
   const auto& kind = std::get<TorqueFreeTruth>(truth.kind);
   const Mat3 inertia = kind.inertia.asDiagonal();
   auto state = [&](const Quat& q, const Vec3& w) {
-    BodyState s;
+    BodyReading s;
     s.orientation = q;
     s.angularVelocity = w;
     s.worldInertia = q.toRotationMatrix() * inertia * q.toRotationMatrix().transpose();
@@ -199,7 +199,7 @@ TEST(TruthEvaluators, FlipPeriodFromTheBodyFrameSpinMatchesTheTruth) {
   Vec3 w = kind.omega;
   const Quat q(Eigen::AngleAxisd(1.0, Vec3::UnitX()));
   for (int step = 0; step <= run.steps; ++step) {
-    BodyState state;
+    BodyReading state;
     state.orientation = q;
     state.angularVelocity = q * w;
     trajectory.samples.push_back(MakeSample(run, step, {state}));
@@ -223,7 +223,7 @@ TEST(TruthEvaluators, TruthsOutsideTheGateAreJudgedButNotChecked) {
   EXPECT_TRUE(truth.gate);  // gated since the splitting (issue 15); the loop sets both
   Trajectory trajectory;
   trajectory.timeStep = run.timeStep;
-  BodyState state;
+  BodyReading state;
   state.angularVelocity = Vec3(1, 0, 0);  // far from the truth's spin: fails
   state.worldInertia = Mat3::Identity();
   trajectory.samples.push_back(MakeSample(run, 0, {state}));
@@ -259,7 +259,7 @@ TEST(TruthEvaluators, SlidingStopMeasuresStopTimeAndLateralDeviation) {
   // The clamped symplectic Euler slide along the truth direction.
   auto slide = [&](const Vec3& bend) {
     Trajectory trajectory = Begin(run);
-    std::vector<BodyState> states = StartStates(run);
+    std::vector<BodyReading> states = StartStates(run);
     double v = kind.v0, x = 0.0;
     for (int step = 1; step <= run.steps; ++step) {
       v = std::max(0.0, v - kind.mu * kind.g * run.timeStep);

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "talus/harness/scenario.h"
-#include "talus/harness/truths.h"
+#include "talus/harness/analytic/truths.h"
+#include "talus/harness/scenario/scenario.h"
 
 namespace talus::harness {
 namespace {

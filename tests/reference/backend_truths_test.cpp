@@ -8,9 +8,9 @@
 #include <cmath>
 #include <string>
 
-#include "talus/harness/backend.h"
-#include "talus/harness/scenario_loader.h"
-#include "talus/harness/truths.h"
+#include "talus/harness/analytic/truths.h"
+#include "talus/harness/backend/backend.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/ode_backend.h"
 
@@ -109,7 +109,7 @@ TEST_P(BackendTruths, SlidingBoxStopsAtTheFrictionDistance) {
     for (int n = 0; n < run.steps; ++n) backend->Step();
     const auto& truth = std::get<harness::SlidingStopTruth>(run.scenario.truths[0].kind);
     const double expected = harness::SlidingStopDistance(truth.v0, truth.mu, truth.g);
-    const harness::BodyState state = backend->GetBodyState(1);
+    const harness::BodyReading state = backend->GetBodyState(1);
     // At rest: iterative solvers leave mm/s residual velocities.
     EXPECT_LT(state.linearVelocity.norm(), 0.01) << run.id << " still moving";
     // 3% plus one step of travel (v0 h): the discrete sum loses v0 h / 2,
@@ -130,7 +130,7 @@ TEST_P(BackendTruths, SphereReboundsToESquaredTimesTheDropHeight) {
   double apex = 0.0;
   for (int n = 0; n < runs[0].steps; ++n) {
     backend->Step();
-    const harness::BodyState state = backend->GetBodyState(1);
+    const harness::BodyReading state = backend->GetBodyState(1);
     if (!bounced && state.linearVelocity.y() > 0.0) bounced = true;
     if (bounced) {
       if (state.linearVelocity.y() < 0.0) break;  // past the first apex
@@ -171,14 +171,8 @@ TEST_P(BackendTruths, SettingsRecordSolverStepAndCombineRules) {
   EXPECT_EQ(departures.contains(tunedKey), tuned) << tunedKey;
 }
 
-INSTANTIATE_TEST_SUITE_P(Peers, BackendTruths,
-                         ::testing::Values("bullet", "bullet-tuned", "ode-step", "ode-step-tuned",
-                                           "ode-quickstep", "ode-quickstep-tuned"),
-                         [](const auto& info) {
-                           std::string name = info.param;
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(Peers, BackendTruths, ::testing::ValuesIn(test::BulletAndOdePeers()),
+                         test::PeerTestName);
 
 }  // namespace
 }  // namespace talus::reference

@@ -11,9 +11,9 @@
 #include <map>
 #include <string>
 
-#include "talus/harness/backend.h"
-#include "talus/harness/hull_rest.h"
-#include "talus/harness/scenario_loader.h"
+#include "talus/harness/analytic/hull_rest_analysis.h"
+#include "talus/harness/backend/backend.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/hull_builder.h"
 #include "talus/mass_properties.h"
 #include "talus/reference/bullet_backend.h"
@@ -46,7 +46,7 @@ TEST_P(HullBodies, StartStateHasTheHullsCentroidMassAndInertia) {
   ASSERT_TRUE(backend);
   const harness::BodySpec& spec = run.scenario.bodies[1];
   const MassProperties mass = HullMass(spec);
-  const harness::BodyState state = backend->GetBodyState(1);
+  const harness::BodyReading state = backend->GetBodyState(1);
   const Mat3 rotation = spec.orientation.toRotationMatrix();
   // Two exact integrations of the same solid agree to round-off; 1e-9
   // relative leaves room for the engines' own quaternion normalisation.
@@ -71,7 +71,7 @@ TEST_P(HullBodies, SpinningHullTurnsAboutItsCentreOfMass) {
   const Vec3 centroid = HullMass(run.scenario.bodies[0]).centerOfMass;
   const Vec3 start = backend->GetBodyState(0).centerOfMass;
   for (int n = 0; n < 60; ++n) backend->Step();
-  const harness::BodyState state = backend->GetBodyState(0);
+  const harness::BodyReading state = backend->GetBodyState(0);
   // The centre of mass does not move (round-off over 60 steps ~1e-14 m) and
   // the reported origin sits at -centroid from it in the turned frame.
   EXPECT_LT((state.centerOfMass - start).norm(), 1e-9);
@@ -110,7 +110,7 @@ TEST_P(HullBodies, HullComesToRestOnItsBottomFaceAtTheAnalyticHeight) {
       harness::AnalyseHullRest(std::get<harness::HullShape>(run.scenario.bodies[1].shape).points);
   ASSERT_TRUE(analysis);
   const harness::HullRestFace& bottom = analysis.Value().faces[analysis.Value().NearestFace(Vec3(0, -1, 0))];
-  const harness::BodyState state = backend->GetBodyState(1);
+  const harness::BodyReading state = backend->GetBodyState(1);
   const RestLimits limits = HullRestLimits(GetParam());
   EXPECT_NEAR(state.centerOfMass.y(), bottom.height + limits.offset, limits.height);
   // Resting flat on that face: measured < 0.015 rad in every peer.
@@ -119,14 +119,8 @@ TEST_P(HullBodies, HullComesToRestOnItsBottomFaceAtTheAnalyticHeight) {
   EXPECT_LT(state.linearVelocity.norm(), limits.speed);
 }
 
-INSTANTIATE_TEST_SUITE_P(Peers, HullBodies,
-                         ::testing::Values("bullet", "bullet-tuned", "ode-step", "ode-step-tuned",
-                                           "ode-quickstep", "ode-quickstep-tuned"),
-                         [](const auto& info) {
-                           std::string name = info.param;
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(Peers, HullBodies, ::testing::ValuesIn(test::BulletAndOdePeers()),
+                         test::PeerTestName);
 
 }  // namespace
 }  // namespace talus::reference

@@ -15,7 +15,7 @@
 #include <iomanip>
 #include <limits>
 
-#include "talus/harness/scenario_loader.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/reference/body_mass.h"
 #include "talus/reference/point_hull.h"
 

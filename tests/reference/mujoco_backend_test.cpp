@@ -7,10 +7,10 @@
 #include <cmath>
 #include <string>
 
-#include "talus/harness/backend.h"
-#include "talus/harness/bench_scenes.h"
-#include "talus/harness/scenario_loader.h"
-#include "talus/harness/truths.h"
+#include "talus/harness/analytic/truths.h"
+#include "talus/harness/backend/backend.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/scenes/bench_scenes.h"
 #include "talus/reference/body_mass.h"
 #include "talus/reference/mujoco_backend.h"
 
@@ -111,7 +111,7 @@ TEST_P(MujocoProfiles, SphereRestsAtTheSoftContactDepth) {
   ASSERT_EQ(contacts.size(), 1u);
   EXPECT_NEAR(contacts[0].depth, expected, 1e-7);
   // The normal points from B towards A (MuJoCo orders the sphere first).
-  const harness::ContactPoint& contact = contacts[0];
+  const harness::ContactReading& contact = contacts[0];
   const Vec3 fromBToA =
       backend->GetBodyState(contact.bodyA).centerOfMass - backend->GetBodyState(contact.bodyB).centerOfMass;
   EXPECT_NEAR(contact.normal.dot(fromBToA.normalized()), 1.0, 1e-9);
@@ -131,7 +131,7 @@ TEST(MujocoBackend, BoxRestsAtTwiceTheReportedSoftContactDepth) {
   const double dist = RestDist(4, run.scenario.bodies[1].friction, false, 9.81, run.timeStep);
   const auto contacts = backend->GetContacts();
   ASSERT_EQ(contacts.size(), 4u);
-  for (const harness::ContactPoint& contact : contacts) EXPECT_NEAR(contact.depth, dist, 1e-7);
+  for (const harness::ContactReading& contact : contacts) EXPECT_NEAR(contact.depth, dist, 1e-7);
   EXPECT_NEAR(0.5 - backend->GetBodyState(1).centerOfMass.y(), 2.0 * dist, 2e-7);
 }
 
@@ -215,7 +215,7 @@ TEST_P(MujocoProfiles, TwoRunsAreBitIdentical) {
     second->Step();
   }
   for (int b = 0; b < first->BodyCount(); ++b) {
-    const harness::BodyState a = first->GetBodyState(b), c = second->GetBodyState(b);
+    const harness::BodyReading a = first->GetBodyState(b), c = second->GetBodyState(b);
     EXPECT_EQ(a.centerOfMass, c.centerOfMass) << b;
     EXPECT_EQ(a.orientation.coeffs(), c.orientation.coeffs()) << b;
     EXPECT_EQ(a.linearVelocity, c.linearVelocity) << b;
@@ -233,7 +233,7 @@ TEST_P(MujocoProfiles, HullFramesAndCentresOfMassLandWhereTheSceneSays) {
   for (int b = 0; b < 40; ++b) {
     const harness::BodySpec& body = scene.bodies[static_cast<size_t>(b)];
     const Vec3 centroid = ComputeBodyMass(body).Value().centroid;
-    const harness::BodyState state = backend->GetBodyState(b);
+    const harness::BodyReading state = backend->GetBodyState(b);
     // A few roundings of ~10 m coordinates through the principal rotation.
     EXPECT_LT((state.origin - body.position).norm(), 1e-12) << b;
     EXPECT_LT((state.centerOfMass - (body.position + centroid)).norm(), 1e-12) << b;
@@ -252,7 +252,7 @@ TEST(MujocoBackend, AWarningMidRunFailsTheWorldInsteadOfResettingIt) {
   ASSERT_TRUE(backend);
   backend->Step();
   backend->Step();
-  const harness::BodyState state = backend->GetBodyState(0);
+  const harness::BodyReading state = backend->GetBodyState(0);
   EXPECT_TRUE(std::isnan(state.centerOfMass.x()));
   EXPECT_TRUE(std::isnan(state.linearVelocity.y()));
   EXPECT_TRUE(backend->GetContacts().empty());

@@ -9,9 +9,9 @@
 #include <cstring>
 #include <string>
 
-#include "talus/harness/backend.h"
-#include "talus/harness/scenario_loader.h"
-#include "talus/harness/truths.h"
+#include "talus/harness/analytic/truths.h"
+#include "talus/harness/backend/backend.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/ode_backend.h"
 
@@ -40,7 +40,7 @@ Slide RunSlide(const std::string& backendName, const harness::Run& run) {
   for (int n = 0; n < run.steps; ++n) backend->Step();
   const auto& truth = std::get<harness::SlidingStopTruth>(run.scenario.truths[0].kind);
   const Vec3 direction = truth.direction.normalized();
-  const harness::BodyState state = backend->GetBodyState(1);
+  const harness::BodyReading state = backend->GetBodyState(1);
   const Vec3 moved = state.centerOfMass - start;
   return {moved.dot(direction), (moved - moved.dot(direction) * direction).norm(),
           harness::SlidingStopDistance(truth.v0, truth.mu, truth.g), state.linearVelocity.norm()};
@@ -127,8 +127,8 @@ TEST(PeerConfigurations, EveryConfigurationIsBitIdenticalRunToRun) {
       second->Step();
     }
     for (int body = 0; body < first->BodyCount(); ++body) {
-      const harness::BodyState a = first->GetBodyState(body);
-      const harness::BodyState b = second->GetBodyState(body);
+      const harness::BodyReading a = first->GetBodyState(body);
+      const harness::BodyReading b = second->GetBodyState(body);
       EXPECT_EQ(std::memcmp(a.centerOfMass.data(), b.centerOfMass.data(), sizeof(double) * 3), 0) << name;
       EXPECT_EQ(std::memcmp(a.linearVelocity.data(), b.linearVelocity.data(), sizeof(double) * 3), 0) << name;
       EXPECT_EQ(std::memcmp(a.orientation.coeffs().data(), b.orientation.coeffs().data(), sizeof(double) * 4),

@@ -6,12 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "talus/harness/backend.h"
-#include "talus/harness/scenario_loader.h"
+#include "talus/harness/backend/backend.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/mujoco_backend.h"
 #include "talus/reference/ode_backend.h"
@@ -47,6 +48,19 @@ inline std::unique_ptr<harness::Backend> Build(const std::string& name, const ha
   auto backend = PeerRegistry().Create(name, run);
   EXPECT_TRUE(backend) << name << ": " << backend.GetError().message;
   return backend ? std::move(backend).Value() : nullptr;
+}
+
+/// The double-precision Bullet and both ODE steppers, each in its defaults
+/// and tuned configuration: the peers every build has.
+inline std::vector<std::string> BulletAndOdePeers() {
+  return {"bullet", "bullet-tuned", "ode-step", "ode-step-tuned", "ode-quickstep", "ode-quickstep-tuned"};
+}
+
+/// A peer's name as a test name: gtest allows no '-' ("ode-step" -> "ode_step").
+inline std::string PeerTestName(const ::testing::TestParamInfo<std::string>& info) {
+  std::string name = info.param;
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
 }
 
 }  // namespace talus::reference::test

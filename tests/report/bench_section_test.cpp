@@ -9,9 +9,9 @@
 #include <fstream>
 #include <limits>
 
-#include "talus/harness/bench_report_json.h"
-#include "talus/harness/bench_summary.h"
-#include "talus/harness/report.h"
+#include "talus/harness/report/bench_summary.h"
+#include "talus/harness/report/report.h"
+#include "talus/harness/scenes/bench_report_json.h"
 
 namespace talus::harness {
 namespace {

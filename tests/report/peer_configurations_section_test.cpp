@@ -6,10 +6,10 @@
 
 #include <cmath>
 
-#include "report_peers.h"
-#include "report_scorecard.h"
-#include "talus/harness/report.h"
-#include "talus/harness/results_file.h"
+#include "report/report_peers.h"
+#include "report/report_scorecard.h"
+#include "talus/harness/report/report.h"
+#include "talus/harness/run/results_file.h"
 
 namespace talus::harness {
 namespace {

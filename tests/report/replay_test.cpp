@@ -1,10 +1,10 @@
 // Replay recording and its JSON form: what the report's 3D view reads.
 #include <gtest/gtest.h>
 
-#include "talus/harness/replay.h"
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
-#include "talus/harness/scenario_loader.h"
+#include "talus/harness/run/replay.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/reference/talus_backend.h"
 
 namespace talus::harness {
@@ -106,7 +106,7 @@ TEST(Replay, ContactsAreRecordedWithBodiesAndUnitNormals) {
   const RunResult result = RunOne(MakeRegistry(), runs.Value().front(), "talus", options);
   const ReplayFrame& last = result.replay.frames.back();
   ASSERT_FALSE(last.contacts.empty());
-  for (const ContactPoint& c : last.contacts) {
+  for (const ContactReading& c : last.contacts) {
     EXPECT_NEAR(c.normal.norm(), 1.0, 1e-9);  // unit by contract; rounding only
     EXPECT_NE(c.bodyA, c.bodyB);
   }

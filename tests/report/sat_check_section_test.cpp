@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "talus/harness/report.h"
-#include "talus/harness/sat_check_results.h"
+#include "talus/harness/report/report.h"
+#include "talus/harness/report/sat_check_results.h"
 
 namespace talus::harness {
 namespace {

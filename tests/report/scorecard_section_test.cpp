@@ -7,9 +7,9 @@
 #include <cmath>
 #include <tuple>
 
-#include "report_scorecard.h"
-#include "talus/harness/report.h"
-#include "talus/harness/results_file.h"
+#include "report/report_scorecard.h"
+#include "talus/harness/report/report.h"
+#include "talus/harness/run/results_file.h"
 
 namespace talus::harness {
 namespace {

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "talus/harness/report.h"
-#include "talus/harness/stress.h"
+#include "talus/harness/report/report.h"
+#include "talus/harness/stress/stress.h"
 
 namespace talus::harness {
 namespace {

@@ -11,8 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/reference/talus_backend.h"
 
 namespace talus::harness {

@@ -1,7 +1,7 @@
 // The scene generators against the definitions of SCENES.md: counts,
 // positions, materials, walls, the random stream, and the body-frame /
 // centre-of-mass mapping each backend applies to the hull pile.
-#include "talus/harness/bench_scenes.h"
+#include "talus/harness/scenes/bench_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <set>
 #include <string>
 
-#include "talus/harness/split_mix64.h"
+#include "talus/harness/support/split_mix64.h"
 #include "talus/reference/body_mass.h"
 #include "talus/reference/bullet_backend.h"
 #include "talus/reference/ode_backend.h"
@@ -204,7 +204,7 @@ TEST(HullPileScene, EveryBackendPlacesFramesAndCentresOfMassAsSpecified) {
     for (int b = 0; b < 40; ++b) {
       const BodySpec& body = scene.bodies[static_cast<size_t>(b)];
       const Vec3 centroid = reference::ComputeBodyMass(body).Value().centroid;
-      const BodyState state = backend.Value()->GetBodyState(b);
+      const BodyReading state = backend.Value()->GetBodyState(b);
       // 1e-12 m: a few roundings of coordinates of size ~10 m (the frame
       // round trip through the principal axes rotation).
       EXPECT_LT((state.origin - body.position).norm(), 1e-12) << engine << " body " << b;

@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "all_backends.h"
 #include "report_writer.h"
-#include "talus/harness/bench_run.h"
+#include "talus/harness/scenes/bench_run.h"
+#include "talus/reference/all_backends.h"
 #include "talus/world_settings.h"
 
 namespace talus::harness {
@@ -18,7 +18,7 @@ namespace {
 // SCENES.md: "a pyramid that stands has drift well under 0.05 m".
 constexpr double kStandingDrift = 0.05;
 
-const BackendRegistry& Registry() { return testing::AllBackends(); }
+const BackendRegistry& Registry() { return reference::AllBackends(); }
 
 BenchReport RunScene(std::string_view engine, std::string_view scene, int parameter, int steps) {
   auto report = RunBenchScene(Registry(), engine, *FindBenchScene(scene), parameter, steps);

@@ -1,6 +1,6 @@
 // SplitMix64 against the check values of SCENES.md and an independent
 // transcription of the definition.
-#include "talus/harness/split_mix64.h"
+#include "talus/harness/support/split_mix64.h"
 
 #include <gtest/gtest.h>
 

@@ -13,9 +13,10 @@
 #include <numbers>
 #include <string>
 
-#include "talus/harness/regression_check.h"
-#include "talus/harness/runner.h"
-#include "testbed/all_backends.h"
+#include "talus/harness/report/regression_check.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/reference/all_backends.h"
 
 namespace talus::harness {
 namespace {
@@ -37,7 +38,7 @@ CheckOutcome Check(const ScenarioRun& run) {
   RunnerOptions options;
   options.backends = {"talus"};
   options.deterministic = true;
-  auto results = RunAll(testing::AllBackends(), {run}, options);
+  auto results = RunAll(reference::AllBackends(), {run}, options);
   EXPECT_TRUE(results) << results.GetError().message;
   return CheckResults(ResultsFile{options.backends, true, results.Value()}, "talus");
 }
@@ -47,7 +48,7 @@ std::string FirstProblem(const CheckOutcome& outcome) {
 }
 
 TEST(Gates, EveryTalusVariantIsGatedByDefault) {
-  const std::vector<std::string> variants = TalusVariants(testing::AllBackends().Names());
+  const std::vector<std::string> variants = TalusVariants(reference::AllBackends().Names());
   for (const char* name : {"talus", "talus-writeup", "talus-split"}) {
     EXPECT_NE(std::find(variants.begin(), variants.end(), name), variants.end()) << name;
   }

@@ -12,9 +12,9 @@
 #include <memory>
 #include <string>
 
-#include "talus/harness/backend.h"
-#include "talus/harness/scenario_loader.h"
-#include "testbed/all_backends.h"
+#include "talus/harness/backend/backend.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/reference/all_backends.h"
 
 namespace talus::harness {
 namespace {
@@ -22,7 +22,7 @@ namespace {
 // gtest's Test::Run hides harness::Run inside TEST bodies.
 using ScenarioRun = Run;
 
-const BackendRegistry& Registry() { return testing::AllBackends(); }
+const BackendRegistry& Registry() { return reference::AllBackends(); }
 
 // The file's single run with the gyroscopic setting forced to `gyroscopic`.
 Run LoadTumbling(const std::string& file, bool gyroscopic) {
@@ -50,11 +50,11 @@ SpinRecord Spin(const std::string& backendName, const Run& run) {
   if (!created) return record;
   Backend& backend = *created.Value();
   const auto momentum = [&backend] {
-    const BodyState s = backend.GetBodyState(0);
+    const BodyReading s = backend.GetBodyState(0);
     return Vec3(s.worldInertia * s.angularVelocity);
   };
   const auto intermediate = [&backend] {
-    const BodyState s = backend.GetBodyState(0);
+    const BodyReading s = backend.GetBodyState(0);
     return (s.orientation.conjugate() * s.angularVelocity).y();
   };
   const Vec3 initial = momentum();

@@ -14,10 +14,11 @@
 
 #include <sys/wait.h>
 
-#include "talus/harness/regression_check.h"
-#include "talus/harness/report.h"
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
+#include "talus/harness/report/regression_check.h"
+#include "talus/harness/report/report.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_loader.h"
 #include "talus/reference/talus_backend.h"
 
 namespace talus::harness {

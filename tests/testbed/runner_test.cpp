@@ -8,9 +8,10 @@
 #include <sstream>
 #include <string>
 
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
-#include "testbed/all_backends.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/reference/all_backends.h"
 
 namespace talus::harness {
 namespace {
@@ -18,7 +19,7 @@ namespace {
 // gtest's Test::Run hides harness::Run inside TEST bodies.
 using ScenarioRun = Run;
 
-const BackendRegistry& Registry() { return testing::AllBackends(); }
+const BackendRegistry& Registry() { return reference::AllBackends(); }
 
 std::vector<Run> Load(const std::string& relative) {
   auto runs = LoadScenarios({std::string(TALUS_SCENARIO_DIR) + "/" + relative});
@@ -219,7 +220,7 @@ TEST(TalusBackend, HullBodyOriginIsTheScenarioFrameAndCentreOfMassItsCentroid) {
   for (const char* name : {"talus", "bullet"}) {
     auto backend = Registry().Create(name, run);
     ASSERT_TRUE(backend) << backend.GetError().message;
-    const BodyState state = backend.Value()->GetBodyState(0);
+    const BodyReading state = backend.Value()->GetBodyState(0);
     EXPECT_LT((state.origin - Vec3(1, 2, 3)).norm(), 1e-12) << name;
     EXPECT_LT((state.centerOfMass - Vec3(1 - 0.5, 2 + 0.5, 3 + 0.5)).norm(), 1e-12) << name;
     EXPECT_NEAR(state.mass, run.scenario.bodies[0].density, 1e-9) << name;  // 1 m^3

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
-#include "talus/harness/scenario_loader.h"
-#include "talus/harness/sweep.h"
-#include "testbed/all_backends.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/sweep/sweep.h"
+#include "talus/reference/all_backends.h"
 
 namespace talus::harness {
 namespace {
@@ -21,7 +21,7 @@ namespace {
 // gtest's Test::Run hides harness::Run inside TEST bodies.
 using ScenarioRun = Run;
 
-const BackendRegistry& Registry() { return testing::AllBackends(); }
+const BackendRegistry& Registry() { return reference::AllBackends(); }
 
 // A falling sphere (a closed system: no static body), 20 steps, with the
 // given extra top-level fields (e.g. "\"backends\": [\"talus\"],").

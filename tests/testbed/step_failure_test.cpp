@@ -8,15 +8,17 @@
 #include <limits>
 #include <string>
 
-#include "all_backends.h"
-#include "talus/harness/runner.h"
-#include "talus/harness/scenario_limits.h"
-#include "talus/harness/truth_check.h"
+#include "support/one_body_run.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_limits.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/truth/truth_check.h"
+#include "talus/reference/all_backends.h"
 
 namespace talus::harness {
 namespace {
 
-using testing::AllBackends;
+using reference::AllBackends;
 using Runs = std::vector<harness::Run>;  // gtest's Test::Run hides harness::Run
 
 const std::string kHostileDir = std::string(TALUS_TEST_DATA_DIR) + "/scenarios_hostile/";
@@ -38,34 +40,25 @@ class FakeBackend final : public Backend {
   }
   [[nodiscard]] std::string StepFailure() const override { return m_failure; }
   [[nodiscard]] int BodyCount() const override { return 1; }
-  [[nodiscard]] BodyState GetBodyState(int) const override { return m_state; }
-  [[nodiscard]] std::vector<ContactPoint> GetContacts() const override { return {}; }
+  [[nodiscard]] BodyReading GetBodyState(int) const override { return m_state; }
+  [[nodiscard]] std::vector<ContactReading> GetContacts() const override { return {}; }
   [[nodiscard]] std::vector<Setting> Settings() const override { return {}; }
 
  private:
   int m_nanAt;
   int m_failAt;
   int m_step = 0;
-  BodyState m_state;
+  BodyReading m_state;
   std::string m_failure;
 };
 
-harness::Run FakeRun(const std::string& id, int steps) {
-  harness::Run run;
-  run.id = id;
-  run.scenario.name = id;
-  run.scenario.bodies.push_back(BodySpec{.name = "b", .shape = SphereShape{0.5}});
-  run.scenario.bodies[0].density = 1000.0;
-  run.timeStep = 0.01;
-  run.steps = steps;
-  return run;
-}
+using testing_support::OneBodyRun;
 
 BackendRegistry FakeRegistry() {
   BackendRegistry registry;
   registry.Register(
       "fake", "NaN at step 3 of runs named nan, refuses step 5 of runs named refuse",
-      [](const harness::Run& run) -> Result<std::unique_ptr<Backend>> {
+      harness::ThreadSafety::Independent(), [](const harness::Run& run) -> Result<std::unique_ptr<Backend>> {
         return std::unique_ptr<Backend>(new FakeBackend(run.id == "nan" ? 3 : 0, run.id == "refuse" ? 5 : 0));
       });
   return registry;
@@ -79,7 +72,7 @@ RunnerOptions Options(std::vector<std::string> backends) {
 }
 
 TEST(StepFailure, ANonFiniteStateEndsTheRunNamingStepEngineAndBody) {
-  const RunResult result = RunOne(FakeRegistry(), FakeRun("nan", 10), "fake", Options({"fake"}));
+  const RunResult result = RunOne(FakeRegistry(), OneBodyRun("nan", 10), "fake", Options({"fake"}));
   EXPECT_EQ(result.error, "step 3: fake: body \"b\": non-finite position (nan, nan, nan)");
   EXPECT_TRUE(result.metrics.empty());
   // The plot keeps the good steps (0, 1, 2), not the NaN one.
@@ -88,7 +81,7 @@ TEST(StepFailure, ANonFiniteStateEndsTheRunNamingStepEngineAndBody) {
 }
 
 TEST(StepFailure, ARefusedStepEndsThatRunAndTheOthersCarryOn) {
-  const Runs runs{FakeRun("refuse", 10), FakeRun("fine", 10), FakeRun("nan", 10)};
+  const Runs runs{OneBodyRun("refuse", 10), OneBodyRun("fine", 10), OneBodyRun("nan", 10)};
   for (int jobs : {1, 3}) {
     RunnerOptions options = Options({"fake"});
     options.jobs = jobs;
@@ -162,7 +155,7 @@ TEST(StepFailure, OdeReportsAStepItCouldNotTake) {
 TEST(StepFailure, StepTimesStayBoundedForLongRuns) {
   // 2^20 + 10 steps: the per-step wall times are thinned once the list
   // holds 2^20 (8 MB), instead of an 8-17 GB reservation for 1e9 steps.
-  const harness::Run run = FakeRun("long", (1 << 20) + 10);
+  const harness::Run run = OneBodyRun("long", (1 << 20) + 10);
   FakeBackend backend(0, 0);
   std::vector<double> stepSeconds;
   const Trajectory trajectory = Record(
@@ -178,7 +171,7 @@ TEST(StepFailure, LongJobsReportTheirProgress) {
   std::vector<std::string> lines;
   options.progress = [&](const std::string& line) { lines.push_back(line); };
   options.progressSeconds = 0.0;  // every 1024 steps
-  const RunResult result = RunOne(FakeRegistry(), FakeRun("long", 5000), "fake", options);
+  const RunResult result = RunOne(FakeRegistry(), OneBodyRun("long", 5000), "fake", options);
   EXPECT_EQ(result.error, "");
   ASSERT_EQ(lines.size(), 4u);  // steps 1024, 2048, 3072, 4096
   EXPECT_EQ(lines[0].rfind("long fake: step 1024 of 5000 (20%), ", 0), 0u) << lines[0];
@@ -188,10 +181,10 @@ TEST(StepFailure, LongJobsReportTheirProgress) {
 TEST(StepFailure, AJobPastItsWallClockBudgetStopsWithTheReason) {
   RunnerOptions options = Options({"fake"});
   options.budgetSeconds = 1e-9;  // spent before step 1024 is reached
-  const RunResult result = RunOne(FakeRegistry(), FakeRun("long", 5000), "fake", options);
+  const RunResult result = RunOne(FakeRegistry(), OneBodyRun("long", 5000), "fake", options);
   EXPECT_EQ(result.error, "step 1024: fake: wall-clock budget of 1e-09 s spent");
   options.budgetSeconds = -1.0;
-  auto refused = RunAll(FakeRegistry(), {FakeRun("long", 5)}, options);
+  auto refused = RunAll(FakeRegistry(), {OneBodyRun("long", 5)}, options);
   ASSERT_FALSE(refused);
   EXPECT_TRUE(Has(refused.GetError().message, "budget -1 s must be finite and >= 0"))
       << refused.GetError().message;
@@ -204,13 +197,13 @@ TEST(Counts, SampleStrideDoesNotOverflowAtIntMax) {
 }
 
 TEST(Counts, SteppingExpansionRefusesTooManyStepsOrRuns) {
-  harness::Run run = FakeRun("long", 1'000'000'000);
+  harness::Run run = OneBodyRun("long", 1'000'000'000);
   run.timeStep = 1e-3;
   auto expanded = ExpandStepping({run}, {1e-4}, {});
   ASSERT_FALSE(expanded);
   EXPECT_TRUE(Has(expanded.GetError().message, "1e+10 steps, more than the limit of 1000000000"))
       << expanded.GetError().message;
-  const Runs many(1000, FakeRun("r", 10));
+  const Runs many(1000, OneBodyRun("r", 10));
   expanded = ExpandStepping(many, std::vector<double>(200, 0.01), {});
   ASSERT_FALSE(expanded);
   EXPECT_TRUE(Has(expanded.GetError().message, "limit of 100000 runs")) << expanded.GetError().message;
@@ -219,7 +212,7 @@ TEST(Counts, SteppingExpansionRefusesTooManyStepsOrRuns) {
 TEST(Counts, ConvergedReferenceRefinementIsBoundedInsteadOfOverflowing) {
   // A run built in code (the loader refuses such a file): 1e6 x 1024 once
   // to overflow an int.
-  harness::Run run = FakeRun("fine", 1'000'000);
+  harness::Run run = OneBodyRun("fine", 1'000'000);
   Truth truth;
   truth.kind = ConvergedReferenceTruth{1024};
   run.scenario.truths.push_back(truth);
@@ -230,18 +223,18 @@ TEST(Counts, ConvergedReferenceRefinementIsBoundedInsteadOfOverflowing) {
 TEST(Counts, RunAllRefusesAHugeJobCountAndAnUnknownReplaySelector) {
   RunnerOptions options = Options({"fake"});
   options.jobs = 1'000'000;
-  auto results = RunAll(FakeRegistry(), {FakeRun("fine", 2)}, options);
+  auto results = RunAll(FakeRegistry(), {OneBodyRun("fine", 2)}, options);
   ASSERT_FALSE(results);
   EXPECT_TRUE(Has(results.GetError().message, "jobs must be 1 to 1024")) << results.GetError().message;
   options.jobs = 1;
   options.replay = {"fine", "nosuchrun"};
-  results = RunAll(FakeRegistry(), {FakeRun("fine", 2)}, options);
+  results = RunAll(FakeRegistry(), {OneBodyRun("fine", 2)}, options);
   ASSERT_FALSE(results);
   EXPECT_TRUE(Has(results.GetError().message, "\"nosuchrun\" names no run")) << results.GetError().message;
 }
 
 TEST(Counts, UpAxisSurvivesHugeAndTinyGravity) {
-  harness::Run run = FakeRun("g", 1);
+  harness::Run run = OneBodyRun("g", 1);
   for (double g : {1e300, 1e-300, 9.81}) {
     run.scenario.world.gravity = Vec3(0, -g, 0);
     EXPECT_EQ(UpAxis(run), Vec3::UnitY()) << g;  // |g| of 1e300 used to overflow to a zero axis

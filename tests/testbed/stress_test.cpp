@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "talus/harness/stress.h"
+#include "talus/harness/stress/stress.h"
 #include "talus/reference/talus_backend.h"
 
 namespace talus::harness {

@@ -9,10 +9,11 @@
 #include <limits>
 #include <set>
 
-#include "all_backends.h"
-#include "talus/harness/results_file.h"
-#include "talus/harness/runner.h"
-#include "talus/harness/sweep.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/run/runner.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/sweep/sweep.h"
+#include "talus/reference/all_backends.h"
 
 namespace talus::harness {
 namespace {
@@ -108,7 +109,7 @@ TEST(ShardRuns, ThePartitionCoversEveryRunExactlyOnce) {
   }
 }
 
-const BackendRegistry& Registry() { return testing::AllBackends(); }
+const BackendRegistry& Registry() { return reference::AllBackends(); }
 
 TEST(MergeShards, MergedShardsAreByteIdenticalToTheUnshardedSweep) {
   auto loaded = LoadScenarios({std::string(TALUS_SCENARIO_DIR) + "/tumbling/box_free_fall.json",

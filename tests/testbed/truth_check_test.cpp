@@ -6,9 +6,9 @@
 
 #include <cmath>
 
-#include "talus/harness/run_metrics.h"
-#include "talus/harness/truth_check.h"
-#include "talus/harness/truths.h"
+#include "talus/harness/analytic/truths.h"
+#include "talus/harness/run/run_metrics.h"
+#include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
 namespace {
@@ -17,7 +17,7 @@ namespace {
 using ScenarioRun = Run;
 
 // A run with a static ground and one dynamic body, `steps` steps of `h`.
-Run MakeRun(double h, int steps, Shape shape = SphereShape{0.1}) {
+Run MakeRun(double h, int steps, ShapeSpec shape = SphereShape{0.1}) {
   Run run;
   run.id = "synthetic";
   run.timeStep = h;

@@ -97,10 +97,10 @@ void AddRandomBoxes(World& world, int count, std::uint64_t seed) {
 // counts, as raw bits.
 struct Fingerprint {
   std::vector<std::uint64_t> bits;
-  std::int32_t manifolds = 0;
-  std::int32_t candidatePairs = 0;
-  std::int32_t awakeBodies = 0;
-  std::int32_t sleepingBodies = 0;
+  std::int64_t manifolds = 0;
+  std::int64_t spherePairs = 0;
+  std::int64_t awakeBodies = 0;
+  std::int64_t sleepingBodies = 0;
   int wakes = 0;  ///< times a sleeping body woke up
 };
 
@@ -110,15 +110,11 @@ void AppendBits(std::vector<std::uint64_t>& bits, const double* values, int n) {
 
 void AppendStats(std::vector<std::uint64_t>& bits, const StepStatistics& s) {
   for (const std::int64_t count :
-       {std::int64_t{s.bodies}, std::int64_t{s.awakeBodies}, std::int64_t{s.sleepingBodies},
-        std::int64_t{s.candidatePairs}, std::int64_t{s.sleepingPairsSkipped}, std::int64_t{s.manifolds},
-        std::int64_t{s.manifoldsReused}, std::int64_t{s.reusedContactPoints}, std::int64_t{s.contactPoints},
-        std::int64_t{s.warmStartedPoints}, std::int64_t{s.islands}, std::int64_t{s.velocitySweeps},
-        static_cast<std::int64_t>(s.narrowPhase.pairsTested),
-        static_cast<std::int64_t>(s.narrowPhase.satTests),
-        static_cast<std::int64_t>(s.narrowPhase.satCacheHits),
-        static_cast<std::int64_t>(s.narrowPhase.edgeAxesTested),
-        static_cast<std::int64_t>(s.narrowPhase.contactPoints)}) {
+       {s.bodies, s.awakeBodies, s.sleepingBodies, s.spherePairs, s.sleepingPairsSkipped, s.manifolds,
+        s.manifoldsReused, s.reusedContactPoints, s.persistentPoints, s.contactPoints, s.warmStartedPoints,
+        s.islands, s.velocitySweeps, s.solverColours, s.overflowPairs, s.narrowPhase.pairsTested,
+        s.narrowPhase.satTests, s.narrowPhase.satCacheHits, s.narrowPhase.edgeAxesTested,
+        s.narrowPhase.manifoldPoints}) {
     bits.push_back(static_cast<std::uint64_t>(count));
   }
 }
@@ -141,7 +137,7 @@ Fingerprint Simulate(SceneBuilder build, WorldSettings settings, int threads, in
     if (!stats) return print;
     AppendStats(print.bits, stats.Value());
     print.manifolds = std::max(print.manifolds, stats.Value().manifolds);
-    print.candidatePairs = std::max(print.candidatePairs, stats.Value().candidatePairs);
+    print.spherePairs = std::max(print.spherePairs, stats.Value().spherePairs);
     print.awakeBodies = std::max(print.awakeBodies, stats.Value().awakeBodies);
     print.sleepingBodies = std::max(print.sleepingBodies, stats.Value().sleepingBodies);
     for (const BodyId id : world.BodyIds()) {

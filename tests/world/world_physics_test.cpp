@@ -278,7 +278,7 @@ TEST(WorldPhysics, StaticPairsAndFrictionlessContactsCostNothing) {
                                 .friction = 0.0}));
   const StepStatistics stats = world.Step(kH).Value();
   // The static block on the static ground is never tested.
-  EXPECT_EQ(stats.candidatePairs, 1);
+  EXPECT_EQ(stats.spherePairs, 1);
   EXPECT_EQ(stats.narrowPhase.pairsTested, 1u);
   EXPECT_GT(stats.contactPoints, 0);
   EXPECT_EQ(stats.frictionRows, 0);

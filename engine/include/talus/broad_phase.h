@@ -40,8 +40,8 @@ struct BroadPhaseStats {
   /// than its 63-bit cell keys can address (about 2^21 cells per axis).
   BroadPhaseKind kindUsed = BroadPhaseKind::BruteForce;
   /// Bodies taking part this step (active proxies), and how many are static.
-  int proxyCount = 0;
-  int staticProxyCount = 0;
+  std::int64_t proxyCount = 0;
+  std::int64_t staticProxyCount = 0;
   /// Pairs that reached the sphere-sphere test: those sharing a grid cell,
   /// whose boxes overlap in the tree, or every non static-static pair for
   /// brute force; plus the oversized tests. Each pair counted once.
@@ -52,18 +52,18 @@ struct BroadPhaseStats {
   /// test (the tree never visits them, so it reports 0).
   std::int64_t skippedStaticPairs = 0;
   /// Grid only: bodies too large for the grid, kept in the oversized list.
-  int oversizedProxies = 0;
+  std::int64_t oversizedProxies = 0;
   /// Grid only: sphere tests of an oversized body against another body.
   std::int64_t oversizedTests = 0;
   /// Grid only: cell edge length used this step (metres), 0 otherwise.
   double cellSize = 0.0;
   /// Grid only: cells holding at least one binned body this step.
-  int occupiedCells = 0;
+  std::int64_t occupiedCells = 0;
   /// Tree only: leaves reinserted because their body left its enlarged box
   /// (or was added, removed or changed between static and dynamic).
-  int treeReinsertions = 0;
+  std::int64_t treeReinsertions = 0;
   /// Tree only: height of the tree after the update (a leaf alone is 0).
-  int treeHeight = 0;
+  std::int64_t treeHeight = 0;
 };
 
 /// A readable name for a kind ("uniform_grid", "aabb_tree", "brute_force").

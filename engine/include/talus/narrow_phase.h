@@ -101,14 +101,14 @@ struct NarrowPhaseSettings {
 /// Counters accumulated by the narrow phase (add-only; the world resets
 /// them each step).
 struct NarrowPhaseStats {
-  std::uint64_t pairsTested = 0;      ///< shape pairs given to the narrow phase
-  std::uint64_t pairsTouching = 0;    ///< of those, pairs that produced a manifold
-  std::uint64_t satTests = 0;         ///< polyhedron-polyhedron SAT queries run
-  std::uint64_t satCacheHits = 0;     ///< SAT queries answered by the cached separating axis alone
-  std::uint64_t faceAxesTested = 0;   ///< face normals evaluated
-  std::uint64_t edgeAxesTested = 0;   ///< edge-pair cross products evaluated
-  std::uint64_t edgePairsPruned = 0;  ///< edge pairs rejected by the Gauss map test
-  std::uint64_t contactPoints = 0;    ///< contact points produced
+  std::int64_t pairsTested = 0;      ///< shape pairs given to the narrow phase
+  std::int64_t pairsTouching = 0;    ///< of those, pairs that produced a manifold
+  std::int64_t satTests = 0;         ///< polyhedron-polyhedron SAT queries run
+  std::int64_t satCacheHits = 0;     ///< SAT queries answered by the cached separating axis alone
+  std::int64_t faceAxesTested = 0;   ///< face normals evaluated
+  std::int64_t edgeAxesTested = 0;   ///< edge-pair cross products evaluated
+  std::int64_t edgePairsPruned = 0;  ///< edge pairs rejected by the Gauss map test
+  std::int64_t manifoldPoints = 0;   ///< contact points produced (manifold points)
 
   /// Adds another set of counters to this one.
   NarrowPhaseStats& operator+=(const NarrowPhaseStats& other) {
@@ -119,7 +119,7 @@ struct NarrowPhaseStats {
     faceAxesTested += other.faceAxesTested;
     edgeAxesTested += other.edgeAxesTested;
     edgePairsPruned += other.edgePairsPruned;
-    contactPoints += other.contactPoints;
+    manifoldPoints += other.manifoldPoints;
     return *this;
   }
 };

@@ -23,30 +23,35 @@ struct StageTimes {
   double total = 0.0;                ///< the whole step
 };
 
+/// Every count is a std::int64_t, here and in BroadPhaseStats and
+/// NarrowPhaseStats, and each name means one thing across the three:
+/// candidatePairs (broad phase) are pairs before the sphere test,
+/// spherePairs the pairs after it; contactPoints are the normal rows solved,
+/// NarrowPhaseStats::manifoldPoints the points the narrow phase produced.
 struct StepStatistics {
   StageTimes seconds = {};
-  std::int32_t bodies = 0;                ///< live bodies
-  std::int32_t awakeBodies = 0;           ///< dynamic bodies integrated this step
-  std::int32_t sleepingBodies = 0;        ///< dynamic bodies skipped because asleep
-  std::int32_t candidatePairs = 0;        ///< pairs the broad phase passed on
-  std::int32_t staticPairsSkipped = 0;    ///< pairs of two non-dynamic bodies never tested
-  std::int32_t sleepingPairsSkipped = 0;  ///< pairs kept from last step because both sides sleep
-  std::int32_t manifolds = 0;             ///< touching pairs handed to the solver
-  std::int32_t manifoldsReused = 0;       ///< of those, rebuilt without the narrow phase (reuseDistance)
-  std::int32_t reusedContactPoints = 0;   ///< points of the reused manifolds
-  std::int32_t persistentPoints = 0;      ///< remembered points added to fresh manifolds (persistence)
-  std::int32_t contactPoints = 0;         ///< normal rows solved
-  std::int32_t frictionRows = 0;          ///< tangent rows solved (two per point with mu > 0)
-  std::int32_t frictionRowsSkipped = 0;   ///< tangent rows not built because mu = 0
-  std::int32_t restitutionSkipped = 0;    ///< points whose restitution work was skipped (e = 0)
-  std::int32_t warmStartedPoints = 0;     ///< points that found last step's impulses by feature id
-  std::int32_t islands = 0;               ///< islands of awake dynamic bodies
-  std::int32_t velocitySweeps = 0;        ///< Gauss-Seidel velocity sweeps run (see maxVelocityIterations)
-  std::int32_t solverColours = 0;     ///< colours of the coloured solver (ContactSolverKind::ColouredWide)
-  std::int32_t overflowPairs = 0;     ///< pairs it solved one by one after the colours
-  std::int32_t positionSweeps = 0;    ///< position sweeps run (split impulses or non-linear Gauss-Seidel)
-  BroadPhaseStats broadPhase = {};    ///< the broad phase's own counters
-  NarrowPhaseStats narrowPhase = {};  ///< the narrow phase's own counters
+  std::int64_t bodies = 0;                ///< live bodies
+  std::int64_t awakeBodies = 0;           ///< dynamic bodies integrated this step
+  std::int64_t sleepingBodies = 0;        ///< dynamic bodies skipped because asleep
+  std::int64_t spherePairs = 0;           ///< pairs the broad phase passed on (= broadPhase.spherePairs)
+  std::int64_t staticPairsSkipped = 0;    ///< pairs of two non-dynamic bodies never tested
+  std::int64_t sleepingPairsSkipped = 0;  ///< pairs kept from last step because both sides sleep
+  std::int64_t manifolds = 0;             ///< touching pairs handed to the solver
+  std::int64_t manifoldsReused = 0;       ///< of those, rebuilt without the narrow phase (reuseDistance)
+  std::int64_t reusedContactPoints = 0;   ///< points of the reused manifolds
+  std::int64_t persistentPoints = 0;      ///< remembered points added to fresh manifolds (persistence)
+  std::int64_t contactPoints = 0;         ///< normal rows solved
+  std::int64_t frictionRows = 0;          ///< tangent rows solved (two per point with mu > 0)
+  std::int64_t frictionRowsSkipped = 0;   ///< tangent rows not built because mu = 0
+  std::int64_t restitutionSkipped = 0;    ///< points whose restitution work was skipped (e = 0)
+  std::int64_t warmStartedPoints = 0;     ///< points that found last step's impulses by feature id
+  std::int64_t islands = 0;               ///< islands of awake dynamic bodies
+  std::int64_t velocitySweeps = 0;        ///< Gauss-Seidel velocity sweeps run (see maxVelocityIterations)
+  std::int64_t solverColours = 0;         ///< colours of the coloured solver (ContactSolverKind::ColouredWide)
+  std::int64_t overflowPairs = 0;         ///< pairs it solved one by one after the colours
+  std::int64_t positionSweeps = 0;        ///< position sweeps run (split impulses or non-linear Gauss-Seidel)
+  BroadPhaseStats broadPhase = {};        ///< the broad phase's own counters
+  NarrowPhaseStats narrowPhase = {};      ///< the narrow phase's own counters
 };
 
 }  // namespace talus

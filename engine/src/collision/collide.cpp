@@ -89,7 +89,7 @@ bool Collide(const Shape& a, const Transform& xfA, const Shape& b, const Transfo
     ++stats->pairsTested;
     if (touching) {
       ++stats->pairsTouching;
-      stats->contactPoints += static_cast<std::uint64_t>(manifold->pointCount);
+      stats->manifoldPoints += manifold->pointCount;
     }
   }
   return touching;

@@ -11,6 +11,8 @@
 #include <string>
 #include <utility>
 
+#include "talus/hull_queries.h"
+
 namespace talus {
 namespace {
 
@@ -21,22 +23,13 @@ std::optional<Error> CheckDensity(double density) {
   return std::nullopt;
 }
 
-Aabb VertexAabb(const Hull& hull) {
-  Aabb box{.min = hull.Vertices()[0], .max = hull.Vertices()[0]};
-  for (const Vec3& v : hull.Vertices()) {
-    box.min = box.min.cwiseMin(v);
-    box.max = box.max.cwiseMax(v);
-  }
-  return box;
-}
-
 }  // namespace
 
 Result<Shape> Shape::CreateHull(std::shared_ptr<const Hull> hull) {
   if (!hull) return Error{"hull shape: the hull pointer is null"};
   Shape shape;
   shape.m_type = ShapeType::Hull;
-  shape.m_localAabb = VertexAabb(*hull);
+  shape.m_localAabb = ComputeAabb(*hull);
   // The sphere about the AABB centre: one pass, no dependence on the mass
   // properties, and within sqrt(3) of the tightest sphere.
   const Vec3 center = 0.5 * (shape.m_localAabb.min + shape.m_localAabb.max);

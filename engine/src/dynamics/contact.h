@@ -26,6 +26,12 @@
 
 namespace talus {
 
+/// The order key of the body pair (a, b): a's index in the high half, b's
+/// in the low, so sorting by it sorts by (a, b), the broad phase's order.
+inline std::uint64_t PairKey(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
 struct Contact {
   int bodyA = -1;  ///< body index of A (the normal points towards A)
   int bodyB = -1;  ///< body index of B
@@ -46,11 +52,8 @@ struct Contact {
   /// reuseDistance); not recorded when reuse is off.
   ManifoldAnchors anchors{};
 
-  /// The order key of the pair: A's index in the high half, B's in the low.
-  [[nodiscard]] std::uint64_t PairKey() const {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(bodyA)) << 32) |
-           static_cast<std::uint32_t>(bodyB);
-  }
+  /// The order key of the pair (the free PairKey of its two bodies).
+  [[nodiscard]] std::uint64_t PairKey() const { return talus::PairKey(bodyA, bodyB); }
 };
 
 /// The pair's friction from each body's coefficient (both >= 0).

@@ -178,7 +178,7 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
   if (m_useWide) {
     m_wide.Build(m_pairs, m_normals, m_frictions, m_cold, m_blockInverses, m_bodies);
     stats.solverColours = m_wide.ColourCount();
-    stats.overflowPairs = static_cast<std::int32_t>(m_wide.OverflowPairs().size());
+    stats.overflowPairs = static_cast<std::int64_t>(m_wide.OverflowPairs().size());
   }
 }
 

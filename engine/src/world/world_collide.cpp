@@ -18,10 +18,6 @@ namespace {
 constexpr int kProxyGrain = 256;
 constexpr int kNarrowPhaseGrain = 8;
 
-std::uint64_t PairKeyOf(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
-
 Transform BodyTransform(const BodySim& sim) {
   return {.position = sim.Origin(), .rotation = sim.orientation};
 }
@@ -122,7 +118,7 @@ void CollidePair(const WorldData& d, const BroadPhasePair& pair, PairOutcome& ou
 
   out.kind = PairOutcome::Kind::Tested;
   out.stats = NarrowPhaseStats{};
-  out.cache = PairSatCache{.pairKey = PairKeyOf(pair.a, pair.b),
+  out.cache = PairSatCache{.pairKey = PairKey(pair.a, pair.b),
                            .cache = out.oldCache >= 0
                                         ? d.previousSatCaches[static_cast<std::size_t>(out.oldCache)].cache
                                         : SatCache{}};
@@ -183,8 +179,8 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
   d.previousSatCaches.swap(d.satCaches);
   d.satCaches.clear();
   d.broadPhase.FindPairs(d.pairs, stats.broadPhase);
-  stats.candidatePairs = static_cast<std::int32_t>(d.pairs.size());
-  stats.staticPairsSkipped = static_cast<std::int32_t>(stats.broadPhase.skippedStaticPairs);
+  stats.spherePairs = static_cast<std::int64_t>(d.pairs.size());
+  stats.staticPairsSkipped = stats.broadPhase.skippedStaticPairs;
 
   // 1. Last step's contact and cache of every pair. Pairs come sorted by
   // (a, b), which is pair-key order, so one forward walk each finds them.
@@ -193,7 +189,7 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
   std::size_t oldContact = 0;
   std::size_t oldCache = 0;
   for (std::size_t p = 0; p < d.pairs.size(); ++p) {
-    const std::uint64_t key = PairKeyOf(d.pairs[p].a, d.pairs[p].b);
+    const std::uint64_t key = PairKey(d.pairs[p].a, d.pairs[p].b);
     while (oldContact < d.previousContacts.size() && d.previousContacts[oldContact].PairKey() < key)
       ++oldContact;
     while (oldCache < d.previousSatCaches.size() && d.previousSatCaches[oldCache].pairKey < key) ++oldCache;
@@ -244,7 +240,7 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
     if (outcome.wakeB) Wake(d, b);
     d.contacts.push_back(outcome.contact);
   }
-  stats.manifolds = static_cast<std::int32_t>(d.contacts.size());
+  stats.manifolds = static_cast<std::int64_t>(d.contacts.size());
 }
 
 }  // namespace talus

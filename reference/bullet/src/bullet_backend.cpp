@@ -87,16 +87,20 @@ bool BulletSinglePrecisionAvailable() {
 }
 
 void RegisterBulletBackends(harness::BackendRegistry& registry) {
+  // Bullet keeps process-wide globals (gContactAddedCallback, its
+  // profiler); the single-precision module has its own copies but shares
+  // the lane, as it always has.
+  const harness::ThreadSafety bullet = harness::ThreadSafety::SharesStateOf("bullet");
   registry.Register("bullet",
                     "Bullet 3 (double): discrete dynamics world, sequential impulse solver (defaults)",
-                    [](const Run& run) { return CreateDouble(run, BulletTuning::Defaults); });
-  registry.Register("bullet-tuned", "Bullet 3 (double), tuned: 1 mm collision margin",
+                    bullet, [](const Run& run) { return CreateDouble(run, BulletTuning::Defaults); });
+  registry.Register("bullet-tuned", "Bullet 3 (double), tuned: 1 mm collision margin", bullet,
                     [](const Run& run) { return CreateDouble(run, BulletTuning::Tuned); });
 #ifdef TALUS_BULLET_F32_MODULE
-  registry.Register("bullet-f32", "Bullet 3 (single precision, the default build): defaults",
+  registry.Register("bullet-f32", "Bullet 3 (single precision, the default build): defaults", bullet,
                     [](const Run& run) { return CreateSingle(run, BulletTuning::Defaults); });
   registry.Register("bullet-f32-tuned", "Bullet 3 (single precision, the default build), tuned: 1 mm margin",
-                    [](const Run& run) { return CreateSingle(run, BulletTuning::Tuned); });
+                    bullet, [](const Run& run) { return CreateSingle(run, BulletTuning::Tuned); });
 #endif
 }
 

@@ -43,8 +43,8 @@ Quat FromBt(const btQuaternion& q) { return Quat(q.w(), q.x(), q.y(), q.z()); }
 struct Material {
   double friction = 0.0;
   double restitution = 0.0;
-  const harness::WorldSettings* world = nullptr;  // the combine rules
-  const BulletHost* host = nullptr;               // applies them
+  const harness::WorldSpec* world = nullptr;  // the combine rules
+  const BulletHost* host = nullptr;           // applies them
 };
 
 bool CombineMaterials(btManifoldPoint& point, const btCollisionObjectWrapper* wrap0, int, int,
@@ -71,8 +71,8 @@ class BulletBackend final : public harness::Backend {
   }
   void Step() override { m_world->stepSimulation(m_timeStep, 0); }
   [[nodiscard]] int BodyCount() const override { return static_cast<int>(m_bodies.size()); }
-  [[nodiscard]] harness::BodyState GetBodyState(int index) const override;
-  [[nodiscard]] std::vector<harness::ContactPoint> GetContacts() const override;
+  [[nodiscard]] harness::BodyReading GetBodyState(int index) const override;
+  [[nodiscard]] std::vector<harness::ContactReading> GetContacts() const override;
   [[nodiscard]] std::vector<harness::Setting> Settings() const override { return m_settings; }
 
  private:
@@ -90,7 +90,7 @@ class BulletBackend final : public harness::Backend {
   double m_timeStep = 0.0;
   BulletTuning m_tuning = BulletTuning::Defaults;
   BulletHost m_host;
-  harness::WorldSettings m_worldSettings;
+  harness::WorldSpec m_worldSettings;
   std::unique_ptr<btDefaultCollisionConfiguration> m_configuration;
   std::unique_ptr<btCollisionDispatcher> m_dispatcher;
   std::unique_ptr<btBroadphaseInterface> m_broadphase;
@@ -258,10 +258,10 @@ void BulletBackend::AddSettings(const Run& run) {
   };
 }
 
-harness::BodyState BulletBackend::GetBodyState(int index) const {
+harness::BodyReading BulletBackend::GetBodyState(int index) const {
   const Body& body = *m_bodies.at(static_cast<size_t>(index));
   const btTransform& transform = body.body->getCenterOfMassTransform();
-  harness::BodyState state;
+  harness::BodyReading state;
   state.centerOfMass = FromBt(transform.getOrigin());
   const Quat comOrientation = FromBt(transform.getRotation());
   state.orientation = (comOrientation * body.mass.principalRotation.conjugate()).normalized();
@@ -274,10 +274,10 @@ harness::BodyState BulletBackend::GetBodyState(int index) const {
   return state;
 }
 
-std::vector<harness::ContactPoint> BulletBackend::GetContacts() const {
+std::vector<harness::ContactReading> BulletBackend::GetContacts() const {
   // Bullet keeps points up to the breaking threshold apart; all are
   // reported, with depth = -distance (negative when separated).
-  std::vector<harness::ContactPoint> contacts;
+  std::vector<harness::ContactReading> contacts;
   const int manifolds = m_dispatcher->getNumManifolds();
   for (int m = 0; m < manifolds; ++m) {
     const btPersistentManifold* manifold = m_dispatcher->getManifoldByIndexInternal(m);

@@ -14,7 +14,7 @@
 #include <memory>
 #include <vector>
 
-#include "talus/harness/backend.h"
+#include "talus/harness/backend/backend.h"
 #include "talus/reference/body_mass.h"
 #include "talus/reference/bullet_backend.h"
 

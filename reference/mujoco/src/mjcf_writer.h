@@ -26,7 +26,7 @@
 #include <span>
 #include <string>
 
-#include "talus/harness/scenario.h"
+#include "talus/harness/scenario/scenario.h"
 #include "talus/reference/body_mass.h"
 #include "talus/reference/mujoco_backend.h"
 #include "talus/result.h"

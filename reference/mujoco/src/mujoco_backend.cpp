@@ -69,8 +69,8 @@ class MujocoBackend final : public harness::Backend {
   [[nodiscard]] std::string Name() const override { return m_profile.name; }
   void Step() override;
   [[nodiscard]] int BodyCount() const override { return static_cast<int>(m_bodies.size()); }
-  [[nodiscard]] harness::BodyState GetBodyState(int index) const override;
-  [[nodiscard]] std::vector<harness::ContactPoint> GetContacts() const override;
+  [[nodiscard]] harness::BodyReading GetBodyState(int index) const override;
+  [[nodiscard]] std::vector<harness::ContactReading> GetContacts() const override;
   [[nodiscard]] std::vector<harness::Setting> Settings() const override { return m_settings; }
   [[nodiscard]] std::vector<harness::StepCounter> StepCounters() const override;
 
@@ -205,9 +205,9 @@ void MujocoBackend::Step() {
   if (m_failure.empty()) m_failure = FirstWarning(m_data);
 }
 
-harness::BodyState MujocoBackend::GetBodyState(int index) const {
+harness::BodyReading MujocoBackend::GetBodyState(int index) const {
   const Body& body = m_bodies.at(static_cast<size_t>(index));
-  harness::BodyState state;
+  harness::BodyReading state;
   if (!m_failure.empty()) {
     // A failed world has no state; NaN makes every check on it fail.
     const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -236,11 +236,11 @@ harness::BodyState MujocoBackend::GetBodyState(int index) const {
   return state;
 }
 
-std::vector<harness::ContactPoint> MujocoBackend::GetContacts() const {
+std::vector<harness::ContactReading> MujocoBackend::GetContacts() const {
   // MuJoCo's frame[0..2] points from geom1 to geom2, so A = geom2's body and
   // B = geom1's; dist is negative when penetrating. Excluded contacts (in
   // the margin gap) carry no force and are not reported.
-  std::vector<harness::ContactPoint> contacts;
+  std::vector<harness::ContactReading> contacts;
   if (!m_failure.empty()) return contacts;
   for (int c = 0; c < m_data->ncon; ++c) {
     const mjContact& contact = m_data->contact[c];
@@ -350,10 +350,12 @@ Result<std::unique_ptr<harness::Backend>> CreateMujocoBackend(const Run& run, co
 }
 
 void RegisterMujocoBackends(harness::BackendRegistry& registry) {
-  registry.Register("mujoco", "MuJoCo 2.2.2 (double): its defaults (Euler, pyramidal cones, Newton)",
+  // MuJoCo's error and warning handlers are process-wide (mujoco_guard.h).
+  const harness::ThreadSafety mujoco = harness::ThreadSafety::SharesStateOf("mujoco");
+  registry.Register("mujoco", "MuJoCo 2.2.2 (double): its defaults (Euler, pyramidal cones, Newton)", mujoco,
                     [](const Run& run) { return MujocoBackend::Create(run, MujocoDefaultsProfile()); });
   registry.Register("mujoco-tuned",
-                    "MuJoCo 2.2.2 (double): tuned (elliptic cones, multiccd, RK4 without contact)",
+                    "MuJoCo 2.2.2 (double): tuned (elliptic cones, multiccd, RK4 without contact)", mujoco,
                     [](const Run& run) { return MujocoBackend::Create(run, MujocoTunedProfile()); });
 }
 

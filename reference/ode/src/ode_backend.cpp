@@ -31,7 +31,7 @@
 #include <sstream>
 #include <utility>
 
-#include "talus/harness/scenario_limits.h"
+#include "talus/harness/scenario/scenario_limits.h"
 #include "talus/reference/body_mass.h"
 
 namespace talus::reference {
@@ -125,8 +125,8 @@ class OdeBackend final : public harness::Backend {
   [[nodiscard]] std::string Name() const override { return BackendName(m_config); }
   void Step() override;
   [[nodiscard]] int BodyCount() const override { return static_cast<int>(m_bodies.size()); }
-  [[nodiscard]] harness::BodyState GetBodyState(int index) const override;
-  [[nodiscard]] std::vector<harness::ContactPoint> GetContacts() const override { return m_contacts; }
+  [[nodiscard]] harness::BodyReading GetBodyState(int index) const override;
+  [[nodiscard]] std::vector<harness::ContactReading> GetContacts() const override { return m_contacts; }
   [[nodiscard]] std::vector<harness::Setting> Settings() const override { return m_settings; }
   [[nodiscard]] std::string StepFailure() const override { return m_failure; }
 
@@ -158,12 +158,12 @@ class OdeBackend final : public harness::Backend {
   std::string m_runId;    // named by the fatal-error handlers
   std::string m_failure;  // why the last Step failed; empty when it ran
   double m_timeStep = 0.0;
-  harness::WorldSettings m_worldSettings;
+  harness::WorldSpec m_worldSettings;
   dWorldID m_world = nullptr;
   dSpaceID m_space = nullptr;
   dJointGroupID m_contactGroup = nullptr;
   std::vector<std::unique_ptr<Body>> m_bodies;
-  std::vector<harness::ContactPoint> m_contacts;
+  std::vector<harness::ContactReading> m_contacts;
   // The pairs the space reported this step, as (lower, higher) body index.
   std::vector<std::pair<int, int>> m_pairs;
   // This world's stream of ODE's library-wide random generator (quickstep
@@ -410,9 +410,9 @@ void OdeBackend::Step() {
   }
 }
 
-harness::BodyState OdeBackend::GetBodyState(int index) const {
+harness::BodyReading OdeBackend::GetBodyState(int index) const {
   const Body& body = *m_bodies.at(static_cast<size_t>(index));
-  harness::BodyState state;
+  harness::BodyReading state;
   const dReal* position = dGeomGetPosition(body.geom);
   dQuaternion q;
   dGeomGetQuaternion(body.geom, q);
@@ -492,17 +492,19 @@ void OdeBackend::AddSettings(const Run& run) {
 }  // namespace
 
 void RegisterOdeBackends(harness::BackendRegistry& registry) {
+  // ODE keeps library-wide state and per-thread collision data.
+  const harness::ThreadSafety ode = harness::ThreadSafety::SharesStateOf("ode");
   for (const OdeTuning tuning : {OdeTuning::Defaults, OdeTuning::Tuned}) {
     const bool tuned = tuning == OdeTuning::Tuned;
     const std::string configuration =
         tuned ? " (tuned: friction direction along the slip, dHashSpace)" : " (ODE's defaults)";
     registry.Register(BackendName({Stepper::Step, tuning}),
-                      "ODE (double): dWorldStep, global LCP by Dantzig" + configuration,
+                      "ODE (double): dWorldStep, global LCP by Dantzig" + configuration, ode,
                       [tuning](const Run& run) {
                         return OdeBackend::Create(run, {Stepper::Step, tuning});
                       });
     registry.Register(BackendName({Stepper::QuickStep, tuning}),
-                      "ODE (double): dWorldQuickStep, iterative SOR" + configuration,
+                      "ODE (double): dWorldQuickStep, iterative SOR" + configuration, ode,
                       [tuning](const Run& run) {
                         return OdeBackend::Create(run, {Stepper::QuickStep, tuning});
                       });

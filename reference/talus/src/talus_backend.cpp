@@ -101,8 +101,8 @@ class TalusBackend final : public harness::Backend {
   [[nodiscard]] std::string Name() const override { return VariantName(m_variant); }
   void Step() override;
   [[nodiscard]] int BodyCount() const override { return static_cast<int>(m_bodies.size()); }
-  [[nodiscard]] harness::BodyState GetBodyState(int index) const override;
-  [[nodiscard]] std::vector<harness::ContactPoint> GetContacts() const override;
+  [[nodiscard]] harness::BodyReading GetBodyState(int index) const override;
+  [[nodiscard]] std::vector<harness::ContactReading> GetContacts() const override;
   [[nodiscard]] std::vector<harness::Setting> Settings() const override { return m_settings; }
   [[nodiscard]] std::vector<harness::StepCounter> StepCounters() const override;
   [[nodiscard]] std::string StepFailure() const override { return m_failure; }
@@ -243,15 +243,15 @@ std::vector<harness::StepCounter> TalusBackend::StepCounters() const {
       {"sphere pairs", static_cast<double>(s.broadPhase.spherePairs)},
       {"SAT tests", static_cast<double>(s.narrowPhase.satTests)},
       {"intersecting pairs", static_cast<double>(s.narrowPhase.pairsTouching) + s.manifoldsReused},
-      {"contact points", static_cast<double>(s.narrowPhase.contactPoints) + s.reusedContactPoints},
+      {"contact points", static_cast<double>(s.narrowPhase.manifoldPoints) + s.reusedContactPoints},
   };
 }
 
-harness::BodyState TalusBackend::GetBodyState(int index) const {
+harness::BodyReading TalusBackend::GetBodyState(int index) const {
   const auto state = m_world.GetBodyState(m_bodies.at(static_cast<std::size_t>(index)));
   assert(state);
   const talus::BodyState& body = state.Value();
-  harness::BodyState out;
+  harness::BodyReading out;
   out.centerOfMass = body.centerOfMass;
   out.origin = body.position;
   out.orientation = body.orientation;
@@ -263,8 +263,8 @@ harness::BodyState TalusBackend::GetBodyState(int index) const {
   return out;
 }
 
-std::vector<harness::ContactPoint> TalusBackend::GetContacts() const {
-  std::vector<harness::ContactPoint> contacts;
+std::vector<harness::ContactReading> TalusBackend::GetContacts() const {
+  std::vector<harness::ContactReading> contacts;
   for (const ContactPointInfo& point : m_world.GetContactPoints()) {
     const int bodyA = m_scenarioIndexOfSlot.at(static_cast<std::size_t>(point.bodyA.index));
     const int bodyB = m_scenarioIndexOfSlot.at(static_cast<std::size_t>(point.bodyB.index));
@@ -343,19 +343,22 @@ void TalusBackend::AddSettings(const Run& run) {
 }  // namespace
 
 void RegisterTalusBackends(harness::BackendRegistry& registry, TalusBackendOptions options) {
+  // A Talus World owns all its state; the engine has no globals.
+  const harness::ThreadSafety independent = harness::ThreadSafety::Independent();
   registry.Register(
-      "talus", "Talus (double): engine defaults (pruned SAT, clipped manifolds, warm starting)",
+      "talus", "Talus (double): engine defaults (pruned SAT, clipped manifolds, warm starting)", independent,
       [options](const Run& run) { return TalusBackend::Create(run, Variant::Defaults, options); });
   registry.Register(
       "talus-writeup",
-      "Talus (double): the write-up's choices (full SAT, write-up manifolds, no warm starting)",
+      "Talus (double): the write-up's choices (full SAT, write-up manifolds, no warm starting)", independent,
       [options](const Run& run) { return TalusBackend::Create(run, Variant::WriteUp, options); });
   registry.Register(
-      "talus-split", "Talus (double): engine defaults plus split impulses",
+      "talus-split", "Talus (double): engine defaults plus split impulses", independent,
       [options](const Run& run) { return TalusBackend::Create(run, Variant::SplitImpulses, options); });
   registry.Register("talus-coloured",
                     "Talus (double): engine defaults with the coloured wide solver (four pairs per SIMD "
                     "bundle, colours splittable across threads) instead of the scalar pair order",
+                    independent,
                     [options](const Run& run) { return TalusBackend::Create(run, Variant::Coloured, options); });
 }
 

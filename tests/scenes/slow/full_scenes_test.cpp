@@ -9,7 +9,7 @@
 
 #include <cstdio>
 
-#include "talus/harness/bench_run.h"
+#include "talus/harness/scenes/bench_run.h"
 #include "talus/reference/talus_backend.h"
 #include "talus/world_settings.h"
 

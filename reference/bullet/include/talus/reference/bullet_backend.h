@@ -18,7 +18,7 @@
 // measured effect; docs/testbed-backends.md has the table.
 #pragma once
 
-#include "talus/harness/backend.h"
+#include "talus/harness/backend/backend.h"
 
 namespace talus::reference {
 

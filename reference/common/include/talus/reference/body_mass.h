@@ -9,7 +9,7 @@
 // properties) of a 3D solid body represented by a triangle mesh", 2004).
 #pragma once
 
-#include "talus/harness/scenario.h"
+#include "talus/harness/scenario/scenario.h"
 #include "talus/math.h"
 #include "talus/reference/point_hull.h"
 #include "talus/result.h"

@@ -4,18 +4,17 @@
 // library and still describes its settings the same way.
 #pragma once
 
-#include <sstream>
 #include <string>
+
+#include "talus/harness/support/number_text.h"
 
 namespace talus::reference {
 
 /// `value` with `digits` significant digits (17 by default: enough to read
-/// a double back exactly, so a setting in the report is the one that ran).
+/// a double back exactly, so a setting in the report is the one that ran);
+/// the testbed's one number formatter, harness::FormatNumber.
 inline std::string SettingNumber(double value, int digits = 17) {
-  std::ostringstream out;
-  out.precision(digits);
-  out << value;
-  return out.str();
+  return harness::FormatNumber(value, digits);
 }
 
 }  // namespace talus::reference

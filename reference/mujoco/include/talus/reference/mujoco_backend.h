@@ -28,7 +28,7 @@
 #include <memory>
 #include <string>
 
-#include "talus/harness/backend.h"
+#include "talus/harness/backend/backend.h"
 #include "talus/result.h"
 
 namespace talus::reference {

@@ -24,7 +24,7 @@
 // factory checks dGetConfiguration() and refuses otherwise.
 #pragma once
 
-#include "talus/harness/backend.h"
+#include "talus/harness/backend/backend.h"
 
 namespace talus::reference {
 

@@ -27,7 +27,7 @@
 // from TalusBackendOptions (default 1).
 #pragma once
 
-#include "talus/harness/backend.h"
+#include "talus/harness/backend/backend.h"
 
 namespace talus::reference {
 

@@ -1,0 +1,286 @@
+// The scenario model: what a scenario file (scenarios/<family>/<name>.json,
+// format in docs/scenarios.md) means once parsed, validated and expanded.
+//
+// Every value here has passed the schema and the semantic checks of
+// scenario_loader.cpp: numbers are finite, quaternions unit length, dynamic
+// bodies have a positive mass or density, names are unique and every truth
+// names an existing body. Conventions: SI units, +y is up when gravity is the
+// default, quaternions are (w, x, y, z) in the file and Eigen's Quaterniond
+// here.
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "talus/math.h"
+
+namespace talus::harness {
+
+/// How two bodies' coefficients combine into the pair's value.
+enum class CombineRule {
+  Sqrt,      ///< sqrt(a * b): the project's friction rule
+  Min,       ///< min(a, b)
+  Max,       ///< max(a, b): the project's restitution rule
+  Multiply,  ///< a * b: Bullet's built-in rule for both
+  Average,   ///< (a + b) / 2
+};
+
+/// The combined coefficient of a pair under `rule`.
+double Combine(CombineRule rule, double a, double b);
+
+/// The rule's name as written in scenario files ("sqrt", "min", ...).
+const char* CombineRuleName(CombineRule rule);
+
+/// World settings shared by every body.
+struct WorldSpec {
+  Vec3 gravity = Vec3(0.0, -9.81, 0.0);  ///< m/s^2
+  double timeStep = 1.0 / 60.0;          ///< seconds, in (0, 1]
+  int iterations = 0;                    ///< solver iterations; 0 = the engine's own default
+  int steps = 1;                         ///< number of steps to run (file: seconds or steps), >= 1
+  CombineRule frictionCombine = CombineRule::Sqrt;
+  CombineRule restitutionCombine = CombineRule::Max;
+  /// Integrate the gyroscopic term w x (I w), each engine in its implicit
+  /// form (Talus WorldSettings::gyroscopic, Bullet
+  /// BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY, ODE dBodySetGyroscopicMode).
+  /// Default true: without it a torque-free body keeps w (not L) constant.
+  bool gyroscopic = true;
+};
+
+/// A box centred on the body origin.
+struct BoxShape {
+  Vec3 halfExtents = Vec3::Ones();  ///< metres, each > 0
+};
+/// A sphere centred on the body origin.
+struct SphereShape {
+  double radius = 1.0;  ///< metres, > 0
+};
+/// The convex hull of points given in the body frame. The body origin is
+/// the frame the points are written in, not necessarily the centre of mass.
+struct HullShape {
+  std::vector<Vec3> points;  ///< metres, at least 4, spanning a volume
+};
+using ShapeSpec = std::variant<BoxShape, SphereShape, HullShape>;
+
+enum class Motion { Static, Dynamic };
+
+/// One body of a scenario.
+struct BodySpec {
+  std::string name;  ///< unique within the scenario
+  ShapeSpec shape;
+  Motion motion = Motion::Dynamic;
+  Vec3 position = Vec3::Zero();         ///< metres, of the body origin
+  Quat orientation = Quat::Identity();  ///< unit
+  Vec3 linearVelocity = Vec3::Zero();   ///< m/s, of the centre of mass
+  Vec3 angularVelocity = Vec3::Zero();  ///< rad/s, world frame
+  double density = 0.0;                 ///< kg/m^3; > 0 when mass is 0 (dynamic bodies)
+  double mass = 0.0;                    ///< kg; > 0 when density is 0 (dynamic bodies)
+  double friction = 0.5;                ///< Coulomb coefficient, >= 0
+  double restitution = 0.0;             ///< in [0, 1]
+};
+
+/// Quantities a run records (the file's "measure" list).
+enum class Quantity { Position, Orientation, Velocity, Energy, Momentum, Contacts, Penetration };
+
+/// How close a measurement must be to its truth: it passes when
+/// |measured - truth| <= absolute + relative * |truth|. Every truth of a
+/// scenario file has one (the loader refuses a truth without, or with both
+/// parts zero), with the physical reason for its size beside it
+/// (Truth::toleranceReason).
+struct Tolerance {
+  double absolute = 0.0;  ///< in the truth's unit
+  double relative = 0.0;  ///< fraction
+};
+
+/// Free fall of `body`'s centre of mass along -gravity from height y0
+/// (metres, along the up axis) with vertical speed v0 (m/s) and g (m/s^2).
+struct FreeFallTruth {
+  double y0 = 0.0, v0 = 0.0, g = 9.81;
+  /// Seconds: only samples up to this time are judged (the flight before a
+  /// landing); infinity = the whole run.
+  double until = std::numeric_limits<double>::infinity();
+};
+/// A body launched at v0 (m/s) on a floor with friction mu stops after
+/// v0^2 / (2 mu g) metres and v0 / (mu g) seconds, on the straight line
+/// through its start along `direction`.
+struct SlidingStopTruth {
+  double v0 = 1.0, mu = 0.5, g = 9.81;
+  Vec3 direction = Vec3::UnitX();  ///< unit, world frame, perpendicular to gravity
+  double maxLateral = 0.01;        ///< metres: largest allowed distance from the launch line, >= 0
+};
+/// The centre of mass comes to rest at `height` (metres along the up axis);
+/// over the second half of the run its peak-to-peak motion stays below
+/// maxJitter (metres).
+struct RestHeightTruth {
+  double height = 0.0;
+  double maxJitter = 1e-3;
+};
+/// A body dropped with its lowest point h metres above the floor, with
+/// restitution e, reaches e^(2k) h at its k-th apex (k = 1..count).
+struct BounceHeightsTruth {
+  double h = 1.0, e = 0.5;
+  int count = 1;
+};
+/// Boxes stacked in layers (bottom first) rest with their centres of mass
+/// at floor + (layer + 1/2) layerHeight and move less than maxDrift over
+/// the second half of the run. Concerns several bodies: Truth::body is -1.
+struct StackRestTruth {
+  std::vector<std::vector<int>> layers;  ///< body indices per layer, bottom layer first
+  double floor = 0.0;                    ///< metres, top of the floor along the up axis
+  double layerHeight = 1.0;              ///< metres, > 0
+  double maxDrift = 0.01;                ///< metres, >= 0
+};
+/// A hull body comes to rest on the face with outward body-frame normal
+/// `faceNormal`, a stable face (its centroid projects inside it), with its
+/// centre of mass at floor + `height`, the centroid's distance to that face's
+/// plane. Both `faceNormal` and `height` are the file's, computed without the
+/// engine (qhull facets and a divergence-theorem centroid; tests/reference
+/// checks the shipped numbers); the loader only refuses a normal that names
+/// no stable face of the hull.
+struct HullRestTruth {
+  Vec3 faceNormal = -Vec3::UnitY();  ///< unit, body frame (the file's, normalised)
+  double floor = 0.0;                ///< metres, top of the floor along the up axis
+  double height = 0.0;               ///< metres, from the file
+  double maxFaceAngle = 0.05;        ///< radians: face normal vs down at the end, in [0, pi]
+};
+/// A block released at rest on an incline of `angle` radians slides
+/// InclineDistance(angle, mu, g, t) metres (0 when tan(angle) <= mu).
+struct InclineSlideTruth {
+  double angle = 0.0, mu = 0.5, g = 9.81;
+};
+/// A box of `width` x `height` (metres, along the slope and its normal)
+/// released on an incline stays, slides or tips as InclineBoxOutcome says;
+/// "tipped" means turned more than tiltThreshold radians from its start.
+/// The truth's tolerance (radians, absolute) is how far a real engine's
+/// tipping or sliding threshold may sit from the rigid-body one: the loader
+/// refuses an angle closer than that to either threshold, where the
+/// outcome is not decided by the physics.
+struct InclineTipTruth {
+  double angle = 0.0, mu = 0.5, width = 1.0, height = 1.0;
+  double tiltThreshold = 0.5;  ///< radians, in (0, pi]
+};
+/// Torque-free rotation (no gravity, no contact) of a body with principal
+/// moments `inertia` (kg m^2, about its body axes) spinning at `omega`
+/// (rad/s, body frame, at the start): world angular momentum and kinetic
+/// energy stay constant.
+struct TorqueFreeTruth {
+  Vec3 inertia = Vec3::Ones();
+  Vec3 omega = Vec3::Zero();
+};
+/// The same body spun mainly about its intermediate axis turns over every
+/// IntermediateAxisFlipInterval(inertia, omega) seconds (torque_free_motion.h).
+struct FlipPeriodTruth {
+  Vec3 inertia = Vec3::Ones();
+  Vec3 omega = Vec3::Zero();
+};
+/// Free flight on all three axes: the centre of mass follows
+/// x0 + v0 t + g t^2 / 2 (g the world's gravity vector); the metric is the
+/// largest distance from that parabola over the run (judged against the
+/// continuous answer, not an integrator's sequence).
+struct ProjectileTruth {
+  Vec3 x0 = Vec3::Zero();  ///< metres, centre of mass at t = 0
+  Vec3 v0 = Vec3::Zero();  ///< m/s
+};
+/// Total mechanical energy (translational and rotational kinetic energy plus
+/// the potential -m g.x) of `Truth::body`, or of every dynamic body when
+/// the truth names none, is conserved: the metric is the largest
+/// |E(t) - E(0)| / E0, with E0 the kinetic energy at the start (the total
+/// energy with the potential measured from the start positions).
+struct EnergyDriftTruth {};
+/// Which angular momentum drift a truth measures.
+enum class MomentumMetric {
+  Vector,     ///< max |L(t) - L(0)| / |L(0)|: direction and magnitude
+  Magnitude,  ///< max ||L(t)| - |L(0)|| / |L(0)|: magnitude only
+};
+/// A free body's angular momentum about its centre of mass (world frame,
+/// L = I_world w) is conserved; the metric is its relative drift.
+struct AngularMomentumDriftTruth {
+  MomentumMetric metric = MomentumMetric::Vector;
+};
+/// A free body's rotational kinetic energy w.I_world w / 2 is conserved:
+/// the metric is the largest |E(t) - E(0)| / E(0).
+struct RotationalEnergyDriftTruth {};
+/// No closed form: the truth is the same engine at timeStep / divisor.
+struct ConvergedReferenceTruth {
+  int timeStepDivisor = 16;
+};
+using TruthKind = std::variant<FreeFallTruth, SlidingStopTruth, RestHeightTruth, BounceHeightsTruth,
+                               ConvergedReferenceTruth, StackRestTruth, HullRestTruth, InclineSlideTruth,
+                               InclineTipTruth, TorqueFreeTruth, FlipPeriodTruth, ProjectileTruth,
+                               EnergyDriftTruth, AngularMomentumDriftTruth, RotationalEnergyDriftTruth>;
+
+/// A figure published for the same case (e.g. by the benchmark's authors),
+/// printed beside the measured one; never judged.
+struct PublishedFigure {
+  double value = 0.0;                                       ///< the figure, or the low end of a range
+  double upper = std::numeric_limits<double>::quiet_NaN();  ///< the high end of a range, NaN for one figure
+  std::string source;                                       ///< who measured it, how
+};
+
+/// A backend for which a truth is a known failure, with the physical reason
+/// (the file's "ungated" list): its metrics are still measured, judged and
+/// reported, but do not fail `talus-testbed check` for that backend.
+struct UngatedBackend {
+  std::string backend;  ///< registry name, e.g. "talus-writeup"
+  std::string reason;   ///< why it fails, with the measured figure
+};
+
+struct Truth {
+  TruthKind kind;
+  int body = -1;  ///< index into Scenario::bodies, -1 when the truth is about the whole world
+  Tolerance tolerance;
+  /// Why the tolerance has its size: the physics it allows for (time-step
+  /// error, slop, solver convergence); the file's tolerance "reason".
+  std::string toleranceReason{};
+  /// Whether the truth's metrics count in the CI check (MetricResult::checked)
+  /// for every backend. False for a known shortfall of every engine: still
+  /// measured, judged and reported, but not failing the gate; the
+  /// scenario's description says why. Default true.
+  bool gate = true;
+  /// Backends for which this truth is outside the gate, each with its
+  /// reason (no repeats). Default none.
+  std::vector<UngatedBackend> ungated{};
+  /// The published figure for this truth's metric, when there is one.
+  std::optional<PublishedFigure> published = std::nullopt;
+};
+
+/// One scenario, fully resolved (sweeps already applied).
+struct Scenario {
+  std::string name;
+  std::string description;
+  std::string file;  ///< where it was read from ("" when parsed from text)
+  WorldSpec world;
+  std::vector<BodySpec> bodies;  ///< at least one
+  /// Backends (registry names) the scenario runs on, file order, no
+  /// duplicates; empty (the default) = every backend the runner is given.
+  /// Names are checked against the registry by the runner, which runs the
+  /// intersection with its own list (runner.h).
+  std::vector<std::string> backends;
+  /// Quantities to record; the optional metrics (energy and momentum drift,
+  /// penetration, contacts) are computed only when listed.
+  std::vector<Quantity> measure;
+  std::vector<Truth> truths;
+};
+
+/// One resolved value of a sweep parameter.
+struct SweepValue {
+  std::string name;  ///< the sweep's name, e.g. "mu"
+  std::string
+      value;  ///< the sweep's label for it, else its compact JSON (first entry for perTarget), e.g. "0.3"
+};
+
+/// One run: a scenario with its sweep values applied, plus the stepping the
+/// backend must use (which a runner may change, e.g. for a converged
+/// reference at a smaller time step).
+struct Run {
+  std::string id;  ///< scenario name plus sweep values, e.g. "box_slide[mu=0.3,v0=2]"
+  Scenario scenario;
+  std::vector<SweepValue> sweepValues;
+  double timeStep = 1.0 / 60.0;  ///< seconds
+  int iterations = 0;            ///< 0 = the engine's own default
+  int steps = 1;
+};
+
+}  // namespace talus::harness

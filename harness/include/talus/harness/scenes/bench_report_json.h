@@ -1,0 +1,36 @@
+// The JSON-lines form of benchmark reports (talus/harness/scenes/bench_run.h):
+// what `talus-scenes --format jsonl` writes, one object per line, and what
+// `talus-testbed report --scenes FILE` reads back to add the large-scene
+// section to the comparison report.
+//
+// Layout of a line (keys in this order; figures a scene does not have are
+// absent; a non-finite figure is null, since JSON has no NaN):
+//   {"engine", "scene", "parameter", "bodies", "threads", "steps",
+//    "ms_per_step_median", "ms_per_step_mean", "max_contacts",
+//    "drift_m" | "max_penetration_m", "kinetic_energy_j", "escaped"}
+// A skipped run is {"engine", ..., "steps", "skipped": "why"} with no
+// figures. Reading validates every field and names the file, the line and
+// the key of the first problem; nothing is returned from a bad file.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "talus/harness/scenes/bench_run.h"
+#include "talus/result.h"
+
+namespace talus::harness {
+
+/// One report as a compact JSON object (no newline).
+std::string BenchReportToJson(const BenchReport& report);
+
+/// Every report of a JSON-lines text (blank lines ignored). `source` names
+/// the text in error messages (a file name).
+Result<std::vector<BenchReport>> ParseBenchReportLines(std::string_view text, std::string_view source);
+
+/// The same, from a file.
+Result<std::vector<BenchReport>> ReadBenchReportFile(const std::filesystem::path& path);
+
+}  // namespace talus::harness

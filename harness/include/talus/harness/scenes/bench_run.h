@@ -1,0 +1,96 @@
+// Running a reference benchmark scene (talus/harness/scenes/bench_scenes.h) through
+// one backend and reducing it to the figures of SCENES.md "What a benchmark
+// run reports": per-step wall time (median and mean), the largest contact
+// count of any step, and the scene's stability figures.
+//
+// Only Backend::Step() is timed (std::chrono::steady_clock around each
+// call); reading contacts and states for the figures happens between steps,
+// outside the timed region. Every figure other than the times is a
+// deterministic function of the backend's results. All backends step on one
+// thread, so `threads` is 1.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "talus/harness/backend/backend.h"
+#include "talus/harness/scenes/bench_scenes.h"
+#include "talus/result.h"
+
+namespace talus::harness {
+
+/// The pyramid's drift is measured from this step to the last one (SCENES.md:
+/// between step 120 and step 600; the first 2 s let the layers land).
+inline constexpr int kPyramidDriftStartStep = 120;
+
+/// ODE's dWorldStep solves every island as one dense LCP (Dantzig): memory
+/// grows with the square and time with up to the cube of its constraint
+/// rows, and a pyramid or a settled pile is one island. Measured: the 30
+/// cubes of pyramid H = 4 (about 360 contact points) already take 0.74 s
+/// per step, so above this many dynamic bodies a run of "ode-step" or
+/// "ode-step-tuned" is skipped with that reason printed (docs/bench-scenes.md).
+inline constexpr int kOdeStepMaxBodies = 40;
+
+/// ODE's defaults collide in a dSimpleSpace, which tests all n (n - 1) / 2
+/// pairs every step. Above this many bodies runs of the ODE defaults are
+/// skipped with that reason printed; the tuned ODE (dHashSpace) is not capped.
+inline constexpr int kOdeMaxBodies = 5000;
+
+/// MuJoCo 2.2.2 sizes its constraint arrays for the worst case at
+/// mj_makeData (efc_AR is njmax x njmax, the stack about 5 njmax^2), and the
+/// MuJoCo backend gives each dynamic body 16 contact slots, so memory grows
+/// with the square of the body count: above this many dynamic bodies the
+/// world would need more than its 1 GB limit (kMujocoMaxDataBytes; pyramid
+/// H = 10 would need 34 GB), so MuJoCo runs are skipped with that reason.
+/// 63 is where the default (pyramidal, 4 rows a contact) configuration
+/// reaches the limit; pyramid H = 5 (55 cubes) and hull_pile L = 2 (40)
+/// run.
+inline constexpr int kMujocoMaxBodies = 63;
+
+/// One line of a benchmark report.
+struct BenchReport {
+  std::string engine;     ///< backend name, e.g. "bullet"
+  std::string scene;      ///< "pyramid" or "hull_pile"
+  int parameter = 0;      ///< H or L
+  int bodies = 0;         ///< dynamic bodies (static floor and walls not counted)
+  int threads = 1;        ///< threads the engine stepped with
+  int steps = 0;          ///< steps run
+  double msMedian = 0.0;  ///< median wall time of one Step(), milliseconds
+  double msMean = 0.0;    ///< mean wall time of one Step(), milliseconds
+  int maxContacts = 0;    ///< largest number of contact points reported after any step
+  /// pyramid: the largest horizontal (x, z) distance any cube's centre of
+  /// mass moved between step min(120, steps) and the last step, metres.
+  std::optional<double> drift;
+  /// hull_pile: the largest depth among the contacts after the last step,
+  /// metres (0 when none penetrates).
+  std::optional<double> maxPenetration;
+  /// hull_pile: total kinetic energy of the dynamic bodies after the last
+  /// step, joules.
+  std::optional<double> kineticEnergy;
+  /// hull_pile: dynamic bodies whose centre of mass ended below y = 0 or
+  /// outside the walls (|x| > w or |z| > w).
+  std::optional<int> escaped;
+  /// Not empty when the run was not made: why (then only the identity
+  /// fields above are filled).
+  std::string skipped;
+};
+
+/// Why `engine` is not run on a scene of `dynamicBodies` bodies, or nothing
+/// when it is (see kOdeStepMaxBodies, kOdeMaxBodies, kMujocoMaxBodies).
+std::optional<std::string> BenchSkipReason(std::string_view engine, int dynamicBodies);
+
+/// Called after every step with the step number (1-based) and the total;
+/// may be empty.
+using BenchProgress = std::function<void(int step, int steps)>;
+
+/// Builds `scene` at `parameter` with the named backend, runs `steps` steps
+/// (>= 1) and reports. A parameter out of range, an unknown engine or a world
+/// the backend refuses is an Error. When BenchSkipReason says so, the report
+/// comes back with `skipped` set and nothing run.
+Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_view engine,
+                                  const BenchScene& scene, int parameter, int steps,
+                                  const BenchProgress& progress = {});
+
+}  // namespace talus::harness

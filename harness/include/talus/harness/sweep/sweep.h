@@ -1,0 +1,139 @@
+// Run time against error: the analysis of a stepping sweep (the same runs
+// at several time steps and solver iterations, runner.h ExpandStepping),
+// and the sharding of long job lists.
+//
+// Each result with a truth gives one (cost, error) point: cost is its wall
+// time (median seconds per step x steps), error the run's error scalar
+// (RunErrorScalar). Points group into curves, one per (scenario instance,
+// backend, iterations); each backend's Pareto front over all its settings
+// is marked, and per scenario instance the backend most accurate at equal
+// cost is named (CompareFronts, definition in docs/testbed-sweeps.md).
+// Everything is a pure function of the results, in their order, so equal
+// results give equal text.
+//
+// Sharding: a job is one (run, backend); shard i of n takes every job of
+// the runs whose index r (in the expanded run list) has r mod n == i, so
+// the n shards cover every job exactly once and MergeShards puts them back
+// in the unsharded order.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "talus/harness/run/results_file.h"
+#include "talus/result.h"
+
+namespace talus::harness {
+
+/// The error scalar of one result: the largest |error| / (absolute +
+/// relative |truth|) over its metrics that have a tolerance (gated by the
+/// CI check or not), so 1 is "exactly at the tolerance". Such a metric
+/// that could not be measured (NaN), or whose tolerance scale is 0, makes
+/// it +infinity; NaN when the result has no such metric (no truth) or
+/// failed to run.
+double RunErrorScalar(const RunResult& result);
+
+/// The cost of one result: wall seconds of the whole run (median seconds
+/// per step x steps); 0 in deterministic mode.
+double RunCost(const RunResult& result);
+
+/// One point of a run-time-against-error plot.
+struct CostErrorPoint {
+  double cost = 0.0;   ///< seconds
+  double error = 0.0;  ///< error scalar, >= 0, may be +infinity
+};
+
+/// Indices of the Pareto-optimal points (no other point has cost <= and
+/// error <= with one strictly smaller), by increasing cost; of equal points
+/// the first is kept. Infinite errors are never on the front unless every
+/// point is infinite (then none is).
+std::vector<int> ParetoFront(const std::vector<CostErrorPoint>& points);
+
+/// The best error a front reaches for a budget: the smallest error among
+/// the points with cost <= budget, +infinity when none is that cheap.
+double FrontErrorAt(const std::vector<CostErrorPoint>& points, double budget);
+
+/// Which of several fronts (one per backend) is most accurate at equal
+/// cost. The compared budgets are the costs of every front point that are
+/// >= the matched cost (the largest of the fronts' cheapest costs, the
+/// least budget at which every backend has a result); at each budget the
+/// backend with the smallest FrontErrorAt wins (ties: none). The winner is
+/// the backend with the most wins, -1 when there is no budget or a tie.
+struct FrontComparison {
+  int winner = -1;                     ///< index into the fronts, -1 for none
+  std::vector<int> wins;               ///< per front: budgets won
+  int budgets = 0;                     ///< budgets compared
+  double matchedCost = 0.0;            ///< seconds: the smallest compared budget
+  std::vector<double> errorAtMatched;  ///< per front: FrontErrorAt(matchedCost)
+};
+FrontComparison CompareFronts(const std::vector<std::vector<CostErrorPoint>>& fronts);
+
+/// One curve: a backend at one iteration count across the time steps.
+struct SweepCurve {
+  std::string backend;
+  int iterations = 0;                  ///< as asked (0 = engine default)
+  std::vector<double> timeSteps;       ///< seconds, as run
+  std::vector<CostErrorPoint> points;  ///< same order as timeSteps
+  std::vector<bool> onFront;           ///< on its backend's Pareto front
+};
+
+/// One scenario instance (its run id without the stepping values).
+struct SweepGroup {
+  std::string id;                     ///< e.g. "box_slide[mu=0.3,v0=1]"
+  std::vector<SweepCurve> curves;     ///< backend-major in the results' backend order, then iterations
+  std::vector<std::string> backends;  ///< compared, in the results' order
+  FrontComparison comparison;         ///< over `backends`
+};
+
+/// The backends a sweep analysis treats as having no iteration setting:
+/// ODE's dWorldStep solves its LCP directly, so iterations do not apply.
+inline const std::vector<std::string> kSweepSingleSetting{"ode-step", "ode-step-tuned"};
+
+/// Groups the results with a truth into curves; backends in
+/// `singleSetting` ignore iterations (e.g. "ode-step"): only their first
+/// iteration count is kept.
+std::vector<SweepGroup> AnalyseSweep(const ResultsFile& file, const std::vector<std::string>& singleSetting);
+
+/// The analysis as JSON (2-space indented, infinities as null) and as a
+/// Markdown section (per group: the winner, wins, error at the matched
+/// cost, each backend's front).
+std::string SweepToJson(const std::vector<SweepGroup>& groups);
+std::string SweepMarkdown(const std::vector<SweepGroup>& groups);
+
+/// The report.html section of a results file holding a stepping sweep
+/// (runs with "h" sweep values): log-log charts, one per group, one
+/// dataset per curve, fronts drawn as dashed lines. Empty when there is no
+/// sweep. Uses the page's Chart.js.
+std::string SweepHtmlSection(const ResultsFile& file);
+
+/// A shard specification "i/n" (0 <= i < n); an Error names the text.
+struct Shard {
+  int index = 0;
+  int count = 1;
+};
+Result<Shard> ParseShard(std::string_view text);
+
+/// The run indices of shard `shard` among `runCount` runs (r mod n == i).
+std::vector<int> ShardRuns(int runCount, Shard shard);
+
+/// A shard's results: the results file of its runs plus where they go.
+struct ShardFile {
+  Shard shard;
+  int runCount = 0;             ///< runs in the unsharded list
+  std::vector<int> runIndices;  ///< this shard's runs, increasing
+  ResultsFile results;          ///< the runs' results, run-major (the runner's order)
+  /// Results per entry of runIndices: the backends that ran it (fewer than
+  /// results.backends when its scenario lists backends, possibly 0). Empty
+  /// means every run has one result per backend.
+  std::vector<int> resultCounts;
+};
+std::string ShardToJson(const ShardFile& shard);
+Result<ShardFile> ShardFromJson(std::string_view text);
+
+/// The unsharded results from every shard of one partition: the same n,
+/// run count and backends, every run exactly once; else an Error.
+Result<ResultsFile> MergeShards(const std::vector<ShardFile>& shards);
+
+}  // namespace talus::harness

@@ -1,0 +1,163 @@
+// report.html and the writing of every report file (report.h).
+//
+// The page's tables are summary.md's, converted line by line (headings,
+// pipe tables, paragraphs), so the two never disagree. The plots are drawn
+// in the browser by the inlined charting library from the results' plot
+// series, embedded as JSON in a <script type="application/json"> element:
+// per run, the height of every body that moves and the total energy over
+// time, one line per backend and body; and the median time per step of
+// every backend per run, as bars.
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "report/markdown_html.h"
+#include "report/report_html_replay.h"
+#include "report/report_scorecard.h"
+#include "support/text_util.h"
+#include "talus/harness/report/bench_summary.h"
+#include "talus/harness/report/report.h"
+#include "talus/harness/report/sat_check_results.h"
+#include "talus/harness/support/atomic_file.h"
+#include "talus/harness/sweep/sweep.h"
+
+namespace talus::harness {
+namespace {
+
+// What the page's script plots, as JSON.
+nlohmann::ordered_json PlotData(const ResultsFile& file) {
+  nlohmann::ordered_json data;
+  data["backends"] = file.backends;
+  data["runs"] = nlohmann::ordered_json::array();
+  for (const RunResult& r : file.results) {
+    if (data["runs"].empty() || data["runs"].back()["id"] != r.runId) {
+      data["runs"].push_back(
+          {{"id", r.runId}, {"bodies", r.bodyNames}, {"results", nlohmann::ordered_json::array()}});
+    }
+    nlohmann::ordered_json entry;
+    entry["backend"] = r.backend;
+    entry["medianStepSeconds"] = r.wallSecondsPerStepMedian;
+    entry["time"] = r.series.time;
+    entry["heights"] = r.series.heights;
+    entry["energy"] = r.series.energy;
+    data["runs"].back()["results"].push_back(entry);
+  }
+  return data;
+}
+
+constexpr const char* kStyle = R"(body{font-family:sans-serif;margin:2em;max-width:90em}
+table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:.25em .6em;text-align:left}
+th{background:#eee}td.ok{background:#e6f4e6}td.fail{background:#f8d7d7;font-weight:bold}
+.plots{display:flex;flex-wrap:wrap;gap:1em}.plot{width:44em;height:22em}code{background:#f4f4f4})";
+
+constexpr const char* kScript = R"(
+const data = JSON.parse(document.getElementById('plot-data').textContent);
+const palette = ['#1f77b4','#d62728','#2ca02c','#ff7f0e','#9467bd','#8c564b','#e377c2','#7f7f7f'];
+const section = document.getElementById('plots');
+function addChart(title, config) {
+  const box = document.createElement('div'); box.className = 'plot';
+  const canvas = document.createElement('canvas'); box.appendChild(canvas); section.appendChild(box);
+  config.options = Object.assign({animation:false, maintainAspectRatio:false,
+    plugins:{title:{display:true,text:title}}}, config.options || {});
+  new Chart(canvas, config);
+}
+function color(i) { return palette[i % palette.length]; }
+const timeBars = {labels: [], datasets: data.backends.map((b, i) => ({label: b, data: [], backgroundColor: color(i)}))};
+for (const run of data.runs) {
+  const heights = [], energies = [];
+  run.results.forEach(result => {
+    const k = data.backends.indexOf(result.backend);
+    result.heights.forEach((series, b) => {
+      if (series.length < 2 || Math.max(...series) - Math.min(...series) < 1e-12) return;
+      heights.push({label: result.backend + ' ' + run.bodies[b], borderColor: color(k), pointRadius: 0,
+                    borderWidth: 1, data: series.map((y, j) => ({x: result.time[j], y: y}))});
+    });
+    if (result.energy.length > 1)
+      energies.push({label: result.backend, borderColor: color(k), pointRadius: 0, borderWidth: 1,
+                     data: result.energy.map((e, j) => ({x: result.time[j], y: e}))});
+  });
+  const axes = (y) => ({x:{type:'linear',title:{display:true,text:'time (s)'}},y:{title:{display:true,text:y}}});
+  if (heights.length) addChart(run.id + ': height of the centre of mass',
+                               {type:'line', data:{datasets:heights}, options:{scales:axes('m')}});
+  if (energies.length) addChart(run.id + ': total energy',
+                                {type:'line', data:{datasets:energies}, options:{scales:axes('J')}});
+  timeBars.labels.push(run.id);
+  timeBars.datasets.forEach(d => {
+    const r = run.results.find(x => x.backend === d.label);
+    d.data.push(r ? r.medianStepSeconds * 1e6 : null);
+  });
+}
+addChart('median wall time per step (us)', {type:'bar', data:timeBars,
+  options:{scales:{y:{type:'logarithmic',title:{display:true,text:'us'}}}}});
+)";
+
+}  // namespace
+
+std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, std::string_view threeLibrary,
+                       const ReportExtras& extras) {
+  std::ostringstream out;
+  out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      << "<title>Talus testbed report</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n";
+  // The scorecard opens the page, its chart beside its table (drawn once the
+  // charting library below is loaded).
+  const Scorecard card = BuildScorecard(file, extras);
+  // One conversion, so repeated heading anchors are numbered over the whole
+  // page as RunAnchors numbers them; the chart goes in before the overview.
+  std::string tables = MarkdownToHtml(SummaryTitle(file) + ScorecardMarkdown(card) + SummaryRuns(file));
+  tables.insert(tables.find("<h2 id=\"overview\">"), ScorecardChartHtml(card));
+  out << tables;
+  out << "<h2>Plots</h2>\n<div class=\"plots\" id=\"plots\"></div>\n";
+  out << "<script type=\"application/json\" id=\"plot-data\">" << ScriptSafe(PlotData(file).dump())
+      << "</script>\n";
+  out << "<script>\n" << ScriptSafe(std::string(chartLibrary)) << "\n</script>\n";
+  out << ReplaySections(file, threeLibrary);
+  out << "<script>" << kScript << "</script>\n";
+  out << SweepHtmlSection(file);
+  if (extras.satCheck != nullptr) out << SatCheckHtmlSection(*extras.satCheck);
+  if (extras.sweep != nullptr) out << SweepHtmlSection(*extras.sweep);
+  if (extras.stress != nullptr) out << MarkdownToHtml(StressMarkdown(*extras.stress));
+  if (extras.scenes != nullptr) out << BenchHtmlSection(*extras.scenes);
+  out << "</body>\n</html>\n";
+  return out.str();
+}
+
+Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesystem::path& folder,
+                                   const std::filesystem::path& chartLibraryPath,
+                                   const std::filesystem::path& threeLibraryPath,
+                                   const ReportExtras& extras) {
+  std::ifstream library(chartLibraryPath, std::ios::binary);
+  if (!library) {
+    return Error{Concat({chartLibraryPath.string(),
+                         ": charting library not found (run scripts/install-deps.sh, which runs npm ci in "
+                         "harness/report)"})};
+  }
+  std::ostringstream js;
+  js << library.rdbuf();
+  std::ostringstream three;
+  if (!threeLibraryPath.empty()) {
+    std::ifstream threeFile(threeLibraryPath, std::ios::binary);
+    if (!threeFile) {
+      return Error{Concat({threeLibraryPath.string(),
+                           ": three.js not found (run scripts/install-deps.sh, which runs npm ci in "
+                           "harness/report)"})};
+    }
+    three << threeFile.rdbuf();
+  }
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error) return Error{Concat({folder.string(), ": ", error.message()})};
+  const std::pair<const char*, std::string> files[] = {
+      {"summary.md", SummaryMarkdown(file, extras)},
+      {"results.csv", ResultsCsv(file)},
+      {"results.json", ResultsToJson(file)},
+      {"report.html", ReportHtml(file, js.str(), three.str(), extras)},
+  };
+  for (const auto& [name, text] : files) {
+    auto written = WriteFileAtomically(folder / name, text);
+    if (!written) return written;
+  }
+  return std::monostate{};
+}
+
+}  // namespace talus::harness

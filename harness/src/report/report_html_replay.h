@@ -1,0 +1,19 @@
+// The report's 3D and figure sections (report_html_replay.cpp): the replay
+// of runs recorded with --replay, the Quickhull trace (write-up figure 1)
+// and the broad-phase funnel per step (figure 2), plus the page status the
+// headless-browser test reads. report_html.cpp inserts the whole as one
+// block after the charting library and before its own plotting script.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "talus/harness/run/results_file.h"
+
+namespace talus::harness {
+
+/// The sections' HTML: headings, containers, data, `threeLibrary` (three.js,
+/// inlined; empty leaves the 3D views with a message saying so) and scripts.
+std::string ReplaySections(const ResultsFile& file, std::string_view threeLibrary);
+
+}  // namespace talus::harness

@@ -1,0 +1,270 @@
+// Writing and reading results.json (see results_file.h). Reading walks the
+// document with a path so that a malformed file is reported at the exact
+// place; the walk throws a local exception that never leaves this file.
+#include "talus/harness/run/results_file.h"
+
+#include "talus/harness/support/atomic_file.h"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "support/text_util.h"
+
+namespace talus::harness {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json Number(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+
+Json MetricToJson(const MetricResult& m) {
+  Json j;
+  j["name"] = m.name;
+  j["unit"] = m.unit;
+  j["measured"] = Number(m.measured);
+  j["truth"] = Number(m.truth);
+  j["truthIntegrator"] = Number(m.truthIntegrator);
+  j["error"] = Number(m.error);
+  j["tolerance"] = {
+      {"absolute", m.tolerance.absolute}, {"relative", m.tolerance.relative}, {"reason", m.reason}};
+  j["checked"] = m.checked;
+  j["pass"] = m.pass;
+  j["ungated"] = m.ungated;
+  // Only metrics of a truth with a published figure carry one.
+  if (!std::isnan(m.publishedValue)) {
+    j["published"] = {
+        {"value", m.publishedValue}, {"upper", Number(m.publishedUpper)}, {"source", m.publishedSource}};
+  }
+  return j;
+}
+
+Json ResultToJson(const RunResult& r) {
+  Json j;
+  j["scenario"] = r.scenario;
+  j["file"] = r.file;
+  j["run"] = r.runId;
+  j["backend"] = r.backend;
+  j["sweep"] = Json::array();
+  for (const SweepValue& v : r.sweepValues) j["sweep"].push_back({{"name", v.name}, {"value", v.value}});
+  j["timeStep"] = r.timeStep;
+  j["iterations"] = r.iterations;
+  j["steps"] = r.steps;
+  j["bodies"] = r.bodyNames;
+  j["settings"] = Json::array();
+  for (const Setting& s : r.settings) {
+    Json setting = {{"key", s.key}, {"value", s.value}};
+    // Only departures from the engine's defaults carry these two.
+    if (!s.engineDefault.empty()) setting["engineDefault"] = s.engineDefault;
+    if (!s.effect.empty()) setting["effect"] = s.effect;
+    j["settings"].push_back(std::move(setting));
+  }
+  j["error"] = r.error;
+  j["metrics"] = Json::array();
+  for (const MetricResult& m : r.metrics) j["metrics"].push_back(MetricToJson(m));
+  j["wallSecondsPerStep"] = {{"median", r.wallSecondsPerStepMedian}, {"mean", r.wallSecondsPerStepMean}};
+  Json series;
+  series["time"] = r.series.time;
+  series["heights"] = r.series.heights;
+  series["energy"] = Json::array();
+  for (double e : r.series.energy) series["energy"].push_back(Number(e));
+  j["series"] = series;
+  // Only runs recorded for replay carry one, so other files are unchanged.
+  if (!r.replay.frames.empty()) j["replay"] = ReplayToJson(r.replay);
+  return j;
+}
+
+// A malformed document: where and what.
+struct ParseFailure {
+  std::string message;
+};
+
+const Json& Field(const Json& object, const char* key, const std::string& where) {
+  if (!object.is_object()) throw ParseFailure{Concat({where, ": expected an object"})};
+  const auto it = object.find(key);
+  if (it == object.end()) throw ParseFailure{Concat({where, ": missing field \"", key, "\""})};
+  return *it;
+}
+
+std::string Place(const std::string& where, const char* key) { return Concat({where, "/", key}); }
+
+double GetNumber(const Json& object, const char* key, const std::string& where) {
+  const Json& value = Field(object, key, where);
+  if (value.is_null()) return std::numeric_limits<double>::quiet_NaN();
+  if (!value.is_number()) throw ParseFailure{Concat({Place(where, key), ": expected a number"})};
+  return value.get<double>();
+}
+
+int GetInt(const Json& object, const char* key, const std::string& where) {
+  const Json& value = Field(object, key, where);
+  if (!value.is_number_integer()) throw ParseFailure{Concat({Place(where, key), ": expected an integer"})};
+  return value.get<int>();
+}
+
+std::string GetString(const Json& object, const char* key, const std::string& where) {
+  const Json& value = Field(object, key, where);
+  if (!value.is_string()) throw ParseFailure{Concat({Place(where, key), ": expected a string"})};
+  return value.get<std::string>();
+}
+
+bool GetBool(const Json& object, const char* key, const std::string& where) {
+  const Json& value = Field(object, key, where);
+  if (!value.is_boolean()) throw ParseFailure{Concat({Place(where, key), ": expected true or false"})};
+  return value.get<bool>();
+}
+
+const Json& GetArray(const Json& object, const char* key, const std::string& where) {
+  const Json& value = Field(object, key, where);
+  if (!value.is_array()) throw ParseFailure{Concat({Place(where, key), ": expected an array"})};
+  return value;
+}
+
+std::vector<double> GetNumbers(const Json& object, const char* key, const std::string& where) {
+  std::vector<double> numbers;
+  const Json& array = GetArray(object, key, where);
+  for (const Json& value : array) {
+    if (value.is_null()) {
+      numbers.push_back(std::numeric_limits<double>::quiet_NaN());
+    } else if (value.is_number()) {
+      numbers.push_back(value.get<double>());
+    } else {
+      throw ParseFailure{Concat({Place(where, key), ": expected numbers"})};
+    }
+  }
+  return numbers;
+}
+
+MetricResult MetricFromJson(const Json& j, const std::string& where) {
+  MetricResult m = MakeMetric(GetString(j, "name", where), GetString(j, "unit", where));
+  m.measured = GetNumber(j, "measured", where);
+  m.truth = GetNumber(j, "truth", where);
+  m.truthIntegrator = GetNumber(j, "truthIntegrator", where);
+  m.error = GetNumber(j, "error", where);
+  const Json& tolerance = Field(j, "tolerance", where);
+  m.tolerance.absolute = GetNumber(tolerance, "absolute", Place(where, "tolerance"));
+  m.tolerance.relative = GetNumber(tolerance, "relative", Place(where, "tolerance"));
+  // The reason and the ungated note came with the per-backend gate; files
+  // written before them have neither.
+  if (tolerance.contains("reason")) m.reason = GetString(tolerance, "reason", Place(where, "tolerance"));
+  m.checked = GetBool(j, "checked", where);
+  m.pass = GetBool(j, "pass", where);
+  if (j.contains("ungated")) m.ungated = GetString(j, "ungated", where);
+  if (j.contains("published")) {
+    const Json& published = Field(j, "published", where);
+    const std::string place = Place(where, "published");
+    m.publishedValue = GetNumber(published, "value", place);
+    m.publishedUpper = GetNumber(published, "upper", place);
+    m.publishedSource = GetString(published, "source", place);
+  }
+  return m;
+}
+
+RunResult ResultFromJson(const Json& j, const std::string& where) {
+  RunResult r;
+  r.scenario = GetString(j, "scenario", where);
+  r.file = GetString(j, "file", where);
+  r.runId = GetString(j, "run", where);
+  r.backend = GetString(j, "backend", where);
+  const Json& sweep = GetArray(j, "sweep", where);
+  for (std::size_t i = 0; i < sweep.size(); ++i) {
+    const std::string at = Concat({where, "/sweep/", std::to_string(i)});
+    r.sweepValues.push_back({GetString(sweep[i], "name", at), GetString(sweep[i], "value", at)});
+  }
+  r.timeStep = GetNumber(j, "timeStep", where);
+  r.iterations = GetInt(j, "iterations", where);
+  r.steps = GetInt(j, "steps", where);
+  for (const Json& name : GetArray(j, "bodies", where)) {
+    if (!name.is_string()) throw ParseFailure{Concat({where, "/bodies: expected strings"})};
+    r.bodyNames.push_back(name.get<std::string>());
+  }
+  const Json& settings = GetArray(j, "settings", where);
+  for (std::size_t i = 0; i < settings.size(); ++i) {
+    const std::string at = Concat({where, "/settings/", std::to_string(i)});
+    Setting setting{GetString(settings[i], "key", at), GetString(settings[i], "value", at)};
+    if (settings[i].contains("engineDefault"))
+      setting.engineDefault = GetString(settings[i], "engineDefault", at);
+    if (settings[i].contains("effect")) setting.effect = GetString(settings[i], "effect", at);
+    r.settings.push_back(std::move(setting));
+  }
+  r.error = GetString(j, "error", where);
+  const Json& metrics = GetArray(j, "metrics", where);
+  for (std::size_t i = 0; i < metrics.size(); ++i) {
+    r.metrics.push_back(MetricFromJson(metrics[i], Concat({where, "/metrics/", std::to_string(i)})));
+  }
+  const Json& wall = Field(j, "wallSecondsPerStep", where);
+  r.wallSecondsPerStepMedian = GetNumber(wall, "median", Place(where, "wallSecondsPerStep"));
+  r.wallSecondsPerStepMean = GetNumber(wall, "mean", Place(where, "wallSecondsPerStep"));
+  const Json& series = Field(j, "series", where);
+  const std::string at = Place(where, "series");
+  r.series.time = GetNumbers(series, "time", at);
+  r.series.energy = GetNumbers(series, "energy", at);
+  const Json& heights = GetArray(series, "heights", at);
+  for (std::size_t i = 0; i < heights.size(); ++i) {
+    Json wrapper;
+    wrapper["h"] = heights[i];
+    r.series.heights.push_back(GetNumbers(wrapper, "h", Concat({at, "/heights/", std::to_string(i)})));
+  }
+  if (j.contains("replay")) {
+    auto replay = ReplayFromJson(j["replay"], Place(where, "replay"));
+    if (!replay) throw ParseFailure{replay.GetError().message};
+    r.replay = std::move(replay).Value();
+  }
+  return r;
+}
+
+}  // namespace
+
+std::string ResultsToJson(const ResultsFile& file) {
+  Json j;
+  j["format"] = kResultsFormat;
+  j["version"] = kResultsVersion;
+  j["deterministic"] = file.deterministic;
+  j["backends"] = file.backends;
+  j["results"] = Json::array();
+  for (const RunResult& r : file.results) j["results"].push_back(ResultToJson(r));
+  return j.dump(2) + "\n";
+}
+
+Result<ResultsFile> ResultsFromJson(std::string_view text) {
+  const Json j = Json::parse(text, nullptr, false);
+  if (j.is_discarded()) return Error{"not valid JSON"};
+  try {
+    if (GetString(j, "format", "") != kResultsFormat) {
+      return Error{Concat({"/format: not a \"", kResultsFormat, "\" file"})};
+    }
+    if (GetInt(j, "version", "") != kResultsVersion) {
+      return Error{Concat({"/version: unsupported, expected ", std::to_string(kResultsVersion)})};
+    }
+    ResultsFile file;
+    file.deterministic = GetBool(j, "deterministic", "");
+    for (const Json& name : GetArray(j, "backends", "")) {
+      if (!name.is_string()) return Error{"/backends: expected strings"};
+      file.backends.push_back(name.get<std::string>());
+    }
+    const Json& results = GetArray(j, "results", "");
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      file.results.push_back(ResultFromJson(results[i], Concat({"/results/", std::to_string(i)})));
+    }
+    return file;
+  } catch (const ParseFailure& failure) {
+    return Error{failure.message};
+  }
+}
+
+Result<std::monostate> WriteResultsFile(const std::filesystem::path& path, const ResultsFile& file) {
+  return WriteFileAtomically(path, ResultsToJson(file));
+}
+
+Result<ResultsFile> ReadResultsFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{Concat({path.string(), ": cannot read"})};
+  std::ostringstream text;
+  text << in.rdbuf();
+  auto file = ResultsFromJson(text.str());
+  if (!file) return Error{Concat({path.string(), ": ", file.GetError().message})};
+  return file;
+}
+
+}  // namespace talus::harness

@@ -1,0 +1,869 @@
+// Scenario files to runs: syntax, schema, sweep expansion, semantic checks.
+//
+// The order matters for the messages: a syntax error is reported with line
+// and column before anything else; the schema then guarantees every field
+// has the right type and range, so the mapping below may read fields without
+// re-checking types and only adds what a schema cannot say (unit
+// quaternions, unique names, exactly one of mass and density, truths naming
+// existing bodies). Each sweep combination is re-validated after its values
+// are written in, so a sweep cannot smuggle in a value the schema forbids.
+#include "talus/harness/scenario/scenario_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+#include <variant>
+
+#include "scenario/scenario_schema_text.h"
+#include "support/text_util.h"
+#include "talus/harness/analytic/hull_rest_analysis.h"
+#include "talus/harness/analytic/torque_free_motion.h"
+#include "talus/harness/scenario/scenario_limits.h"
+#include "talus/harness/support/json_schema.h"
+
+namespace talus::harness {
+namespace {
+
+using nlohmann::json;
+
+// How far a quaternion's norm may be from 1 and still count as unit: values
+// written with ~7 significant digits (e.g. 0.7071068) must pass.
+constexpr double kUnitQuaternionTolerance = 1e-6;
+// |cos| of the angle between a sliding direction and gravity above which the
+// direction is not horizontal: 1e-6 accepts directions written to ~7 digits.
+constexpr double kPerpendicularTolerance = 1e-6;
+// Angle (rad, 1 degree) within which a hull_rest faceNormal names a face:
+// normals written to 3 or 4 digits pass, neighbouring faces are far apart.
+constexpr double kFaceNormalTolerance = 0.017453292519943295;
+// Relative agreement asked of a spin truth's inertia and omega with the
+// body they describe: values written to ~7 significant digits pass.
+constexpr double kSpinConsistencyTolerance = 1e-6;
+
+// Line and column (both from 1) of byte `offset` in `text`.
+std::string LineAndColumn(std::string_view text, size_t offset) {
+  size_t line = 1;
+  size_t column = 1;
+  for (size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+Error FieldError(std::string_view file, const std::string& pointer, const std::string& problem) {
+  return Error{std::string(file) + ": " + (pointer.empty() ? std::string("(root)") : pointer) + ": " +
+               problem};
+}
+
+// |v| without overflow or underflow for any finite v (1e300 or 1e-300
+// components): the largest component is factored out first.
+double ScaleSafeNorm(const Vec3& v) {
+  const double scale = v.cwiseAbs().maxCoeff();
+  return scale > 0.0 ? scale * (v / scale).norm() : 0.0;
+}
+
+// v / |v| computed as above; zero for a zero vector.
+Vec3 ScaleSafeNormalized(const Vec3& v) {
+  const double scale = v.cwiseAbs().maxCoeff();
+  return scale > 0.0 ? Vec3((v / scale).normalized()) : Vec3::Zero();
+}
+
+Vec3 ReadVec3(const json& value) {
+  return Vec3(value[0].get<double>(), value[1].get<double>(), value[2].get<double>());
+}
+
+CombineRule ReadCombineRule(const json& value) {
+  const std::string name = value.get<std::string>();
+  if (name == "min") return CombineRule::Min;
+  if (name == "max") return CombineRule::Max;
+  if (name == "multiply") return CombineRule::Multiply;
+  if (name == "average") return CombineRule::Average;
+  return CombineRule::Sqrt;
+}
+
+// Every number in the document must be finite (JSON text such as 1e999
+// parses to infinity); the first offending pointer is named.
+std::optional<std::string> FindNonFinite(const json& value, const std::string& pointer) {
+  if (value.is_number_float() && !std::isfinite(value.get<double>())) return pointer;
+  if (value.is_array()) {
+    for (size_t i = 0; i < value.size(); ++i) {
+      if (auto found = FindNonFinite(value[i], pointer + "/" + std::to_string(i))) return found;
+    }
+  } else if (value.is_object()) {
+    for (const auto& [key, child] : value.items()) {
+      if (auto found = FindNonFinite(child, pointer + "/" + key)) return found;
+    }
+  }
+  return std::nullopt;
+}
+
+Result<WorldSpec> MapWorld(const json& world, std::string_view file) {
+  WorldSpec settings;
+  if (world.contains("gravity")) settings.gravity = ReadVec3(world["gravity"]);
+  if (const double g = ScaleSafeNorm(settings.gravity); g > kMaxGravity) {
+    return FieldError(file, "/world/gravity",
+                      Concat({"magnitude ", FormatNumber(g), " m/s^2 is more than the limit of ",
+                              FormatNumber(kMaxGravity), " m/s^2"}));
+  }
+  settings.timeStep = world["timeStep"].get<double>();
+  if (world.contains("iterations") && world["iterations"].is_number()) {
+    settings.iterations = world["iterations"].get<int>();
+  }
+  const json& duration = world["duration"];
+  const std::string limit = std::to_string(kMaxSteps);
+  if (duration.contains("steps")) {
+    // Read as a double first: a count past the int range must not wrap.
+    const double steps = duration["steps"].get<double>();
+    if (steps > static_cast<double>(kMaxSteps)) {
+      return FieldError(file, "/world/duration/steps",
+                        Concat({FormatNumber(steps, 17), " steps is more than the limit of ", limit}));
+    }
+    settings.steps = static_cast<int>(steps);
+  } else {
+    const double steps = std::round(duration["seconds"].get<double>() / settings.timeStep);
+    if (!(steps >= 1.0 && steps <= static_cast<double>(kMaxSteps))) {
+      return FieldError(file, "/world/duration/seconds",
+                        Concat({"gives ", FormatNumber(steps, 17), " steps; need 1 to ", limit}));
+    }
+    settings.steps = static_cast<int>(steps);
+  }
+  if (world.contains("frictionCombine")) settings.frictionCombine = ReadCombineRule(world["frictionCombine"]);
+  if (world.contains("restitutionCombine"))
+    settings.restitutionCombine = ReadCombineRule(world["restitutionCombine"]);
+  settings.gyroscopic = world.value("gyroscopic", true);
+  return settings;
+}
+
+Result<Quat> MapOrientation(const json& orientation, std::string_view file, const std::string& pointer) {
+  if (orientation.contains("quaternion")) {
+    const json& q = orientation["quaternion"];
+    const Quat quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
+    const double norm = quat.norm();
+    if (std::abs(norm - 1.0) > kUnitQuaternionTolerance) {
+      std::ostringstream problem;
+      problem << "quaternion is not unit length (norm " << norm << ")";
+      return FieldError(file, pointer + "/quaternion", problem.str());
+    }
+    return quat.normalized();
+  }
+  const Vec3 axis = ReadVec3(orientation["axis"]);
+  if (ScaleSafeNorm(axis) < 1e-12) return FieldError(file, pointer + "/axis", "axis has zero length");
+  return Quat(Eigen::AngleAxisd(orientation["angle"].get<double>(), ScaleSafeNormalized(axis)));
+}
+
+Result<ShapeSpec> MapShape(const json& shape) {
+  const std::string kind = shape["kind"].get<std::string>();
+  if (kind == "box") return ShapeSpec(BoxShape{ReadVec3(shape["halfExtents"])});
+  if (kind == "sphere") return ShapeSpec(SphereShape{shape["radius"].get<double>()});
+  HullShape hull;
+  for (const json& point : shape["points"]) hull.points.push_back(ReadVec3(point));
+  return ShapeSpec(std::move(hull));
+}
+
+// The body's sizes, position and speeds against scenario_limits.h, each
+// refusal naming the body, the field and the limit.
+std::optional<Error> CheckMagnitudes(const BodySpec& spec, std::string_view file,
+                                     const std::string& pointer) {
+  const auto refuse = [&](const std::string& field, const std::string& problem) {
+    return FieldError(file, pointer + field, Concat({"body \"", spec.name, "\": ", problem}));
+  };
+  const auto length = [](double value) { return FormatNumber(value) + " m"; };
+  double extent = 0.0;  // the body's farthest point from its frame origin
+  if (const auto* box = std::get_if<BoxShape>(&spec.shape)) {
+    for (int i = 0; i < 3; ++i) {
+      const double e = box->halfExtents[i];
+      if (e < kMinLength || e > kMaxLength) {
+        return refuse(Concat({"/shape/halfExtents/", std::to_string(i)}),
+                      Concat({"half extent ", length(e), " is outside ", length(kMinLength), " to ",
+                              length(kMaxLength)}));
+      }
+    }
+    extent = ScaleSafeNorm(box->halfExtents);
+  } else if (const auto* sphere = std::get_if<SphereShape>(&spec.shape)) {
+    if (sphere->radius < kMinLength || sphere->radius > kMaxLength) {
+      return refuse("/shape/radius", Concat({"radius ", length(sphere->radius), " is outside ",
+                                             length(kMinLength), " to ", length(kMaxLength)}));
+    }
+    extent = sphere->radius;
+  } else {
+    const auto& points = std::get<HullShape>(spec.shape).points;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double far = points[i].cwiseAbs().maxCoeff();
+      if (far > kMaxLength) {
+        return refuse(Concat({"/shape/points/", std::to_string(i)}),
+                      Concat({"coordinate ", length(far), " is beyond the limit of ", length(kMaxLength)}));
+      }
+      extent = std::max(extent, ScaleSafeNorm(points[i]));
+    }
+  }
+  if (const double far = spec.position.cwiseAbs().maxCoeff(); far > kMaxLength) {
+    return refuse("/position",
+                  Concat({"coordinate ", length(far), " is beyond the limit of ", length(kMaxLength)}));
+  }
+  const std::string speedLimit = FormatNumber(kMaxSpeed) + " m/s (the speed of light)";
+  if (const double speed = ScaleSafeNorm(spec.linearVelocity); speed > kMaxSpeed) {
+    return refuse("/linearVelocity",
+                  Concat({"speed ", FormatNumber(speed), " m/s is more than ", speedLimit}));
+  }
+  if (const double rim = ScaleSafeNorm(spec.angularVelocity) * extent; rim > kMaxSpeed) {
+    return refuse("/angularVelocity", Concat({"spin ", FormatNumber(ScaleSafeNorm(spec.angularVelocity)),
+                                              " rad/s moves the body's farthest point at ", FormatNumber(rim),
+                                              " m/s, more than ", speedLimit}));
+  }
+  return std::nullopt;
+}
+
+Result<BodySpec> MapBody(const json& body, std::string_view file, const std::string& pointer) {
+  BodySpec spec;
+  spec.name = body["name"].get<std::string>();
+  spec.shape = MapShape(body["shape"]).Value();
+  spec.motion = body["motion"] == "static" ? Motion::Static : Motion::Dynamic;
+  spec.position = ReadVec3(body["position"]);
+  if (body.contains("orientation")) {
+    auto orientation = MapOrientation(body["orientation"], file, pointer + "/orientation");
+    if (!orientation) return orientation.GetError();
+    spec.orientation = orientation.Value();
+  }
+  if (body.contains("linearVelocity")) spec.linearVelocity = ReadVec3(body["linearVelocity"]);
+  if (body.contains("angularVelocity")) spec.angularVelocity = ReadVec3(body["angularVelocity"]);
+  const bool hasMass = body.contains("mass");
+  const bool hasDensity = body.contains("density");
+  if (spec.motion == Motion::Dynamic) {
+    if (hasMass && hasDensity)
+      return FieldError(file, pointer, "give either \"mass\" or \"density\", not both");
+    if (!hasMass && !hasDensity)
+      return FieldError(file, pointer, "a dynamic body needs \"mass\" or \"density\"");
+    if (hasMass) spec.mass = body["mass"].get<double>();
+    if (hasDensity) spec.density = body["density"].get<double>();
+  } else if (hasMass || hasDensity) {
+    return FieldError(file, pointer + (hasMass ? "/mass" : "/density"),
+                      "a static body takes no mass or density");
+  } else if (body.contains("linearVelocity") || body.contains("angularVelocity")) {
+    return FieldError(file, pointer, "a static body cannot move (no velocities)");
+  }
+  if (body.contains("friction")) spec.friction = body["friction"].get<double>();
+  if (body.contains("restitution")) spec.restitution = body["restitution"].get<double>();
+  if (auto problem = CheckMagnitudes(spec, file, pointer)) return *problem;
+  return spec;
+}
+
+Quantity MapQuantity(const std::string& name) {
+  if (name == "orientation") return Quantity::Orientation;
+  if (name == "velocity") return Quantity::Velocity;
+  if (name == "energy") return Quantity::Energy;
+  if (name == "momentum") return Quantity::Momentum;
+  if (name == "contacts") return Quantity::Contacts;
+  if (name == "penetration") return Quantity::Penetration;
+  return Quantity::Position;
+}
+
+// Body indices by name, built once per scenario so look-ups stay linear.
+using BodyIndex = std::unordered_map<std::string, int>;
+
+// Looks up a body by name; -1 when there is none.
+int FindBody(const BodyIndex& index, const std::string& name) {
+  const auto found = index.find(name);
+  return found == index.end() ? -1 : found->second;
+}
+
+// Where one truth entry sits, for messages and look-ups.
+struct TruthContext {
+  const json& entry;
+  const std::vector<BodySpec>& bodies;
+  const BodyIndex& bodyIndex;
+  const WorldSpec& world;
+  std::string_view file;
+  std::string pointer;  // "/truths/<i>"
+  int body = -1;        // index of the named body, -1 when none is named
+};
+
+Result<TruthKind> MapSlidingStop(const TruthContext& c) {
+  SlidingStopTruth truth{c.entry["v0"].get<double>(), c.entry["mu"].get<double>(),
+                         c.entry["g"].get<double>()};
+  if (c.entry.contains("direction")) {
+    const Vec3 direction = ReadVec3(c.entry["direction"]);
+    if (ScaleSafeNorm(direction) < 1e-12) {
+      return FieldError(c.file, c.pointer + "/direction", "direction has zero length");
+    }
+    truth.direction = ScaleSafeNormalized(direction);
+    if (std::abs(truth.direction.dot(ScaleSafeNormalized(c.world.gravity))) > kPerpendicularTolerance) {
+      return FieldError(c.file, c.pointer + "/direction", "must be perpendicular to gravity");
+    }
+  }
+  truth.maxLateral = c.entry.value("maxLateral", truth.maxLateral);
+  return TruthKind(truth);
+}
+
+Result<TruthKind> MapStackRest(const TruthContext& c) {
+  StackRestTruth truth;
+  truth.floor = c.entry["floor"].get<double>();
+  truth.layerHeight = c.entry["layerHeight"].get<double>();
+  truth.maxDrift = c.entry.value("maxDrift", truth.maxDrift);
+  std::unordered_set<int> seen;
+  for (size_t l = 0; l < c.entry["layers"].size(); ++l) {
+    std::vector<int> layer;
+    for (size_t k = 0; k < c.entry["layers"][l].size(); ++k) {
+      const std::string where = c.pointer + "/layers/" + std::to_string(l) + "/" + std::to_string(k);
+      const std::string name = c.entry["layers"][l][k].get<std::string>();
+      const int body = FindBody(c.bodyIndex, name);
+      if (body < 0) return FieldError(c.file, where, "no body named \"" + name + "\"");
+      if (seen.count(body) != 0) {
+        return FieldError(c.file, where, "body \"" + name + "\" is listed twice");
+      }
+      if (c.bodies[body].motion != Motion::Dynamic) {
+        return FieldError(c.file, where, "body \"" + name + "\" is static");
+      }
+      seen.insert(body);
+      layer.push_back(body);
+    }
+    truth.layers.push_back(std::move(layer));
+  }
+  return TruthKind(std::move(truth));
+}
+
+// The resting face must be a face of the body's hull, and a stable one: a
+// truth naming an unstable face could never be met. The engine's hull
+// builder only validates the file here; the answer (the face normal and the
+// height) is the file's own, computed independently of the engine (qhull
+// and the divergence theorem, checked by tests/reference), so a broken hull
+// or mass code in the engine cannot move the truth with it.
+Result<TruthKind> MapHullRest(const TruthContext& c) {
+  const auto* hull = std::get_if<HullShape>(&c.bodies[c.body].shape);
+  if (hull == nullptr) return FieldError(c.file, c.pointer + "/body", "hull_rest needs a hull body");
+  const Vec3 normal = ScaleSafeNormalized(ReadVec3(c.entry["faceNormal"]));
+  if (normal.isZero()) return FieldError(c.file, c.pointer + "/faceNormal", "normal has zero length");
+  auto analysis = AnalyseHullRest(hull->points);
+  if (!analysis) {
+    return FieldError(c.file, "/bodies/" + std::to_string(c.body) + "/shape/points",
+                      analysis.GetError().message);
+  }
+  const HullRestFace& face = analysis.Value().faces[analysis.Value().NearestFace(normal)];
+  const double angle = std::acos(std::clamp(face.normal.dot(normal.normalized()), -1.0, 1.0));
+  if (angle > kFaceNormalTolerance) {
+    std::ostringstream problem;
+    problem << "names no face of the hull (nearest face normal is " << angle * 180.0 / std::numbers::pi
+            << " degrees away)";
+    return FieldError(c.file, c.pointer + "/faceNormal", problem.str());
+  }
+  if (!face.stable) {
+    return FieldError(c.file, c.pointer + "/faceNormal",
+                      "names an unstable face (the centroid projects outside it)");
+  }
+  HullRestTruth truth;
+  truth.faceNormal = normal.normalized();
+  truth.floor = c.entry["floor"].get<double>();
+  truth.height = c.entry["height"].get<double>();
+  truth.maxFaceAngle = c.entry.value("maxFaceAngle", truth.maxFaceAngle);
+  return TruthKind(truth);
+}
+
+// Torque-free truths are written in the body's principal frame, so they
+// need a box body, whose own frame is principal: the moments must be in the
+// box's proportions and omega must be the file's world angular velocity
+// seen from the body.
+Result<TruthKind> MapSpin(const TruthContext& c, bool flip) {
+  const Vec3 inertia = ReadVec3(c.entry["inertia"]);
+  const Vec3 omega = ReadVec3(c.entry["omega"]);
+  const BodySpec& body = c.bodies[c.body];
+  const auto* box = std::get_if<BoxShape>(&body.shape);
+  if (box == nullptr || body.motion != Motion::Dynamic) {
+    return FieldError(c.file, c.pointer + "/body",
+                      "a spin truth needs a dynamic box body (its frame is principal)");
+  }
+  const Vec3 e = box->halfExtents.cwiseProduct(box->halfExtents);
+  const Vec3 shape(e.y() + e.z(), e.x() + e.z(), e.x() + e.y());
+  const Vec3 scaled = shape * (inertia.sum() / shape.sum());
+  if ((scaled - inertia).norm() > kSpinConsistencyTolerance * inertia.norm()) {
+    std::ostringstream problem;
+    problem << "is not in the proportions of the box's principal moments (" << shape.x() << " : " << shape.y()
+            << " : " << shape.z() << ")";
+    return FieldError(c.file, c.pointer + "/inertia", problem.str());
+  }
+  const Vec3 bodyOmega = body.orientation.conjugate() * body.angularVelocity;
+  if ((bodyOmega - omega).norm() > kSpinConsistencyTolerance * (1.0 + omega.norm())) {
+    return FieldError(c.file, c.pointer + "/omega",
+                      "differs from the body's angularVelocity seen in its own frame");
+  }
+  if (!flip) return TruthKind(TorqueFreeTruth{inertia, omega});
+  auto interval = IntermediateAxisFlipInterval(inertia, omega);
+  if (!interval) return FieldError(c.file, c.pointer + "/omega", interval.GetError().message);
+  return TruthKind(FlipPeriodTruth{inertia, omega});
+}
+
+// The tolerance (required by the schema) must allow something: a truth
+// whose tolerance is zero could never be met and would be judged by
+// round-off. Then the gate: on for every backend unless "gate" is false or
+// the backend is in "ungated" (each backend once, each with its reason).
+Result<bool> MapGate(const json& entry, std::string_view file, const std::string& pointer, Truth& truth) {
+  const json& tolerance = entry["tolerance"];
+  truth.tolerance.absolute = tolerance.value("absolute", 0.0);
+  truth.tolerance.relative = tolerance.value("relative", 0.0);
+  truth.toleranceReason = tolerance.value("reason", "");
+  if (truth.tolerance.absolute <= 0.0 && truth.tolerance.relative <= 0.0) {
+    return FieldError(file, pointer + "/tolerance",
+                      "needs absolute or relative > 0 (a truth without a tolerance is never judged)");
+  }
+  if (truth.toleranceReason.find_first_not_of(" \t\n") == std::string::npos) {
+    return FieldError(file, pointer + "/tolerance/reason", "is empty; say where the tolerance comes from");
+  }
+  truth.gate = entry.value("gate", true);
+  if (!entry.contains("ungated")) return true;
+  for (size_t i = 0; i < entry["ungated"].size(); ++i) {
+    const json& item = entry["ungated"][i];
+    UngatedBackend ungated{item["backend"].get<std::string>(), item["reason"].get<std::string>()};
+    const std::string where = pointer + "/ungated/" + std::to_string(i);
+    for (const UngatedBackend& other : truth.ungated) {
+      if (other.backend == ungated.backend) {
+        return FieldError(file, where + "/backend", "backend \"" + ungated.backend + "\" is listed twice");
+      }
+    }
+    if (ungated.reason.empty()) return FieldError(file, where + "/reason", "must say why");
+    truth.ungated.push_back(std::move(ungated));
+  }
+  return true;
+}
+
+// An incline_tip angle must sit further than the tolerance (radians) from
+// the rigid-body tipping threshold atan(width / height) and from the
+// sliding threshold atan(mu): closer, a real engine's contact (resting
+// penetration, rounded margins) decides the outcome, not the physics.
+Result<TruthKind> MapInclineTip(const TruthContext& c) {
+  const json& truth = c.entry;
+  InclineTipTruth tip{truth["angle"].get<double>(), truth["mu"].get<double>(), truth["width"].get<double>(),
+                      truth["height"].get<double>()};
+  tip.tiltThreshold = truth.value("tiltThreshold", tip.tiltThreshold);
+  const double margin = truth["tolerance"].value("absolute", 0.0);
+  const double tipping = std::atan(tip.width / tip.height);
+  const double sliding = std::atan(tip.mu);
+  for (const double threshold : {tipping, sliding}) {
+    if (std::abs(tip.angle - threshold) < margin) {
+      std::ostringstream problem;
+      problem << "lies " << std::abs(tip.angle - threshold) * 180.0 / std::numbers::pi
+              << " degrees from the threshold " << threshold * 180.0 / std::numbers::pi
+              << " degrees, within the tolerance: the outcome is not decided by the physics";
+      return FieldError(c.file, c.pointer + "/angle", problem.str());
+    }
+  }
+  return TruthKind(tip);
+}
+
+// A free-body truth (projectile, drifts) holds only while nothing but
+// gravity acts: no static body to touch.
+std::optional<Error> RefuseStaticBodies(const TruthContext& c, const std::string& kind) {
+  for (size_t b = 0; b < c.bodies.size(); ++b) {
+    if (c.bodies[b].motion == Motion::Static) {
+      return FieldError(c.file, c.pointer + "/kind",
+                        kind + " is a free-body truth, but body \"" + c.bodies[b].name + "\" is static");
+    }
+  }
+  return std::nullopt;
+}
+
+// The parabola starts where the body is: its centre of mass, which for a
+// box or a sphere is its origin, and its velocity.
+Result<TruthKind> MapProjectile(const TruthContext& c) {
+  if (auto refused = RefuseStaticBodies(c, "projectile")) return *refused;
+  const BodySpec& body = c.bodies[c.body];
+  if (body.motion != Motion::Dynamic || std::holds_alternative<HullShape>(body.shape)) {
+    return FieldError(c.file, c.pointer + "/body",
+                      "projectile needs a dynamic box or sphere (its centre of mass is its origin)");
+  }
+  const ProjectileTruth truth{ReadVec3(c.entry["x0"]), ReadVec3(c.entry["v0"])};
+  if ((truth.x0 - body.position).norm() > kSpinConsistencyTolerance * (1.0 + body.position.norm())) {
+    return FieldError(c.file, c.pointer + "/x0", "differs from the body's position");
+  }
+  if ((truth.v0 - body.linearVelocity).norm() >
+      kSpinConsistencyTolerance * (1.0 + body.linearVelocity.norm())) {
+    return FieldError(c.file, c.pointer + "/v0", "differs from the body's linearVelocity");
+  }
+  return TruthKind(truth);
+}
+
+// Drifts are relative: the body (or, for energy without a body, some
+// dynamic body) must start moving, else there is nothing to divide by.
+Result<TruthKind> MapDrift(const TruthContext& c, const std::string& kind) {
+  if (auto refused = RefuseStaticBodies(c, kind)) return *refused;
+  const bool spin = kind != "energy_drift";
+  bool moving = false;
+  for (size_t b = 0; b < c.bodies.size(); ++b) {
+    if (c.body >= 0 && b != static_cast<size_t>(c.body)) continue;
+    const BodySpec& body = c.bodies[b];
+    if (body.motion != Motion::Dynamic) continue;
+    moving = moving || body.angularVelocity.norm() > 0.0 || (!spin && body.linearVelocity.norm() > 0.0);
+  }
+  if (!moving) {
+    return FieldError(c.file, c.pointer + (c.body >= 0 ? "/body" : "/kind"),
+                      spin ? kind + " needs a dynamic body that starts spinning (a relative drift of 0)"
+                           : "energy_drift needs a dynamic body that starts moving (a relative drift of 0)");
+  }
+  if (kind == "energy_drift") return TruthKind(EnergyDriftTruth{});
+  if (kind == "rotational_energy_drift") return TruthKind(RotationalEnergyDriftTruth{});
+  return TruthKind(AngularMomentumDriftTruth{c.entry["metric"] == "magnitude" ? MomentumMetric::Magnitude
+                                                                              : MomentumMetric::Vector});
+}
+
+Result<TruthKind> MapTruthKind(const TruthContext& c) {
+  const json& truth = c.entry;
+  const std::string kind = truth["kind"].get<std::string>();
+  if (kind == "free_fall") {
+    FreeFallTruth fall{truth["y0"].get<double>(), truth["v0"].get<double>(), truth["g"].get<double>()};
+    fall.until = truth.value("until", fall.until);
+    return TruthKind(fall);
+  }
+  if (kind == "sliding_stop") return MapSlidingStop(c);
+  if (kind == "rest_height") {
+    return TruthKind(RestHeightTruth{truth["height"].get<double>(),
+                                     truth.value("maxJitter", RestHeightTruth{}.maxJitter)});
+  }
+  if (kind == "bounce_heights") {
+    return TruthKind(
+        BounceHeightsTruth{truth["h"].get<double>(), truth["e"].get<double>(), truth["count"].get<int>()});
+  }
+  if (kind == "stack_rest") return MapStackRest(c);
+  if (kind == "hull_rest") return MapHullRest(c);
+  if (kind == "incline_slide") {
+    return TruthKind(
+        InclineSlideTruth{truth["angle"].get<double>(), truth["mu"].get<double>(), truth["g"].get<double>()});
+  }
+  if (kind == "incline_tip") return MapInclineTip(c);
+  if (kind == "torque_free") return MapSpin(c, false);
+  if (kind == "flip_period") return MapSpin(c, true);
+  if (kind == "projectile") return MapProjectile(c);
+  if (kind == "energy_drift" || kind == "angular_momentum_drift" || kind == "rotational_energy_drift") {
+    return MapDrift(c, kind);
+  }
+  const int divisor = truth["timeStepDivisor"].get<int>();
+  if (static_cast<long long>(c.world.steps) * divisor > kMaxSteps) {
+    return FieldError(
+        c.file, c.pointer + "/timeStepDivisor",
+        Concat({"the finer run takes ", std::to_string(c.world.steps), " x ", std::to_string(divisor),
+                " steps, more than the limit of ", std::to_string(kMaxSteps)}));
+  }
+  return TruthKind(ConvergedReferenceTruth{divisor});
+}
+
+// Maps a schema-valid document to a Scenario, adding the semantic checks.
+Result<Scenario> MapScenario(const json& doc, std::string_view file) {
+  if (auto pointer = FindNonFinite(doc, "")) return FieldError(file, *pointer, "must be a finite number");
+  Scenario scenario;
+  scenario.name = doc["name"].get<std::string>();
+  scenario.description = doc.value("description", "");
+  scenario.file = std::string(file);
+  auto world = MapWorld(doc["world"], file);
+  if (!world) return world.GetError();
+  scenario.world = world.Value();
+  BodyIndex names;  // linear in the body count (100,000 bodies load at once)
+  for (size_t i = 0; i < doc["bodies"].size(); ++i) {
+    const std::string pointer = "/bodies/" + std::to_string(i);
+    auto body = MapBody(doc["bodies"][i], file, pointer);
+    if (!body) return body.GetError();
+    if (!names.emplace(body.Value().name, static_cast<int>(i)).second) {
+      return FieldError(file, pointer + "/name", "duplicate body name \"" + body.Value().name + "\"");
+    }
+    scenario.bodies.push_back(std::move(body).Value());
+  }
+  if (doc.contains("backends")) {
+    for (size_t i = 0; i < doc["backends"].size(); ++i) {
+      const std::string name = doc["backends"][i].get<std::string>();
+      if (std::find(scenario.backends.begin(), scenario.backends.end(), name) != scenario.backends.end()) {
+        return FieldError(file, "/backends/" + std::to_string(i), "duplicate backend \"" + name + "\"");
+      }
+      scenario.backends.push_back(name);
+    }
+  }
+  if (doc.contains("measure")) {
+    for (const json& name : doc["measure"]) scenario.measure.push_back(MapQuantity(name.get<std::string>()));
+  }
+  if (doc.contains("truths")) {
+    for (size_t i = 0; i < doc["truths"].size(); ++i) {
+      const json& entry = doc["truths"][i];
+      const std::string pointer = "/truths/" + std::to_string(i);
+      Truth truth;
+      if (entry.contains("body")) {
+        const std::string name = entry["body"].get<std::string>();
+        truth.body = FindBody(names, name);
+        if (truth.body < 0) return FieldError(file, pointer + "/body", "no body named \"" + name + "\"");
+      }
+      auto kind = MapTruthKind({entry, scenario.bodies, names, scenario.world, file, pointer, truth.body});
+      if (!kind) return kind.GetError();
+      truth.kind = std::move(kind).Value();
+      auto gated = MapGate(entry, file, pointer, truth);
+      if (!gated) return gated.GetError();
+      if (entry.contains("published")) {
+        const json& published = entry["published"];
+        PublishedFigure figure;
+        figure.value = published["value"].get<double>();
+        if (published.contains("upper")) {
+          figure.upper = published["upper"].get<double>();
+          if (figure.upper < figure.value) {
+            return FieldError(file, pointer + "/published/upper", "is below \"value\" (the range's low end)");
+          }
+        }
+        figure.source = published["source"].get<std::string>();
+        if (figure.source.find_first_not_of(" \t\n") == std::string::npos) {
+          return FieldError(file, pointer + "/published/source", "is empty; name who published the figure");
+        }
+        truth.published = figure;
+      }
+      scenario.truths.push_back(truth);
+    }
+  }
+  return scenario;
+}
+
+struct Sweep {
+  std::string name;
+  std::vector<json::json_pointer> targets;
+  std::vector<json> values;
+  bool perTarget = false;           // each value holds one entry per target
+  std::vector<std::string> labels;  // one per value, or empty
+};
+
+// Reads the sweeps and checks that every target names an existing field
+// outside the sweeps themselves.
+Result<std::vector<Sweep>> ReadSweeps(const json& doc, std::string_view file) {
+  std::vector<Sweep> sweeps;
+  if (!doc.contains("sweeps")) return sweeps;
+  for (size_t i = 0; i < doc["sweeps"].size(); ++i) {
+    const json& entry = doc["sweeps"][i];
+    Sweep sweep{entry["name"].get<std::string>(),
+                {},
+                entry["values"].get<std::vector<json>>(),
+                entry.value("perTarget", false),
+                {}};
+    for (size_t t = 0; t < entry["targets"].size(); ++t) {
+      const std::string where = "/sweeps/" + std::to_string(i) + "/targets/" + std::to_string(t);
+      const std::string text = entry["targets"][t].get<std::string>();
+      try {
+        json::json_pointer target(text);
+        if (text.rfind("/sweeps", 0) == 0 || !doc.contains(target)) {
+          return FieldError(file, where, "\"" + text + "\" does not name a field of the scenario");
+        }
+        sweep.targets.push_back(target);
+      } catch (const json::exception&) {
+        return FieldError(file, where, "\"" + text + "\" is not a JSON pointer");
+      }
+    }
+    if (entry.contains("labels")) {
+      sweep.labels = entry["labels"].get<std::vector<std::string>>();
+      if (sweep.labels.size() != sweep.values.size()) {
+        return FieldError(file, "/sweeps/" + std::to_string(i) + "/labels",
+                          "needs one label per value (" + std::to_string(sweep.values.size()) + ")");
+      }
+      std::unordered_set<std::string> seen;
+      for (size_t l = 0; l < sweep.labels.size(); ++l) {
+        if (!seen.insert(sweep.labels[l]).second) {
+          return FieldError(file, "/sweeps/" + std::to_string(i) + "/labels/" + std::to_string(l),
+                            "duplicate label \"" + sweep.labels[l] + "\"");
+        }
+      }
+    }
+    for (size_t v = 0; sweep.perTarget && v < sweep.values.size(); ++v) {
+      if (!sweep.values[v].is_array() || sweep.values[v].size() != sweep.targets.size()) {
+        return FieldError(file, "/sweeps/" + std::to_string(i) + "/values/" + std::to_string(v),
+                          "a perTarget value must be an array of " + std::to_string(sweep.targets.size()) +
+                              " entries, one per target");
+      }
+    }
+    sweeps.push_back(std::move(sweep));
+  }
+  return sweeps;
+}
+
+}  // namespace
+
+const nlohmann::json& ScenarioSchema() {
+  static const nlohmann::json schema = nlohmann::json::parse(ScenarioSchemaText());
+  return schema;
+}
+
+namespace {
+
+// Deepest nesting of `doc`, walked with an explicit stack (the document may
+// be nested deeper than the call stack allows); stops counting past `limit`.
+int NestingDepth(const json& doc, int limit) {
+  int deepest = 0;
+  std::vector<std::pair<const json*, int>> pending{{&doc, 0}};
+  while (!pending.empty()) {
+    const auto [value, depth] = pending.back();
+    pending.pop_back();
+    deepest = std::max(deepest, depth);
+    if (deepest > limit) return deepest;
+    if (value->is_structured()) {
+      for (const json& child : *value) pending.emplace_back(&child, depth + 1);
+    }
+  }
+  return deepest;
+}
+
+// The number of runs the sweep grid makes, or nothing when it passes `limit`
+// (computed from the sizes, before any run is built).
+std::optional<std::size_t> GridSize(const std::vector<Sweep>& sweeps, std::size_t limit) {
+  std::size_t runs = 1;
+  for (const Sweep& sweep : sweeps) {
+    if (sweep.values.empty() || runs > limit / sweep.values.size()) return std::nullopt;
+    runs *= sweep.values.size();
+  }
+  return runs;
+}
+
+Result<std::vector<Run>> ParseScenarioDocument(std::string_view text, std::string_view fileName) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& error) {
+    // nlohmann's byte is one past the last character of the offending token.
+    const size_t offset = error.byte > 0 ? error.byte - 1 : 0;
+    std::string what = error.what();
+    const size_t colon = what.find(": ");
+    if (colon != std::string::npos) what = what.substr(colon + 2);
+    return Error{std::string(fileName) + ": " + LineAndColumn(text, offset) + ": " + what};
+  } catch (const json::exception& error) {
+    // A number too large for a double (e.g. 1e999) has no position.
+    std::string what = error.what();
+    const size_t bracket = what.find("] ");
+    if (bracket != std::string::npos) what = what.substr(bracket + 2);
+    return Error{std::string(fileName) + ": " + what};
+  }
+  if (NestingDepth(doc, kMaxJsonDepth) > kMaxJsonDepth) {
+    return Error{Concat({fileName, ": nested more than ", std::to_string(kMaxJsonDepth),
+                         " arrays or objects deep (the limit)"})};
+  }
+  if (auto violation = ValidateAgainstSchema(ScenarioSchema(), doc)) {
+    return FieldError(fileName, violation->pointer, violation->problem);
+  }
+  auto sweeps = ReadSweeps(doc, fileName);
+  if (!sweeps) return sweeps.GetError();
+  if (!GridSize(sweeps.Value(), kMaxRuns)) {
+    std::string sizes;
+    for (const Sweep& sweep : sweeps.Value()) {
+      sizes.append(sizes.empty() ? "" : " x ").append(std::to_string(sweep.values.size()));
+    }
+    return FieldError(fileName, "/sweeps",
+                      Concat({"the grid (", sizes, " values) makes more than the limit of ",
+                              std::to_string(kMaxRuns), " runs"}));
+  }
+  std::unordered_set<std::string> runIds;
+
+  // Odometer over the sweep grid, the last sweep fastest.
+  std::vector<size_t> index(sweeps.Value().size(), 0);
+  std::vector<Run> runs;
+  while (true) {
+    json instance = doc;
+    instance.erase("sweeps");
+    Run run;
+    run.id = doc["name"].get<std::string>();
+    std::string label;
+    for (size_t s = 0; s < index.size(); ++s) {
+      const Sweep& sweep = sweeps.Value()[s];
+      const json& value = sweep.values[index[s]];
+      for (size_t t = 0; t < sweep.targets.size(); ++t) {
+        instance[sweep.targets[t]] = sweep.perTarget ? value[t] : value;
+      }
+      // A perTarget value is labelled by its first entry (the swept parameter).
+      const std::string shown = !sweep.labels.empty() ? sweep.labels[index[s]]
+                                : sweep.perTarget     ? value[0].dump()
+                                                      : value.dump();
+      run.sweepValues.push_back({sweep.name, shown});
+      label += (label.empty() ? "" : ",") + sweep.name + "=" + shown;
+    }
+    if (!label.empty()) run.id += "[" + label + "]";
+    const std::string where =
+        label.empty() ? std::string(fileName) : std::string(fileName) + " (" + label + ")";
+    if (auto violation = ValidateAgainstSchema(ScenarioSchema(), instance)) {
+      return FieldError(where, violation->pointer, violation->problem);
+    }
+    auto scenario = MapScenario(instance, where);
+    if (!scenario) return scenario.GetError();
+    run.scenario = std::move(scenario).Value();
+    run.scenario.file = std::string(fileName);
+    run.timeStep = run.scenario.world.timeStep;
+    run.iterations = run.scenario.world.iterations;
+    run.steps = run.scenario.world.steps;
+    if (!runIds.insert(run.id).second) {
+      return FieldError(
+          fileName, "/sweeps",
+          Concat({"two runs are both named \"", run.id, "\" (a sweep repeats a value or label)"}));
+    }
+    runs.push_back(std::move(run));
+
+    size_t s = index.size();
+    while (s > 0 && ++index[s - 1] == sweeps.Value()[s - 1].values.size()) index[--s] = 0;
+    if (s == 0) break;
+  }
+  return runs;
+}
+
+}  // namespace
+
+Result<std::vector<Run>> ParseScenarioText(std::string_view text, std::string_view fileName) {
+  auto runs = ParseScenarioDocument(text, fileName);
+  if (!runs) return Error{TidyMessage(runs.GetError().message)};
+  return runs;
+}
+
+Result<std::vector<Run>> LoadScenarioFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{path.string() + ": cannot open the file"};
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseScenarioText(text.str(), path.string());
+}
+
+Result<std::vector<Run>> LoadScenarios(const std::vector<std::filesystem::path>& paths) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> files;
+  for (const fs::path& path : paths) {
+    std::error_code error;
+    if (fs::is_directory(path, error)) {
+      std::vector<fs::path> found;
+      for (auto it = fs::recursive_directory_iterator(path, error); !error && it != fs::end(it);
+           it.increment(error)) {
+        if (it->is_regular_file() && it->path().extension() == ".json" &&
+            it->path().filename() != "schema.json") {
+          found.push_back(it->path());
+        }
+      }
+      if (error) return Error{Concat({path.string(), ": ", error.message()})};
+      if (found.empty()) {
+        return Error{
+            Concat({path.string(), ": no scenario files (*.json other than schema.json) in this folder"})};
+      }
+      std::sort(found.begin(), found.end());
+      files.insert(files.end(), found.begin(), found.end());
+    } else if (fs::is_regular_file(path, error)) {
+      files.push_back(path);
+    } else {
+      return Error{Concat({path.string(), ": no such scenario file or folder"})};
+    }
+  }
+  if (files.empty()) return Error{"no scenario files found"};
+  std::vector<Run> runs;
+  std::map<std::string, std::string> fileOfScenario;  // two files must not share a scenario name
+  for (const fs::path& file : files) {
+    auto loaded = LoadScenarioFile(file);
+    if (!loaded) return loaded.GetError();
+    if (!loaded.Value().empty()) {
+      const std::string& name = loaded.Value().front().scenario.name;
+      const auto [it, added] = fileOfScenario.emplace(name, file.string());
+      if (!added) {
+        return Error{Concat({file.string(), ": scenario name \"", name, "\" is already used by ", it->second,
+                             " (run ids and results are keyed by it)"})};
+      }
+    }
+    for (Run& run : loaded.Value()) runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+}  // namespace talus::harness

@@ -1,0 +1,96 @@
+// Writing and reading benchmark reports as JSON lines
+// (talus/harness/scenes/bench_report_json.h).
+#include "talus/harness/scenes/bench_report_json.h"
+
+#include <cmath>
+
+#include "support/json_checker.h"
+#include "support/text_util.h"
+
+namespace talus::harness {
+namespace {
+
+nlohmann::ordered_json JsonNumber(double value) {
+  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
+}
+
+// The figures of a run that was made; `path` is the line's JSON path.
+void ReadFigures(JsonChecker& check, const Json& line, const std::string& path, BenchReport& report) {
+  report.msMedian = check.NumberOrNull(line, path, "ms_per_step_median");
+  report.msMean = check.NumberOrNull(line, path, "ms_per_step_mean");
+  if (!check.Failed() && (report.msMedian < 0.0 || report.msMean < 0.0)) {
+    check.Fail(path + ".ms_per_step_median", "times >= 0");
+  }
+  report.maxContacts = check.Count(line, path, "max_contacts");
+  if (JsonChecker::Has(line, "drift_m")) report.drift = check.NumberOrNull(line, path, "drift_m");
+  if (JsonChecker::Has(line, "max_penetration_m")) {
+    report.maxPenetration = check.NumberOrNull(line, path, "max_penetration_m");
+  }
+  if (JsonChecker::Has(line, "kinetic_energy_j")) {
+    report.kineticEnergy = check.NumberOrNull(line, path, "kinetic_energy_j");
+  }
+  if (JsonChecker::Has(line, "escaped")) report.escaped = check.Count(line, path, "escaped");
+}
+
+}  // namespace
+
+std::string BenchReportToJson(const BenchReport& report) {
+  nlohmann::ordered_json line;
+  line["engine"] = report.engine;
+  line["scene"] = report.scene;
+  line["parameter"] = report.parameter;
+  line["bodies"] = report.bodies;
+  line["threads"] = report.threads;
+  line["steps"] = report.steps;
+  if (!report.skipped.empty()) {
+    line["skipped"] = report.skipped;
+    return line.dump();
+  }
+  line["ms_per_step_median"] = JsonNumber(report.msMedian);
+  line["ms_per_step_mean"] = JsonNumber(report.msMean);
+  line["max_contacts"] = report.maxContacts;
+  if (report.drift) line["drift_m"] = JsonNumber(*report.drift);
+  if (report.maxPenetration) line["max_penetration_m"] = JsonNumber(*report.maxPenetration);
+  if (report.kineticEnergy) line["kinetic_energy_j"] = JsonNumber(*report.kineticEnergy);
+  if (report.escaped) line["escaped"] = *report.escaped;
+  return line.dump();
+}
+
+Result<std::vector<BenchReport>> ParseBenchReportLines(std::string_view text, std::string_view source) {
+  std::vector<BenchReport> reports;
+  std::size_t lineNumber = 0;
+  for (std::size_t begin = 0; begin < text.size();) {
+    const std::size_t end = std::min(text.find('\n', begin), text.size());
+    const std::string_view lineText = text.substr(begin, end - begin);
+    begin = end + 1;
+    ++lineNumber;
+    if (lineText.find_first_not_of(" \t\r") == std::string_view::npos) continue;
+    const std::string where = Concat({source, ":", std::to_string(lineNumber)});
+    const Json line = Json::parse(lineText, nullptr, false);
+    if (line.is_discarded()) return Error{Concat({where, ": not valid JSON"})};
+    JsonChecker check;
+    BenchReport report;
+    report.engine = check.Text(line, "$", "engine");
+    report.scene = check.Text(line, "$", "scene");
+    report.parameter = check.Count(line, "$", "parameter");
+    report.bodies = check.Count(line, "$", "bodies");
+    report.threads = check.Count(line, "$", "threads");
+    report.steps = check.Count(line, "$", "steps");
+    if (JsonChecker::Has(line, "skipped")) {
+      report.skipped = check.Text(line, "$", "skipped");
+    } else {
+      ReadFigures(check, line, "$", report);
+    }
+    if (check.Failed()) return Error{Concat({where, ": ", check.Message()})};
+    reports.push_back(std::move(report));
+  }
+  return reports;
+}
+
+Result<std::vector<BenchReport>> ReadBenchReportFile(const std::filesystem::path& path) {
+  auto text = ReadTextFile(path, "the benchmark reports");
+  if (!text) return text.GetError();
+  return ParseBenchReportLines(text.Value(), path.string());
+}
+
+}  // namespace talus::harness

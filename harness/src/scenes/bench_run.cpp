@@ -1,0 +1,150 @@
+// Running a reference scene through a backend (see talus/harness/scenes/bench_run.h).
+//
+// The loop is: build the world (untimed), then for each step time Step()
+// alone, read the contact count, and keep the few states the figures need
+// (the pyramid's horizontal positions at the drift start step). The figures
+// at the last step are read once the loop ends.
+#include "talus/harness/scenes/bench_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+namespace talus::harness {
+namespace {
+
+int CountDynamicBodies(const Scenario& scene) {
+  return static_cast<int>(std::count_if(scene.bodies.begin(), scene.bodies.end(),
+                                        [](const BodySpec& body) { return body.motion == Motion::Dynamic; }));
+}
+
+// Horizontal (x, z) centres of mass of the first `count` bodies.
+std::vector<Vec3> HorizontalCenters(const Backend& backend, int count) {
+  std::vector<Vec3> centers(static_cast<size_t>(count));
+  for (int index = 0; index < count; ++index) {
+    Vec3 center = backend.GetBodyState(index).centerOfMass;
+    center.y() = 0.0;
+    centers[static_cast<size_t>(index)] = center;
+  }
+  return centers;
+}
+
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// The hull pile's figures at the end of a run.
+void MeasureHullPile(const Backend& backend, const Scenario& scene, int dynamicBodies, int side,
+                     BenchReport& report) {
+  double deepest = 0.0;
+  for (const ContactReading& contact : backend.GetContacts()) deepest = std::max(deepest, contact.depth);
+  report.maxPenetration = deepest;
+  report.kineticEnergy = MeasureWorld(backend, scene.world.gravity).kineticEnergy;
+  const double w = HullPileWallInnerHalfWidth(side);
+  int escaped = 0;
+  for (int index = 0; index < dynamicBodies; ++index) {
+    const Vec3 c = backend.GetBodyState(index).centerOfMass;
+    // Written so that a NaN centre counts as escaped.
+    const bool inside = c.y() >= 0.0 && std::abs(c.x()) <= w && std::abs(c.z()) <= w;
+    if (!inside) ++escaped;
+  }
+  report.escaped = escaped;
+}
+
+}  // namespace
+
+std::optional<std::string> BenchSkipReason(std::string_view engine, int dynamicBodies) {
+  // Only the defaults collide every pair (dSimpleSpace); "-tuned" uses dHashSpace.
+  const bool allPairs = engine.substr(0, 4) == "ode-" && !engine.ends_with("-tuned");
+  if (engine.substr(0, 8) == "ode-step" && dynamicBodies > kOdeStepMaxBodies) {
+    return "dWorldStep solves each island as one dense LCP (memory ~ rows^2, time up to rows^3); " +
+           std::to_string(dynamicBodies) + " bodies > " + std::to_string(kOdeStepMaxBodies) +
+           " (kOdeStepMaxBodies)";
+  }
+  if (allPairs && dynamicBodies > kOdeMaxBodies) {
+    return "the ODE backend's dSimpleSpace tests all n^2/2 pairs every step; " +
+           std::to_string(dynamicBodies) + " bodies > " + std::to_string(kOdeMaxBodies) + " (kOdeMaxBodies)";
+  }
+  if (engine.substr(0, 6) == "mujoco" && dynamicBodies > kMujocoMaxBodies) {
+    return "MuJoCo 2.2.2 preallocates its constraint arrays as njmax x njmax (memory ~ bodies^2, over 1 "
+           "GB); " +
+           std::to_string(dynamicBodies) + " bodies > " + std::to_string(kMujocoMaxBodies) +
+           " (kMujocoMaxBodies)";
+  }
+  return std::nullopt;
+}
+
+Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_view engine,
+                                  const BenchScene& scene, int parameter, int steps,
+                                  const BenchProgress& progress) {
+  if (steps < 1) return Error{"steps = " + std::to_string(steps) + ": must be >= 1"};
+  auto built = scene.make(parameter);
+  if (!built) return built.GetError();
+  const Scenario& scenario = built.Value();
+  const int dynamicBodies = CountDynamicBodies(scenario);
+
+  BenchReport report;
+  report.engine = std::string(engine);
+  report.scene = std::string(scene.name);
+  report.parameter = parameter;
+  report.bodies = dynamicBodies;
+  report.steps = steps;
+  if (!registry.Has(engine)) {
+    // Let the registry word the error (it lists the known names).
+    Run none;
+    return registry.Create(engine, none).GetError();
+  }
+  if (auto reason = BenchSkipReason(engine, dynamicBodies)) {
+    report.skipped = *reason;
+    return report;
+  }
+
+  Run run;
+  run.id = scenario.name;
+  run.scenario = scenario;
+  run.timeStep = scenario.world.timeStep;
+  run.iterations = scenario.world.iterations;
+  run.steps = steps;
+  auto created = registry.Create(engine, run);
+  if (!created) return created.GetError();
+  Backend& backend = *created.Value();
+
+  const int driftStart = std::min(kPyramidDriftStartStep, steps);
+  std::vector<Vec3> startCenters;
+  std::vector<double> times;
+  times.reserve(static_cast<size_t>(steps));
+  for (int step = 1; step <= steps; ++step) {
+    const auto begin = std::chrono::steady_clock::now();
+    backend.Step();
+    const auto end = std::chrono::steady_clock::now();
+    times.push_back(std::chrono::duration<double, std::milli>(end - begin).count());
+    report.maxContacts = std::max(report.maxContacts, static_cast<int>(backend.GetContacts().size()));
+    if (scene.kind == BenchSceneKind::Pyramid && step == driftStart) {
+      startCenters = HorizontalCenters(backend, dynamicBodies);
+    }
+    if (progress) progress(step, steps);
+  }
+  report.msMedian = Median(times);
+  report.msMean = std::accumulate(times.begin(), times.end(), 0.0) / static_cast<double>(times.size());
+
+  if (scene.kind == BenchSceneKind::Pyramid) {
+    const std::vector<Vec3> endCenters = HorizontalCenters(backend, dynamicBodies);
+    double drift = 0.0;
+    for (size_t index = 0; index < endCenters.size(); ++index) {
+      const double moved = (endCenters[index] - startCenters[index]).norm();
+      // A NaN distance (an exploded body) must not hide behind std::max.
+      drift = std::isnan(moved) ? moved : std::max(drift, moved);
+      if (std::isnan(drift)) break;
+    }
+    report.drift = drift;
+  } else {
+    MeasureHullPile(backend, scenario, dynamicBodies, parameter, report);
+  }
+  return report;
+}
+
+}  // namespace talus::harness

@@ -1,0 +1,40 @@
+// Small text helpers shared by the runner, the results file, the readers
+// and the report.
+// Concat exists because GCC 12 mis-warns (-Wrestrict, a false positive in
+// libstdc++'s inlined memcpy at -O3) on chains of std::string operator+
+// that start from a literal; appending each piece avoids the pattern.
+#pragma once
+
+#include <filesystem>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+#include "talus/harness/support/number_text.h"
+#include "talus/result.h"
+
+namespace talus::harness {
+
+/// The pieces joined in order.
+inline std::string Concat(std::initializer_list<std::string_view> pieces) {
+  std::string text;
+  for (std::string_view piece : pieces) text.append(piece);
+  return text;
+}
+
+/// `text` with every "</" written "<\\/", so inlined script or JSON cannot
+/// end its <script> element early (text_util.cpp).
+std::string ScriptSafe(std::string text);
+
+/// `message` made safe and short to print: control bytes (NUL included)
+/// written \xNN, an invisible byte-order mark written \uFEFF, and every
+/// quoted span ("..." or ": '...'") longer than `maxQuoted` bytes cut to its
+/// start, "...", and its length ("(4194304 bytes)"), never inside a UTF-8
+/// character (text_util.cpp).
+std::string TidyMessage(std::string_view message, std::size_t maxQuoted = 64);
+
+/// The whole file as bytes, or an Error "<path>: cannot read <what>"
+/// (text_util.cpp).
+Result<std::string> ReadTextFile(const std::filesystem::path& path, std::string_view what);
+
+}  // namespace talus::harness

@@ -1,0 +1,433 @@
+// Run time against error (sweep.h): the error scalar, Pareto fronts, the
+// comparison of fronts at equal cost, the grouping of a stepping sweep's
+// results into curves with its JSON and Markdown, and sharding: the "i/n"
+// specification, the partition of runs, shard files and their merge.
+#include "talus/harness/sweep/sweep.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#include "support/text_util.h"
+
+namespace talus::harness {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+bool IsSteppingValue(const SweepValue& value) { return value.name == "h" || value.name == "iterations"; }
+
+// The run id without the stepping values: what the runs of one scenario
+// instance share across the sweep.
+std::string InstanceId(const RunResult& result) {
+  std::string values;
+  for (const SweepValue& value : result.sweepValues) {
+    if (IsSteppingValue(value)) continue;
+    values.append(values.empty() ? "" : ",").append(value.name).append("=").append(value.value);
+  }
+  return values.empty() ? result.scenario : Concat({result.scenario, "[", values, "]"});
+}
+
+std::string Number(double value) {
+  if (std::isnan(value)) return "-";
+  if (std::isinf(value)) return "inf";
+  return FormatNumber(value, 3);
+}
+
+nlohmann::ordered_json JsonNumber(double value) {
+  if (!std::isfinite(value)) return nullptr;
+  return value;
+}
+
+}  // namespace
+
+double RunErrorScalar(const RunResult& result) {
+  if (!result.error.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double worst = std::numeric_limits<double>::quiet_NaN();
+  for (const MetricResult& metric : result.metrics) {
+    // Every metric with a tolerance counts, gated or not (an ungated truth
+    // is a known shortfall, still a truth to be accurate against).
+    if (!(metric.tolerance.absolute > 0.0 || metric.tolerance.relative > 0.0)) continue;
+    const double scale = metric.tolerance.absolute + metric.tolerance.relative * std::abs(metric.truth);
+    double value = kInfinity;
+    if (std::isfinite(metric.error) && scale > 0.0) value = std::abs(metric.error) / scale;
+    worst = std::isnan(worst) ? value : std::max(worst, value);
+  }
+  return worst;
+}
+
+double RunCost(const RunResult& result) { return result.wallSecondsPerStepMedian * result.steps; }
+
+// Sort by (cost, error, index), then keep each point whose error is below
+// every cheaper point's: the classic staircase sweep, O(n log n).
+std::vector<int> ParetoFront(const std::vector<CostErrorPoint>& points) {
+  std::vector<int> order(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) order[i] = static_cast<int>(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    if (points[a].cost != points[b].cost) return points[a].cost < points[b].cost;
+    return points[a].error < points[b].error;
+  });
+  std::vector<int> front;
+  double best = kInfinity;
+  for (int i : order) {
+    if (points[i].error < best) {
+      front.push_back(i);
+      best = points[i].error;
+    }
+  }
+  return front;
+}
+
+double FrontErrorAt(const std::vector<CostErrorPoint>& points, double budget) {
+  double best = kInfinity;
+  for (const CostErrorPoint& point : points) {
+    if (point.cost <= budget) best = std::min(best, point.error);
+  }
+  return best;
+}
+
+FrontComparison CompareFronts(const std::vector<std::vector<CostErrorPoint>>& fronts) {
+  FrontComparison comparison;
+  comparison.wins.assign(fronts.size(), 0);
+  comparison.errorAtMatched.assign(fronts.size(), kInfinity);
+  if (fronts.empty()) return comparison;
+  double matched = -kInfinity;
+  for (const auto& front : fronts) {
+    if (front.empty()) return comparison;
+    double cheapest = kInfinity;
+    for (const CostErrorPoint& point : front) cheapest = std::min(cheapest, point.cost);
+    matched = std::max(matched, cheapest);
+  }
+  comparison.matchedCost = matched;
+  std::vector<double> budgets;
+  for (const auto& front : fronts) {
+    for (const CostErrorPoint& point : front) {
+      if (point.cost >= matched) budgets.push_back(point.cost);
+    }
+  }
+  std::sort(budgets.begin(), budgets.end());
+  budgets.erase(std::unique(budgets.begin(), budgets.end()), budgets.end());
+  comparison.budgets = static_cast<int>(budgets.size());
+  for (std::size_t f = 0; f < fronts.size(); ++f)
+    comparison.errorAtMatched[f] = FrontErrorAt(fronts[f], matched);
+  for (double budget : budgets) {
+    int best = -1;
+    double bestError = kInfinity;
+    bool tie = false;
+    for (std::size_t f = 0; f < fronts.size(); ++f) {
+      const double error = FrontErrorAt(fronts[f], budget);
+      if (error < bestError) {
+        best = static_cast<int>(f);
+        bestError = error;
+        tie = false;
+      } else if (error == bestError) {
+        tie = true;
+      }
+    }
+    if (best >= 0 && !tie) ++comparison.wins[best];
+  }
+  int mostWins = 0;
+  for (std::size_t f = 0; f < fronts.size(); ++f) {
+    if (comparison.wins[f] > mostWins) {
+      mostWins = comparison.wins[f];
+      comparison.winner = static_cast<int>(f);
+    } else if (comparison.wins[f] == mostWins && mostWins > 0) {
+      comparison.winner = -1;
+    }
+  }
+  return comparison;
+}
+
+std::vector<SweepGroup> AnalyseSweep(const ResultsFile& file, const std::vector<std::string>& singleSetting) {
+  std::vector<SweepGroup> groups;
+  std::map<std::string, std::size_t> groupIndex;
+  for (const RunResult& result : file.results) {
+    const double error = RunErrorScalar(result);
+    if (std::isnan(error)) continue;
+    const std::string id = InstanceId(result);
+    auto [found, added] = groupIndex.try_emplace(id, groups.size());
+    if (added) {
+      groups.emplace_back();
+      groups.back().id = id;
+    }
+    SweepGroup& group = groups[found->second];
+    const bool single =
+        std::find(singleSetting.begin(), singleSetting.end(), result.backend) != singleSetting.end();
+    SweepCurve* curve = nullptr;
+    bool backendSeen = false;
+    for (SweepCurve& c : group.curves) {
+      if (c.backend != result.backend) continue;
+      backendSeen = true;
+      if (c.iterations == result.iterations) curve = &c;
+    }
+    if (curve == nullptr) {
+      if (single && backendSeen) continue;
+      group.curves.push_back({result.backend, result.iterations, {}, {}, {}});
+      curve = &group.curves.back();
+    }
+    curve->timeSteps.push_back(result.timeStep);
+    curve->points.push_back({RunCost(result), error});
+  }
+  for (SweepGroup& group : groups) {
+    // Backend-major in the file's backend order (stable: iterations stay in
+    // the order they were met).
+    const auto rank = [&](const std::string& backend) {
+      return std::find(file.backends.begin(), file.backends.end(), backend) - file.backends.begin();
+    };
+    std::stable_sort(group.curves.begin(), group.curves.end(), [&](const SweepCurve& a, const SweepCurve& b) {
+      return rank(a.backend) < rank(b.backend);
+    });
+    std::vector<std::vector<CostErrorPoint>> fronts;
+    for (const SweepCurve& curve : group.curves) {
+      if (group.backends.empty() || group.backends.back() != curve.backend)
+        group.backends.push_back(curve.backend);
+    }
+    for (const std::string& backend : group.backends) {
+      std::vector<CostErrorPoint> all;
+      std::vector<std::pair<SweepCurve*, std::size_t>> where;
+      for (SweepCurve& curve : group.curves) {
+        if (curve.backend != backend) continue;
+        curve.onFront.assign(curve.points.size(), false);
+        for (std::size_t k = 0; k < curve.points.size(); ++k) {
+          all.push_back(curve.points[k]);
+          where.emplace_back(&curve, k);
+        }
+      }
+      std::vector<CostErrorPoint> front;
+      for (int i : ParetoFront(all)) {
+        where[i].first->onFront[where[i].second] = true;
+        front.push_back(all[i]);
+      }
+      fronts.push_back(std::move(front));
+    }
+    group.comparison = CompareFronts(fronts);
+  }
+  return groups;
+}
+
+std::string SweepToJson(const std::vector<SweepGroup>& groups) {
+  nlohmann::ordered_json out;
+  out["format"] = "talus-testbed-sweep";
+  out["version"] = 1;
+  out["groups"] = nlohmann::ordered_json::array();
+  for (const SweepGroup& group : groups) {
+    nlohmann::ordered_json g;
+    g["id"] = group.id;
+    g["backends"] = group.backends;
+    const FrontComparison& c = group.comparison;
+    g["winner"] = c.winner >= 0 ? nlohmann::ordered_json(group.backends[c.winner]) : nlohmann::ordered_json();
+    g["wins"] = c.wins;
+    g["budgets"] = c.budgets;
+    g["matchedCost"] = c.matchedCost;
+    g["errorAtMatched"] = nlohmann::ordered_json::array();
+    for (double e : c.errorAtMatched) g["errorAtMatched"].push_back(JsonNumber(e));
+    g["curves"] = nlohmann::ordered_json::array();
+    for (const SweepCurve& curve : group.curves) {
+      nlohmann::ordered_json points = nlohmann::ordered_json::array();
+      for (std::size_t k = 0; k < curve.points.size(); ++k) {
+        points.push_back({{"timeStep", curve.timeSteps[k]},
+                          {"cost", curve.points[k].cost},
+                          {"error", JsonNumber(curve.points[k].error)},
+                          {"front", static_cast<bool>(curve.onFront[k])}});
+      }
+      g["curves"].push_back(
+          {{"backend", curve.backend}, {"iterations", curve.iterations}, {"points", points}});
+    }
+    out["groups"].push_back(g);
+  }
+  return out.dump(2) + "\n";
+}
+
+std::string SweepMarkdown(const std::vector<SweepGroup>& groups) {
+  std::ostringstream out;
+  out << "## Run time against error\n\n"
+      << "Error: the largest |error| / tolerance over a run's metrics with a tolerance (1 = at the "
+         "tolerance, inf = "
+         "not measured). Cost: wall seconds of the run. Most accurate at equal cost: most wins over the "
+         "budgets at or above the matched cost (docs/testbed-sweeps.md).\n\n"
+      << "| scenario | most accurate at equal cost | matched cost (s) | error at matched cost | wins |\n"
+      << "|---|---|---|---|---|\n";
+  for (const SweepGroup& group : groups) {
+    const FrontComparison& c = group.comparison;
+    std::string errors;
+    std::string wins;
+    for (std::size_t b = 0; b < group.backends.size(); ++b) {
+      errors.append(b ? ", " : "").append(group.backends[b]).append(" ").append(Number(c.errorAtMatched[b]));
+      wins.append(b ? ", " : "").append(group.backends[b]).append(" ").append(std::to_string(c.wins[b]));
+    }
+    out << "| " << group.id << " | " << (c.winner >= 0 ? group.backends[c.winner] : std::string("none (tie)"))
+        << " | " << Number(c.matchedCost) << " | " << errors << " | " << wins << " of " << c.budgets
+        << " |\n";
+  }
+  out << "\n### Pareto fronts (time step s, iterations: cost s, error)\n\n| scenario | backend | front |\n"
+      << "|---|---|---|\n";
+  for (const SweepGroup& group : groups) {
+    for (const std::string& backend : group.backends) {
+      std::vector<std::pair<double, std::string>> front;
+      for (const SweepCurve& curve : group.curves) {
+        if (curve.backend != backend) continue;
+        for (std::size_t k = 0; k < curve.points.size(); ++k) {
+          if (!curve.onFront[k]) continue;
+          front.emplace_back(
+              curve.points[k].cost,
+              Concat({"h ", Number(curve.timeSteps[k]), ", it ", std::to_string(curve.iterations), ": ",
+                      Number(curve.points[k].cost), ", ", Number(curve.points[k].error)}));
+        }
+      }
+      std::stable_sort(front.begin(), front.end(),
+                       [](const auto& a, const auto& b) { return a.first < b.first; });
+      std::string text;
+      for (const auto& entry : front) text.append(text.empty() ? "" : "; ").append(entry.second);
+      out << "| " << group.id << " | " << backend << " | " << text << " |\n";
+    }
+  }
+  return out.str();
+}
+
+// ---- Sharding ----
+// The partition is by run, round robin (run r goes to shard r mod n), so
+// each shard gets every stepping of a sweep in turn and the shards' costs
+// stay close; a run's backends stay together, so the runner's threading
+// (runner.h: serial lanes per library) works within each shard unchanged.
+namespace {
+
+constexpr std::string_view kShardFormat = "talus-testbed-shard";
+
+Result<int> ParseInt(std::string_view text, std::string_view whole) {
+  int value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || text.empty()) {
+    return Error{Concat({"shard \"", whole, "\": expected i/n with integers 0 <= i < n"})};
+  }
+  return value;
+}
+
+}  // namespace
+
+Result<Shard> ParseShard(std::string_view text) {
+  const auto slash = text.find('/');
+  if (slash == std::string_view::npos) return Error{Concat({"shard \"", text, "\": expected i/n"})};
+  auto index = ParseInt(text.substr(0, slash), text);
+  if (!index) return index.GetError();
+  auto count = ParseInt(text.substr(slash + 1), text);
+  if (!count) return count.GetError();
+  if (count.Value() < 1 || index.Value() < 0 || index.Value() >= count.Value()) {
+    return Error{Concat({"shard \"", text, "\": need 0 <= i < n"})};
+  }
+  return Shard{index.Value(), count.Value()};
+}
+
+std::vector<int> ShardRuns(int runCount, Shard shard) {
+  std::vector<int> runs;
+  for (int r = shard.index; r < runCount; r += shard.count) runs.push_back(r);
+  return runs;
+}
+
+std::string ShardToJson(const ShardFile& shard) {
+  nlohmann::ordered_json out;
+  out["format"] = kShardFormat;
+  out["version"] = 1;
+  out["shard"] = shard.shard.index;
+  out["count"] = shard.shard.count;
+  out["runCount"] = shard.runCount;
+  out["runIndices"] = shard.runIndices;
+  if (!shard.resultCounts.empty()) out["resultCounts"] = shard.resultCounts;
+  out["results"] = nlohmann::ordered_json::parse(ResultsToJson(shard.results));
+  return out.dump(2) + "\n";
+}
+
+Result<ShardFile> ShardFromJson(std::string_view text) {
+  nlohmann::ordered_json in = nlohmann::ordered_json::parse(text, nullptr, false);
+  if (in.is_discarded() || !in.is_object()) return Error{"shard file: not JSON"};
+  if (in.value("format", std::string()) != kShardFormat) {
+    return Error{Concat({"shard file: \"format\" is not \"", kShardFormat, "\""})};
+  }
+  for (const char* key : {"shard", "count", "runCount"}) {
+    if (!in.contains(key) || !in[key].is_number_integer()) {
+      return Error{Concat({"shard file: missing integer \"", key, "\""})};
+    }
+  }
+  if (!in.contains("runIndices") || !in["runIndices"].is_array() || !in.contains("results")) {
+    return Error{"shard file: missing \"runIndices\" or \"results\""};
+  }
+  ShardFile shard;
+  shard.shard = {in["shard"].get<int>(), in["count"].get<int>()};
+  shard.runCount = in["runCount"].get<int>();
+  for (const auto& index : in["runIndices"]) {
+    if (!index.is_number_integer()) return Error{"shard file: runIndices must be integers"};
+    shard.runIndices.push_back(index.get<int>());
+  }
+  if (in.contains("resultCounts")) {
+    if (!in["resultCounts"].is_array()) return Error{"shard file: resultCounts must be an array"};
+    for (const auto& count : in["resultCounts"]) {
+      if (!count.is_number_integer()) return Error{"shard file: resultCounts must be integers"};
+      shard.resultCounts.push_back(count.get<int>());
+    }
+  }
+  auto results = ResultsFromJson(in["results"].dump());
+  if (!results) return Error{Concat({"shard file: ", results.GetError().message})};
+  shard.results = std::move(results).Value();
+  return shard;
+}
+
+Result<ResultsFile> MergeShards(const std::vector<ShardFile>& shards) {
+  if (shards.empty()) return Error{"merge: no shards"};
+  const ShardFile& first = shards.front();
+  const std::size_t backends = first.results.backends.size();
+  if (backends == 0) return Error{"merge: shard has no backends"};
+  // Each run's results, in the runner's order; a run of no shard stays null.
+  std::vector<std::optional<std::vector<const RunResult*>>> byRun(static_cast<std::size_t>(first.runCount));
+  std::vector<int> seenShards(static_cast<std::size_t>(first.shard.count), 0);
+  for (const ShardFile& shard : shards) {
+    const std::string name =
+        Concat({"shard ", std::to_string(shard.shard.index), "/", std::to_string(shard.shard.count)});
+    if (shard.shard.count != first.shard.count || shard.runCount != first.runCount ||
+        shard.results.backends != first.results.backends ||
+        shard.results.deterministic != first.results.deterministic) {
+      return Error{Concat({"merge: ", name,
+                           " is not from the same partition (shard count, run count, backends or "
+                           "deterministic mode differ)"})};
+    }
+    if (shard.shard.index < 0 || shard.shard.index >= shard.shard.count) {
+      return Error{Concat({"merge: ", name, ": index out of range"})};
+    }
+    if (seenShards[shard.shard.index]++ > 0) return Error{Concat({"merge: ", name, " given twice"})};
+    std::vector<int> counts = shard.resultCounts;
+    if (counts.empty()) counts.assign(shard.runIndices.size(), static_cast<int>(backends));
+    std::size_t total = 0;
+    bool countsFit = counts.size() == shard.runIndices.size();
+    for (int count : counts) {
+      countsFit = countsFit && count >= 0 && static_cast<std::size_t>(count) <= backends;
+      total += static_cast<std::size_t>(std::max(count, 0));
+    }
+    if (shard.runIndices != ShardRuns(shard.runCount, shard.shard) || !countsFit ||
+        shard.results.results.size() != total) {
+      return Error{Concat({"merge: ", name, ": its runs are not the partition's"})};
+    }
+    std::size_t next = 0;
+    for (std::size_t k = 0; k < shard.runIndices.size(); ++k) {
+      auto& slot = byRun[static_cast<std::size_t>(shard.runIndices[k])].emplace();
+      for (int b = 0; b < counts[k]; ++b) slot.push_back(&shard.results.results[next++]);
+    }
+  }
+  for (int i = 0; i < first.shard.count; ++i) {
+    if (seenShards[i] == 0) {
+      return Error{
+          Concat({"merge: shard ", std::to_string(i), "/", std::to_string(first.shard.count), " missing"})};
+    }
+  }
+  ResultsFile merged;
+  merged.backends = first.results.backends;
+  merged.deterministic = first.results.deterministic;
+  for (const auto& run : byRun) {
+    for (const RunResult* result : *run) merged.results.push_back(*result);
+  }
+  return merged;
+}
+
+}  // namespace talus::harness

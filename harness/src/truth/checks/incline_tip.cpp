@@ -1,0 +1,40 @@
+// Incline tip: the largest rotation of the body from its start orientation
+// over the run (radians). The truth is the closed-form outcome
+// (InclineBoxOutcome, truths.h): when it says "tips" the rotation must pass
+// tiltThreshold, otherwise it must stay below it. The metric reports the
+// rotation as measured, with truth pi/2 for "tips" (a box over its edge has
+// turned at least that far) and 0 otherwise; pass is the threshold test,
+// not the distance to those numbers.
+#include <algorithm>
+#include <cassert>
+#include <numbers>
+
+#include "talus/harness/analytic/truths.h"
+#include "truth/checks/evaluators.h"
+
+namespace talus::harness {
+
+std::vector<MetricResult> EvaluateInclineTip(const Run& run, const Truth& truth, const InclineTipTruth& kind,
+                                             const Trajectory& trajectory) {
+  (void)run;
+  assert(truth.body >= 0);
+  const auto body = static_cast<std::size_t>(truth.body);
+  const Quat start = trajectory.samples.front().bodies[body].orientation;
+  double tilt = 0.0;
+  for (const Sample& sample : trajectory.samples) {
+    tilt = std::max(tilt, sample.bodies[body].orientation.angularDistance(start));
+  }
+  const bool tips = InclineBoxOutcome(kind.angle, kind.mu, kind.width, kind.height) == InclineOutcome::Tips;
+  MetricResult metric =
+      MakeMetric(std::string("incline_tip.tilt.") +
+                     InclineOutcomeName(InclineBoxOutcome(kind.angle, kind.mu, kind.width, kind.height)),
+                 "rad");
+  metric.measured = tilt;
+  metric.truth = tips ? 0.5 * std::numbers::pi : 0.0;
+  Judge(metric, Tolerance{.absolute = kind.tiltThreshold, .relative = 0.0});
+  // Judge measured the distance to truth; the outcome is a threshold test.
+  metric.pass = tips ? tilt > kind.tiltThreshold : tilt < kind.tiltThreshold;
+  return {metric};
+}
+
+}  // namespace talus::harness

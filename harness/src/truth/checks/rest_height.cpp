@@ -1,0 +1,40 @@
+// Rest height: the centre of mass height along the up axis at the end of the
+// run against the stated height, and its jitter: the peak-to-peak height
+// over the samples in the second half of the run (time >= duration / 2),
+// which must stay below maxJitter. The jitter is always checked, with
+// maxJitter as its absolute tolerance.
+#include <algorithm>
+#include <cassert>
+#include <limits>
+
+#include "truth/checks/evaluators.h"
+
+namespace talus::harness {
+
+std::vector<MetricResult> EvaluateRestHeight(const Run& run, const Truth& truth, const RestHeightTruth& kind,
+                                             const Trajectory& trajectory) {
+  assert(truth.body >= 0);
+  const auto body = static_cast<std::size_t>(truth.body);
+  const Vec3 up = UpAxis(run);
+  MetricResult height = MakeMetric("rest_height.height", "m");
+  height.measured = trajectory.samples.back().bodies[body].centerOfMass.dot(up);
+  height.truth = kind.height;
+  Judge(height, truth.tolerance);
+
+  const double halfTime = 0.5 * trajectory.samples.back().time;
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  for (const Sample& sample : trajectory.samples) {
+    if (sample.time < halfTime) continue;
+    const double y = sample.bodies[body].centerOfMass.dot(up);
+    low = std::min(low, y);
+    high = std::max(high, y);
+  }
+  MetricResult jitter = MakeMetric("rest_height.jitter", "m");
+  jitter.measured = high - low;  // the last sample always qualifies, so this is finite
+  jitter.truth = 0.0;
+  Judge(jitter, Tolerance{.absolute = kind.maxJitter, .relative = 0.0});
+  return {height, jitter};
+}
+
+}  // namespace talus::harness

@@ -1,0 +1,104 @@
+// Judging metrics and dispatching a truth to its kind's evaluator.
+#include "talus/harness/truth/truth_check.h"
+
+#include <cassert>
+#include <cmath>
+#include <type_traits>
+#include <utility>
+
+#include "truth/checks/evaluators.h"
+
+namespace talus::harness {
+
+MetricResult MakeMetric(std::string name, std::string unit) {
+  MetricResult metric;
+  metric.name = std::move(name);
+  metric.unit = std::move(unit);
+  return metric;
+}
+
+void Judge(MetricResult& metric, const Tolerance& tolerance) {
+  metric.tolerance = tolerance;
+  metric.checked = tolerance.absolute > 0.0 || tolerance.relative > 0.0;
+  const double reference = std::isnan(metric.truthIntegrator) ? metric.truth : metric.truthIntegrator;
+  metric.error = metric.measured - reference;
+  // A NaN measurement (nothing to measure) fails; NaN compares false.
+  metric.pass = std::abs(metric.error) <= tolerance.absolute + tolerance.relative * std::abs(metric.truth);
+}
+
+Vec3 UpAxis(const Run& run) {
+  // Scaled by the largest component first: |g| of 1e300 would overflow to
+  // inf and make the axis zero (every height 0), 1e-300 underflow to 0.
+  const Vec3& gravity = run.scenario.world.gravity;
+  const double scale = gravity.cwiseAbs().maxCoeff();
+  return scale > 0.0 ? Vec3(-(gravity / scale).normalized()) : Vec3::UnitY();
+}
+
+std::vector<MetricResult> EvaluateTruth(const Run& run, const Truth& truth, const Trajectory& trajectory) {
+  assert(!trajectory.samples.empty());
+  std::vector<MetricResult> metrics = std::visit(
+      [&](const auto& kind) -> std::vector<MetricResult> {
+        using Kind = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<Kind, FreeFallTruth>) {
+          return EvaluateFreeFall(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, SlidingStopTruth>) {
+          return EvaluateSlidingStop(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, RestHeightTruth>) {
+          return EvaluateRestHeight(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, BounceHeightsTruth>) {
+          return EvaluateBounceHeights(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, StackRestTruth>) {
+          return EvaluateStackRest(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, HullRestTruth>) {
+          return EvaluateHullRest(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, InclineSlideTruth>) {
+          return EvaluateInclineSlide(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, InclineTipTruth>) {
+          return EvaluateInclineTip(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, TorqueFreeTruth>) {
+          return EvaluateTorqueFree(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, FlipPeriodTruth>) {
+          return EvaluateFlipPeriod(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, ProjectileTruth>) {
+          return EvaluateProjectile(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, EnergyDriftTruth>) {
+          return EvaluateEnergyDrift(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, AngularMomentumDriftTruth>) {
+          return EvaluateAngularMomentumDrift(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, RotationalEnergyDriftTruth>) {
+          return EvaluateRotationalEnergyDrift(run, truth, kind, trajectory);
+        } else {
+          static_assert(std::is_same_v<Kind, ConvergedReferenceTruth>, "a truth kind has no evaluator");
+          return {};  // the runner compares against a finer run
+        }
+      },
+      truth.kind);
+  if (truth.published) {
+    for (MetricResult& metric : metrics) {
+      metric.publishedValue = truth.published->value;
+      metric.publishedUpper = truth.published->upper;
+      metric.publishedSource = truth.published->source;
+    }
+  }
+  return metrics;
+}
+
+void ApplyGate(const Truth& truth, std::string_view backend, std::vector<MetricResult>& metrics) {
+  for (MetricResult& metric : metrics) {
+    if (metric.checked) metric.reason = truth.toleranceReason;
+  }
+  std::string reason;
+  if (!truth.gate) reason = "gate false for every backend (the scenario's description says why)";
+  for (const UngatedBackend& entry : truth.ungated) {
+    if (entry.backend == backend) reason = entry.reason;
+  }
+  if (reason.empty()) return;
+  // Judged and reported, but it never fails the check for this backend.
+  for (MetricResult& metric : metrics) {
+    if (!metric.checked) continue;
+    metric.checked = false;
+    metric.ungated = reason;
+  }
+}
+
+}  // namespace talus::harness
