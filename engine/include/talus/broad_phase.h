@@ -14,8 +14,9 @@ namespace talus {
 
 /// Which structure finds the candidate pairs. Default: UniformGrid (the
 /// write-up's choice). Worlds with at most a handful of bodies take the brute
-/// force path whatever is selected (see BroadPhaseStats::kindUsed and
-/// docs/collision-broad-phase.md for the crossover).
+/// force path whatever is selected, unless WorldSettings::forceBroadPhase
+/// (see BroadPhaseStats::kindUsed and docs/collision-broad-phase.md for the
+/// crossover).
 enum class BroadPhaseKind {
   /// Sparse uniform grid (memory follows the occupied cells) whose cell size
   /// follows the dynamic bodies' bounding-sphere diameters; very large bodies

@@ -86,6 +86,7 @@ Result<int> UpdateBroadPhase(WorldData& d) {
     proxy.isStatic = sim.type != BodyType::Dynamic;
   }
   d.broadPhase.SetKind(d.settings.broadPhase);
+  d.broadPhase.SetTinyWorldProxies(d.settings.forceBroadPhase ? 0 : kTinyWorldProxies);
   return d.broadPhase.Update(d.proxies);
 }
 
