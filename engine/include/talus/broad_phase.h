@@ -32,6 +32,11 @@ enum class BroadPhaseKind {
   BruteForce,
 };
 
+/// Worlds with at most this many active bodies run brute force whatever
+/// structure is selected, unless WorldSettings::forceBroadPhase: below it
+/// brute force is measured faster (docs/collision-broad-phase.md).
+inline constexpr int kTinyWorldBodies = 128;
+
 /// Work done by one broad phase step. Counts are for that step only.
 /// Invariants: spherePairs <= candidatePairs; oversizedTests <= candidatePairs.
 struct BroadPhaseStats {
