@@ -20,7 +20,7 @@ namespace {
 
 constexpr double kStep = 1.0 / 60.0;
 constexpr int kSteps = 20;
-constexpr int kWorlds = 12;
+constexpr int kWorlds = 8;
 
 // One random body: a sphere or a box, static or dynamic, moving.
 struct RandomBody {
