@@ -14,8 +14,8 @@
 // the hash space its cells), so runs are byte-identical run to run. The
 // order matters: dWorldStep's stability on the 4-layer pyramid depends on
 // it (measured, tuned: the hash space's own order stands; the same pairs
-// sorted by body index lose 3 height truths, and in the simple space's
-// geom-list order collapse further), so no order of our own is imposed. Each
+// sorted by body index lose 3 height truths, sorted in descending order 4
+// and the drift), so no order of our own is imposed. Each
 // contact becomes a dContact joint with the scenario's combined friction and
 // restitution (in `tuned`, the first friction direction along the slip),
 // then the world steps and the contact group is emptied.
