@@ -114,6 +114,43 @@ TEST(ScenarioLoader, GyroscopicFlagOfWrongTypeIsRefusedWithItsPointer) {
       << message;
 }
 
+// A world with the given "broadPhase" entry (none when empty).
+Result<std::vector<Run>> WithBroadPhase(const std::string& entry) {
+  return ParseScenarioText(
+      R"({"name": "x", "world": {"timeStep": 0.01, "duration": {"steps": 1})" + entry +
+          R"(}, "bodies": [{"name": "b", "shape": {"kind": "sphere", "radius": 1}, "motion": "static",
+                      "position": [0, 0, 0]}]})",
+      "bp.json");
+}
+
+TEST(ScenarioLoader, BroadPhaseChoiceIsReadAndDefaultsToAuto) {
+  auto none = WithBroadPhase("");
+  ASSERT_TRUE(none) << none.GetError().message;
+  EXPECT_EQ(none.Value()[0].scenario.world.broadPhase, BroadPhaseChoice::Auto);
+  for (const BroadPhaseChoice choice : {BroadPhaseChoice::Auto, BroadPhaseChoice::UniformGrid,
+                                        BroadPhaseChoice::AabbTree, BroadPhaseChoice::BruteForce}) {
+    auto runs = WithBroadPhase(std::string(R"(, "broadPhase": ")") + BroadPhaseChoiceName(choice) + "\"");
+    ASSERT_TRUE(runs) << runs.GetError().message;
+    EXPECT_EQ(runs.Value()[0].scenario.world.broadPhase, choice) << BroadPhaseChoiceName(choice);
+  }
+  auto figure = LoadScenarioFile(kScenarioDir + "/tumbling/free_fall_15.json");
+  ASSERT_TRUE(figure) << figure.GetError().message;
+  EXPECT_EQ(figure.Value()[0].scenario.world.broadPhase, BroadPhaseChoice::UniformGrid);
+}
+
+TEST(ScenarioLoader, UnknownBroadPhaseIsRefusedWithItsPointerAndTheChoices) {
+  for (const char* entry : {R"(, "broadPhase": "octree")", R"(, "broadPhase": "Uniform_Grid")",
+                            R"(, "broadPhase": 1)", R"(, "broadPhase": "")"}) {
+    auto runs = WithBroadPhase(entry);
+    ASSERT_FALSE(runs) << entry;
+    EXPECT_NE(
+        runs.GetError().message.find(
+            R"(bp.json: /world/broadPhase: must be one of ["auto","uniform_grid","aabb_tree","brute_force"])"),
+        std::string::npos)
+        << runs.GetError().message;
+  }
+}
+
 TEST(ScenarioLoader, OutOfRangeNamesFieldAndBound) {
   const std::string message = LoadError("out_of_range.json");
   EXPECT_NE(message.find("out_of_range.json: /bodies/1/friction: must be >= 0"), std::string::npos)

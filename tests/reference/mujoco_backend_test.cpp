@@ -192,12 +192,15 @@ TEST(MujocoBackend, SettingsNameEveryOptionThatDiffersFromMuJoCosDefaults) {
   auto defaults = Build("mujoco", run);
   auto tuned = Build("mujoco-tuned", run);
   ASSERT_TRUE(defaults && tuned);
-  for (const std::string key : {"integrator", "friction cone", "solver", "noslip iterations", "impratio",
-                                "multi-point convex collision (multiccd)"}) {
+  for (const std::string key : {"integrator", "friction cone", "solver", "solver tolerance",
+                                "noslip iterations", "impratio", "multi-point convex collision (multiccd)"}) {
     EXPECT_NE(SettingValue(*defaults, key).find("(MuJoCo default)"), std::string::npos) << key;
   }
   EXPECT_EQ(SettingValue(*tuned, "friction cone"), "elliptic (MuJoCo default: pyramidal)");
   EXPECT_EQ(SettingValue(*tuned, "multi-point convex collision (multiccd)"), "on (MuJoCo default: off)");
+  EXPECT_EQ(SettingValue(*tuned, "impratio"), "10 (MuJoCo default: 1)");
+  EXPECT_EQ(SettingValue(*tuned, "solver tolerance"), "1e-10 (MuJoCo default: 1e-08)");
+  EXPECT_EQ(SettingValue(*tuned, "noslip iterations"), "10 (MuJoCo default: 0 (off))");
   EXPECT_NE(SettingValue(*tuned, "integrator").find("(MuJoCo default)"), std::string::npos);
   EXPECT_EQ(SettingValue(*tuned, "time step (s)"), "0.016666666666666666");
   EXPECT_EQ(SettingValue(*tuned, "solver iterations"), "10 (the scenario's)");

@@ -72,6 +72,26 @@ TEST(PeerSection, SaysForEachDefaultsFailWhetherTheTunedConfigurationRemovesIt) 
                        "its tuned configuration"),
             std::string::npos)
       << lines;
+  // A tuned FAIL in a run its defaults pass entirely is the tuned settings'
+  // doing; in a run the defaults also get wrong it is the engine's own.
+  const RunResult slope = Result("ode-quickstep", {Metric("incline_slide.distance", -0.003, true)});
+  const RunResult slopeTuned =
+      Result("ode-quickstep-tuned", {Metric("incline_slide.distance", -0.07, false)});
+  EXPECT_NE(
+      FailCauseLines({"ode-quickstep", "ode-quickstep-tuned"},
+                     {{"ode-quickstep", &slope}, {"ode-quickstep-tuned", &slopeTuned}})
+          .find("- `ode-quickstep-tuned` FAILs incline_slide.distance (-0.07): the tuned settings add it: "
+                "`ode-quickstep` passes (-0.003)"),
+      std::string::npos);
+  const RunResult column = Result("ode-step", {Metric("h1", 0.0, true), Metric("h2", -1.0, false)});
+  const RunResult columnTuned =
+      Result("ode-step-tuned", {Metric("h1", -0.5, false), Metric("h2", -1.0, false)});
+  EXPECT_NE(
+      FailCauseLines({"ode-step", "ode-step-tuned"},
+                     {{"ode-step", &column}, {"ode-step-tuned", &columnTuned}})
+          .find("- `ode-step-tuned` FAILs h1 (-0.5): the engine's own behaviour: `ode-step` passes this "
+                "truth (0) but FAILs 1 other truths of this run"),
+      std::string::npos);
   // Without the tuned run the cause cannot be put on a setting.
   EXPECT_NE(FailCauseLines({"ode-step"}, {{"ode-step", &defaults}})
                 .find("the engine's own behaviour in this configuration (no `-tuned` counterpart ran)"),

@@ -1,6 +1,8 @@
 // Replay recording and its JSON form: what the report's 3D view reads.
 #include <gtest/gtest.h>
 
+#include "report/report_html_replay.h"
+
 #include "talus/harness/run/replay.h"
 #include "talus/harness/run/results_file.h"
 #include "talus/harness/run/runner.h"
@@ -54,16 +56,30 @@ TEST(Replay, FramesAreThinnedAndKeepTheFirstAndLastSample) {
 
 // The write-up's figure-2 funnel on its 15-body scene: the grid meets more
 // pairs than have touching spheres, and none of the cubes (0.3 m apart)
-// touch, so the funnel ends at zero while SAT tests are run.
+// touch, so the funnel ends at zero while SAT tests are run. The scenario
+// forces the grid (world.broadPhase), and the counters say it ran.
 TEST(Replay, TalusCountersShowTheBroadPhaseFunnelForFifteenFallingCubes) {
   const harness::Run run = FreeFall15();
+  ASSERT_EQ(run.scenario.world.broadPhase, BroadPhaseChoice::UniformGrid);
   RunnerOptions options;
   options.backends = {"talus"};
   options.replay = {"all"};
   const RunResult result = RunOne(MakeRegistry(), run, "talus", options);
-  const std::vector<std::string> expected = {"bodies",    "candidate pairs",    "sphere pairs",
-                                             "SAT tests", "intersecting pairs", "contact points"};
+  const std::vector<std::string> expected = {"bodies",
+                                             "candidate pairs",
+                                             "sphere pairs",
+                                             "SAT tests",
+                                             "intersecting pairs",
+                                             "contact points",
+                                             "structure: uniform grid",
+                                             "structure: AABB tree",
+                                             "structure: brute force"};
   ASSERT_EQ(result.replay.counterNames, expected);
+  EXPECT_EQ(StructureThatRan(result.replay),
+            "uniform grid in all " + std::to_string(result.replay.frames.size() - 1) + " recorded steps");
+  // The grid's cells (one per sphere diameter) keep it from meeting all
+  // 15 * 14 / 2 = 105 pairs, which brute force meets.
+  EXPECT_LT(result.replay.frames.back().counters[1], 105.0);
   const ReplayFrame& last = result.replay.frames.back();
   ASSERT_EQ(last.counters.size(), expected.size());
   EXPECT_EQ(last.counters[0], 15.0);
@@ -76,6 +92,22 @@ TEST(Replay, TalusCountersShowTheBroadPhaseFunnelForFifteenFallingCubes) {
   EXPECT_EQ(last.counters[4], 0.0);
   EXPECT_EQ(last.counters[5], 0.0);
   EXPECT_TRUE(last.contacts.empty());
+}
+
+// Without the forcing, a world of 15 bodies takes brute force: every pair
+// is a candidate, and the pairs found are the same.
+TEST(Replay, AutoBroadPhaseRunsBruteForceOnFifteenCubesWithTheSamePairs) {
+  harness::Run run = FreeFall15();
+  run.scenario.world.broadPhase = BroadPhaseChoice::Auto;
+  RunnerOptions options;
+  options.backends = {"talus"};
+  options.replay = {"all"};
+  const RunResult result = RunOne(MakeRegistry(), run, "talus", options);
+  EXPECT_EQ(StructureThatRan(result.replay),
+            "brute force in all " + std::to_string(result.replay.frames.size() - 1) + " recorded steps");
+  const ReplayFrame& last = result.replay.frames.back();
+  EXPECT_EQ(last.counters[1], 105.0);
+  EXPECT_EQ(last.counters[2], 10.0);
 }
 
 TEST(Replay, JsonRoundTripIsExactAndDeterministic) {

@@ -14,8 +14,9 @@ namespace talus {
 
 /// Which structure finds the candidate pairs. Default: UniformGrid (the
 /// write-up's choice). Worlds with at most a handful of bodies take the brute
-/// force path whatever is selected (see BroadPhaseStats::kindUsed and
-/// docs/collision-broad-phase.md for the crossover).
+/// force path whatever is selected, unless WorldSettings::forceBroadPhase
+/// (see BroadPhaseStats::kindUsed and docs/collision-broad-phase.md for the
+/// crossover).
 enum class BroadPhaseKind {
   /// Sparse uniform grid (memory follows the occupied cells) whose cell size
   /// follows the dynamic bodies' bounding-sphere diameters; very large bodies
@@ -30,6 +31,11 @@ enum class BroadPhaseKind {
   /// Every pair tested: O(n^2). The reference the others are checked against.
   BruteForce,
 };
+
+/// Worlds with at most this many active bodies run brute force whatever
+/// structure is selected, unless WorldSettings::forceBroadPhase: below it
+/// brute force is measured faster (docs/collision-broad-phase.md).
+inline constexpr int kTinyWorldBodies = 128;
 
 /// Work done by one broad phase step. Counts are for that step only.
 /// Invariants: spherePairs <= candidatePairs; oversizedTests <= candidatePairs.

@@ -194,6 +194,14 @@ struct WorldSettings {
   RestitutionCombine restitutionCombine = RestitutionCombine::Max;
   /// Broad phase structure. Default UniformGrid (the write-up's).
   BroadPhaseKind broadPhase = BroadPhaseKind::UniformGrid;
+  /// Run `broadPhase` in every world, however small. Default false: worlds
+  /// of at most 128 active bodies take brute force whatever is selected,
+  /// because it is measured faster there (docs/collision-broad-phase.md).
+  /// Every structure yields the same pairs in the same order, so this
+  /// changes speed and StepStatistics only (broadPhase.kindUsed says which
+  /// structure ran); true is for figures and tests that must show the
+  /// selected structure at work on a small scene.
+  bool forceBroadPhase = false;
   /// SAT mode, manifold generator, SAT cache and speculative margin (see
   /// talus/narrow_phase.h); the margin must be finite and >= 0. The World's
   /// default margin is 0.02 m, not the narrow phase's 0: points that lift by

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "talus/broad_phase.h"
 #include "talus/math.h"
 
 namespace talus {
@@ -39,8 +40,9 @@ struct BroadPhasePair {
 /// structure is selected: below it building a grid or walking a tree costs
 /// more than testing the n(n-1)/2 pairs. Measured (bench BM_TinyWorld, 1 m
 /// bodies, moving): brute force 16.6 us vs grid 20.9 us at 128 bodies, 62 us
-/// vs 45 us at 256; see docs/collision-broad-phase.md. Unit: proxies.
-inline constexpr int kTinyWorldProxies = 128;
+/// vs 45 us at 256; see docs/collision-broad-phase.md. Unit: proxies. The
+/// value is public (talus/broad_phase.h) so callers can name it.
+inline constexpr int kTinyWorldProxies = kTinyWorldBodies;
 
 /// Grid cell edge = kCellSizeFactor x the largest dynamic bounding-sphere
 /// diameter. 1 is the write-up's rule "at least as large as the largest

@@ -129,6 +129,11 @@ std::string ValidateSettings(const WorldSettings& s) {
     return "WorldSettings.translation = " + std::to_string(static_cast<int>(s.translation)) +
            " is not a TranslationIntegrator";
   }
+  if (s.broadPhase != BroadPhaseKind::UniformGrid && s.broadPhase != BroadPhaseKind::AabbTree &&
+      s.broadPhase != BroadPhaseKind::BruteForce) {
+    return "WorldSettings.broadPhase = " + std::to_string(static_cast<int>(s.broadPhase)) +
+           " is not a BroadPhaseKind";
+  }
   if (s.positionIterations < 1 || s.positionIterations > 1000) {
     return "WorldSettings.positionIterations = " + std::to_string(s.positionIterations) +
            " is outside [1, 1000]";

@@ -170,6 +170,7 @@ Result<int> UpdateBroadPhase(WorldData& d) {
     }
   });
   d.broadPhase.SetKind(d.settings.broadPhase);
+  d.broadPhase.SetTinyWorldProxies(d.settings.forceBroadPhase ? 0 : kTinyWorldProxies);
   return d.broadPhase.Update(d.proxies);
 }
 

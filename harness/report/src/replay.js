@@ -331,11 +331,21 @@
         const box = el('div', {className: 'plot'}, root);
         const canvas = el('canvas', {}, box);
         const colours = ['#7f7f7f', '#1f77b4', '#17becf', '#ff7f0e', '#d62728', '#2ca02c'];
-        const datasets = result.counters.map((name, k) => ({
-          label: name, borderColor: colours[k % colours.length], pointRadius: 0, borderWidth: 1.5, stepped: true,
+        // "structure: ..." counters say which structure ran (1) each step: a label, not a curve.
+        const prefix = 'structure: ';
+        const counts = [], ran = {};
+        result.counters.forEach((name, k) => {
+          if (!name.startsWith(prefix)) { counts.push(k); return; }
+          const steps = result.frames.slice(1).filter(f => f.n[k] > 0.5).length;
+          if (steps) ran[name.slice(prefix.length)] = steps;
+        });
+        const structure = Object.keys(ran).map(name => name + ' (' + ran[name] + ' steps)').join(', ');
+        const datasets = counts.map((k, i) => ({
+          label: result.counters[k], borderColor: colours[i % colours.length], pointRadius: 0, borderWidth: 1.5, stepped: true,
           data: result.frames.slice(1).map(f => ({x: f.t, y: f.n[k]}))}));
         new Chart(canvas, {type: 'line', data: {datasets: datasets}, options: {animation: false, maintainAspectRatio: false,
-          plugins: {title: {display: true, text: run.id + ' (' + result.backend + '): pairs per step'}},
+          plugins: {title: {display: true, text: run.id + ' (' + result.backend + '): pairs per step' +
+            (structure ? '; broad phase: ' + structure : '')}},
           scales: {x: {type: 'linear', title: {display: true, text: 'time (s)'}}, y: {title: {display: true, text: 'count'}}}}});
         ++charts;
       }

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "report/markdown_html.h"
@@ -92,6 +93,80 @@ addChart('median wall time per step (us)', {type:'bar', data:timeBars,
   options:{scales:{y:{type:'logarithmic',title:{display:true,text:'us'}}}}});
 )";
 
+// The end of the <script> element starting at `at`, past its closing tag.
+std::size_t ScriptEnd(const std::string& html, std::size_t at) {
+  const std::size_t close = html.find("</script>", at);
+  return close == std::string::npos ? html.size() : close + 9;
+}
+
+// Whether a heading tag <h2>, <h3> or <h4> (with or without attributes)
+// opens at `at`.
+bool HeadingAt(const std::string& html, std::size_t at) {
+  return at + 3 < html.size() && html.compare(at, 2, "<h") == 0 && html[at + 2] >= '2' &&
+         html[at + 2] <= '4' && (html[at + 3] == '>' || html[at + 3] == ' ');
+}
+
+// The page with an id on every <h2> to <h4> outside scripts, each unique
+// over the page. The page is put together from several conversions (the
+// runs, the SAT, sweep, stress and large-scene sections), each numbering
+// only its own repeats, and some sections write headings without ids. In
+// page order: a heading keeps its id (or gets its text's anchor) unless an
+// earlier heading or any other element (the scripts' containers) holds it,
+// and then gets "-1", "-2"... as GitHub numbers repeats; summary.md's
+// headings come in the same order, so the links of both files agree.
+std::string WithUniqueHeadingIds(const std::string& html) {
+  std::set<std::string> used;
+  for (std::size_t at = html.find(" id=\""); at != std::string::npos; at = html.find(" id=\"", at + 1)) {
+    const std::size_t open = html.rfind('<', at);
+    if (open != std::string::npos && HeadingAt(html, open)) continue;
+    const std::size_t begin = at + 5;
+    used.insert(html.substr(begin, html.find('"', begin) - begin));
+  }
+  std::string out;
+  out.reserve(html.size() + 1024);
+  std::size_t at = 0;
+  while (at < html.size()) {
+    if (html.compare(at, 7, "<script") == 0) {
+      const std::size_t end = ScriptEnd(html, at);
+      out.append(html, at, end - at);
+      at = end;
+      continue;
+    }
+    if (!HeadingAt(html, at)) {
+      out += html[at++];
+      continue;
+    }
+    const std::size_t tagEnd = html.find('>', at);
+    const std::size_t close = html.find("</h", tagEnd);
+    if (tagEnd == std::string::npos || close == std::string::npos) {
+      out.append(html, at, std::string::npos);
+      break;
+    }
+    std::string base;
+    if (html.compare(at + 3, 5, " id=\"") == 0) {
+      base = html.substr(at + 8, html.find('"', at + 8) - (at + 8));
+    } else {
+      std::string text;  // the heading's text without tags
+      bool inTag = false;
+      for (std::size_t i = tagEnd + 1; i < close; ++i) {
+        if (html[i] == '<' || html[i] == '>') {
+          inTag = html[i] == '<';
+        } else if (!inTag) {
+          text += html[i];
+        }
+      }
+      base = HeadingAnchor(text);
+    }
+    std::string id = base;
+    for (int repeat = 1; used.count(id) != 0; ++repeat) id = Concat({base, "-", std::to_string(repeat)});
+    used.insert(id);
+    out.append(html, at, 3).append(Concat({" id=\"", id, "\""}));
+    out.append(html, tagEnd, close - tagEnd);
+    at = close;
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, std::string_view threeLibrary,
@@ -119,7 +194,7 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, s
   if (extras.stress != nullptr) out << MarkdownToHtml(StressMarkdown(*extras.stress));
   if (extras.scenes != nullptr) out << BenchHtmlSection(*extras.scenes);
   out << "</body>\n</html>\n";
-  return out.str();
+  return WithUniqueHeadingIds(out.str());
 }
 
 Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesystem::path& folder,

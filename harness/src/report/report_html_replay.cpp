@@ -105,7 +105,70 @@ constexpr const char* kStyle =
 .replay-stage{position:relative}.replay-label{position:absolute;background:#fffc;padding:0 .4em;font-size:90%}
 #report-status{font-size:80%;color:#777;white-space:pre-wrap})";
 
+std::string EscapeHtml(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '&') {
+      out += "&amp;";
+    } else if (c == '<') {
+      out += "&lt;";
+    } else if (c == '>') {
+      out += "&gt;";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// One row per replayed run and backend that reports its structure: the
+// figure-2 scene's answer to "which structure met these pairs".
+std::string StructureTable(const ResultsFile& file) {
+  std::ostringstream rows;
+  for (const RunResult& r : file.results) {
+    const std::string ran = StructureThatRan(r.replay);
+    if (ran.empty()) continue;
+    std::string selected = "-";
+    for (const Setting& setting : r.settings) {
+      if (setting.key == "broad phase") selected = setting.value;
+    }
+    rows << "<tr><td>" << EscapeHtml(r.runId) << "</td><td>" << EscapeHtml(r.backend) << "</td><td>"
+         << EscapeHtml(selected) << "</td><td>" << EscapeHtml(ran) << "</td></tr>\n";
+  }
+  if (rows.str().empty()) return {};
+  return "<table id=\"broadphase-structure\">\n<tr><th>run</th><th>engine</th><th>broad phase setting</th>"
+         "<th>structure that ran</th></tr>\n" +
+         rows.str() + "</table>\n";
+}
+
 }  // namespace
+
+std::string StructureThatRan(const Replay& replay) {
+  const std::string prefix = kStructureCounterPrefix;
+  std::vector<std::pair<std::string, int>> steps;  // structure, recorded steps it ran
+  std::vector<std::size_t> columns;
+  for (std::size_t k = 0; k < replay.counterNames.size(); ++k) {
+    if (replay.counterNames[k].rfind(prefix, 0) != 0) continue;
+    steps.emplace_back(replay.counterNames[k].substr(prefix.size()), 0);
+    columns.push_back(k);
+  }
+  if (columns.empty()) return {};
+  int recorded = 0;
+  for (const ReplayFrame& frame : replay.frames) {
+    if (frame.counters.size() != replay.counterNames.size()) continue;  // step 0: no step yet
+    ++recorded;
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      steps[c].second += frame.counters[columns[c]] > 0.5 ? 1 : 0;
+  }
+  std::string text;
+  for (const auto& [name, count] : steps) {
+    if (count == 0) continue;
+    if (count == recorded) return Concat({name, " in all ", std::to_string(recorded), " recorded steps"});
+    text += Concat({text.empty() ? "" : ", ", name, " in ", std::to_string(count)});
+  }
+  if (text.empty()) return {};
+  return Concat({text, " of ", std::to_string(recorded), " recorded steps"});
+}
 
 std::string ReplaySections(const ResultsFile& file, std::string_view threeLibrary) {
   Json data;
@@ -122,8 +185,11 @@ std::string ReplaySections(const ResultsFile& file, std::string_view threeLibrar
          "(orange) and the new cone (green).</p>\n<div id=\"hull-trace\"></div>\n";
   out << "<h2>Broad phase per step</h2>\n<p>The original write-up's figure 2 for each replayed run: bodies, "
          "candidate pairs met by the broad-phase structure, pairs whose bounding spheres touch, SAT tests, "
-         "intersecting pairs and contact points, per step, from the engine's step statistics.</p>\n"
-         "<div class=\"plots\" id=\"broadphase\"></div>\n";
+         "intersecting pairs and contact points, per step, from the engine's step statistics. The "
+         "structure that met the candidate pairs is the one the table names (a scenario's "
+         "<code>world.broadPhase</code> forces one; by default worlds of at most 128 bodies run brute "
+         "force).</p>\n"
+      << StructureTable(file) << "<div class=\"plots\" id=\"broadphase\"></div>\n";
   out << "<pre id=\"report-status\"></pre>\n";
   out << "<script>" << ScriptSafe(kReportStatusScript) << "</script>\n";
   out << "<script type=\"application/json\" id=\"replay-data\">" << ScriptSafe(data.dump()) << "</script>\n";

@@ -12,6 +12,12 @@
 
 namespace talus::harness {
 
+/// Which structure ran in a replayed run, counted over its recorded steps
+/// from the backend's structure counters (kStructureCounterPrefix):
+/// "uniform grid in all 60 recorded steps", or "uniform grid in 58, AABB
+/// tree in 2 of 60 recorded steps"; empty when the replay has none.
+std::string StructureThatRan(const Replay& replay);
+
 /// The sections' HTML: headings, containers, data, `threeLibrary` (three.js,
 /// inlined; empty leaves the 3D views with a message saying so) and scripts.
 std::string ReplaySections(const ResultsFile& file, std::string_view threeLibrary);

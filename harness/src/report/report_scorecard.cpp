@@ -32,8 +32,27 @@ std::string Cause(const std::string& backend, const MetricResult& failed,
   setting = false;
   const std::string tunedName = TunedName(backend);
   const auto tuned = byBackend.find(tunedName);
+  if (tunedName.empty()) {
+    // A tuned configuration's FAIL: the defaults' verdict on the same truth
+    // says whether the tuned settings added it.
+    const std::string defaultsName = backend.substr(0, backend.size() - std::string_view("-tuned").size());
+    const auto defaults = byBackend.find(defaultsName);
+    const RunResult* run = defaults == byBackend.end() ? nullptr : defaults->second;
+    const MetricResult* own = run != nullptr && run->error.empty() ? FindMetric(*run, failed.name) : nullptr;
+    if (own == nullptr || !Judged(*own) || !own->pass)
+      return "the engine's own behaviour, in its tuned configuration";
+    int otherFails = 0;
+    for (const MetricResult& m : run->metrics) otherFails += Judged(m) && !m.pass ? 1 : 0;
+    if (otherFails > 0) {
+      return Concat({"the engine's own behaviour: `", defaultsName, "` passes this truth (",
+                     FormatNumber(own->error, 3), ") but FAILs ", std::to_string(otherFails),
+                     " other truths of this run, which goes wrong in both configurations"});
+    }
+    setting = true;
+    return Concat({"the tuned settings add it: `", defaultsName, "` passes (", FormatNumber(own->error, 3),
+                   "); the engine's settings section gives each tuned setting's measured trade"});
+  }
   if (tuned == byBackend.end()) {
-    if (tunedName.empty()) return "the engine's own behaviour, in its tuned configuration";
     return "the engine's own behaviour in this configuration (no `-tuned` counterpart ran)";
   }
   const MetricResult* other =
@@ -208,15 +227,15 @@ std::string ScorecardMarkdown(const Scorecard& card) {
   out << "\nTruths passed: metrics with a tolerance (gated by `talus-testbed check` or shown as ungated) "
          "within "
          "it, out of those judged in the runs that did not stop. A FAIL a setting causes is one of a "
-         "`defaults` configuration that its `-tuned` configuration removes; each run with a FAIL links to "
-         "its "
-         "section, which names every FAIL's cause.";
+         "`defaults` configuration that its `-tuned` configuration removes, or one of a `-tuned` "
+         "configuration in a run its `defaults` pass entirely (the tuned settings add it); each run with a "
+         "FAIL links to its section, which names every FAIL's cause.";
   if (card.hasSweep)
     out << " Most accurate at equal cost: the sweep groups the configuration wins out of those it is "
-           "compared in (\"Run time against error\").";
+           "compared in ([Run time against error](#run-time-against-error)).";
   if (!card.scenes.empty())
     out << " ms/step: median wall time of one step on the large scenes at their reference size, or the "
-           "largest run (\"Large scenes\").";
+           "largest run ([Large scenes](#large-scenes)).";
   out << "\n\n";
   return out.str();
 }

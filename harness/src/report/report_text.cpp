@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "report/report_html_replay.h"
 #include "report/report_peers.h"
 #include "report/report_scorecard.h"
 #include "support/text_util.h"
@@ -227,6 +228,12 @@ std::string SummaryRuns(const ResultsFile& file) {
     Row(out, time);
     for (const auto& [backend, result] : group.byBackend) {
       if (!result->error.empty()) out << "\n" << backend << " stopped the run: " << result->error << "\n";
+    }
+    // The broad-phase structure that met the pairs (figure 2), where the
+    // run was replayed with the engine's step counters.
+    for (const auto& [backend, result] : group.byBackend) {
+      const std::string ran = StructureThatRan(result->replay);
+      if (!ran.empty()) out << "\n" << backend << " broad phase: " << ran << "\n";
     }
     // Why each tolerance has its size, and why a backend is outside the gate.
     std::set<std::string> notes;

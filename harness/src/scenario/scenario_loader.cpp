@@ -28,6 +28,21 @@
 #include "talus/harness/support/json_schema.h"
 
 namespace talus::harness {
+
+const char* BroadPhaseChoiceName(BroadPhaseChoice choice) {
+  switch (choice) {
+    case BroadPhaseChoice::Auto:
+      return "auto";
+    case BroadPhaseChoice::UniformGrid:
+      return "uniform_grid";
+    case BroadPhaseChoice::AabbTree:
+      return "aabb_tree";
+    case BroadPhaseChoice::BruteForce:
+      return "brute_force";
+  }
+  return "auto";
+}
+
 namespace {
 
 using nlohmann::json;
@@ -141,6 +156,14 @@ Result<WorldSpec> MapWorld(const json& world, std::string_view file) {
   if (world.contains("restitutionCombine"))
     settings.restitutionCombine = ReadCombineRule(world["restitutionCombine"]);
   settings.gyroscopic = world.value("gyroscopic", true);
+  if (world.contains("broadPhase")) {
+    // The schema admits only the four names; each maps to its choice.
+    const std::string name = world["broadPhase"].get<std::string>();
+    for (const BroadPhaseChoice choice : {BroadPhaseChoice::Auto, BroadPhaseChoice::UniformGrid,
+                                          BroadPhaseChoice::AabbTree, BroadPhaseChoice::BruteForce}) {
+      if (name == BroadPhaseChoiceName(choice)) settings.broadPhase = choice;
+    }
+  }
   return settings;
 }
 

@@ -81,6 +81,7 @@ void WriteOptions(const Run& run, const MujocoProfile& profile, std::string& out
   if (profile.noslipIterations > 0)
     out += " noslip_iterations=\"" + std::to_string(profile.noslipIterations) + "\"";
   if (profile.impratio > 0.0) out += " impratio=\"" + Num(profile.impratio) + "\"";
+  if (profile.tolerance > 0.0) out += " tolerance=\"" + Num(profile.tolerance) + "\"";
   if (profile.multiccd) {
     out += ">\n    <flag multiccd=\"enable\"/>\n  </option>\n";
   } else {

@@ -122,6 +122,19 @@ class TalusBackend final : public harness::Backend {
   std::string m_failure;                     // World::Step's refusal of the last step; empty when it ran
 };
 
+// The structure's name as the settings and the report's figure 2 show it.
+const char* BroadPhaseName(BroadPhaseKind kind) {
+  switch (kind) {
+    case BroadPhaseKind::UniformGrid:
+      return "uniform grid";
+    case BroadPhaseKind::AabbTree:
+      return "AABB tree";
+    case BroadPhaseKind::BruteForce:
+      return "brute force";
+  }
+  return "unknown";
+}
+
 const char* PositionCorrectionName(PositionCorrection correction) {
   switch (correction) {
     case PositionCorrection::Baumgarte:
@@ -150,6 +163,24 @@ WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine fric
   // form (free rigid body splitting); without it the write-up's constant rate.
   settings.rotation = run.scenario.world.gyroscopic ? RotationIntegrator::MomentumSplitting
                                                     : RotationIntegrator::ConstantRate;
+  // The scenario's broad phase: auto keeps the engine's default (the grid,
+  // brute force in tiny worlds); any other choice runs in every world.
+  switch (run.scenario.world.broadPhase) {
+    case harness::BroadPhaseChoice::Auto:
+      break;
+    case harness::BroadPhaseChoice::UniformGrid:
+      settings.broadPhase = BroadPhaseKind::UniformGrid;
+      settings.forceBroadPhase = true;
+      break;
+    case harness::BroadPhaseChoice::AabbTree:
+      settings.broadPhase = BroadPhaseKind::AabbTree;
+      settings.forceBroadPhase = true;
+      break;
+    case harness::BroadPhaseChoice::BruteForce:
+      settings.broadPhase = BroadPhaseKind::BruteForce;
+      settings.forceBroadPhase = true;
+      break;
+  }
   if (variant == Variant::WriteUp) {
     settings.narrowPhase.satMode = SatMode::Full;
     settings.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
@@ -234,10 +265,14 @@ void TalusBackend::Step() {
 // The write-up's figure 2 funnel, in order: bodies, pairs the broad phase's
 // structure met, pairs whose bounding spheres touch, SAT queries, touching
 // pairs, contact points. Touching pairs and points include the manifolds
-// reused without a SAT query (the write-up variant reuses none).
+// reused without a SAT query (the write-up variant reuses none). Then which
+// structure ran this step (StepStatistics' kindUsed), one counter per
+// structure, 1 for the one that ran and 0 for the others: the names carry
+// the structure (harness::kStructureCounterPrefix), so the counters stay
+// the same list every step and the report shows them as a label.
 std::vector<harness::StepCounter> TalusBackend::StepCounters() const {
   const StepStatistics& s = m_lastStep;
-  return {
+  std::vector<harness::StepCounter> counters = {
       {"bodies", static_cast<double>(s.bodies)},
       {"candidate pairs", static_cast<double>(s.broadPhase.candidatePairs)},
       {"sphere pairs", static_cast<double>(s.broadPhase.spherePairs)},
@@ -245,6 +280,12 @@ std::vector<harness::StepCounter> TalusBackend::StepCounters() const {
       {"intersecting pairs", static_cast<double>(s.narrowPhase.pairsTouching) + s.manifoldsReused},
       {"contact points", static_cast<double>(s.narrowPhase.manifoldPoints) + s.reusedContactPoints},
   };
+  for (const BroadPhaseKind kind :
+       {BroadPhaseKind::UniformGrid, BroadPhaseKind::AabbTree, BroadPhaseKind::BruteForce}) {
+    counters.push_back({std::string(harness::kStructureCounterPrefix) + BroadPhaseName(kind),
+                        s.broadPhase.kindUsed == kind ? 1.0 : 0.0});
+  }
+  return counters;
 }
 
 harness::BodyReading TalusBackend::GetBodyState(int index) const {
@@ -282,9 +323,12 @@ void TalusBackend::AddSettings(const Run& run) {
   const char* manifold = s.narrowPhase.manifoldMode == ManifoldMode::WriteUp
                              ? "write-up (vertices near the contact plane, one depth)"
                              : "clipped incident face, reduced to 4 points";
-  const char* broadPhase = s.broadPhase == BroadPhaseKind::UniformGrid ? "uniform grid"
-                           : s.broadPhase == BroadPhaseKind::AabbTree  ? "AABB tree"
-                                                                       : "brute force";
+  const std::string broadPhase =
+      s.forceBroadPhase ? std::string(BroadPhaseName(s.broadPhase)) +
+                              ", forced in every world (scenario world.broadPhase \"" +
+                              harness::BroadPhaseChoiceName(run.scenario.world.broadPhase) + "\")"
+                        : std::string(BroadPhaseName(s.broadPhase)) + "; brute force in worlds of at most " +
+                              std::to_string(kTinyWorldBodies) + " bodies (engine default)";
   m_settings = {
       {"engine", "Talus (double)"},
       {"variant", VariantName(m_variant)},

@@ -65,6 +65,12 @@ struct StepCounter {
   double value = 0.0;
 };
 
+/// A step counter whose name starts with this prefix says which structure
+/// did a piece of work ("structure: uniform grid"): 1 for the one that ran
+/// this step, 0 for the others. The report shows these as labels, not as
+/// counts in the figure-2 chart.
+inline constexpr const char* kStructureCounterPrefix = "structure: ";
+
 class Backend {
  public:
   virtual ~Backend() = default;

@@ -34,6 +34,19 @@ double Combine(CombineRule rule, double a, double b);
 /// The rule's name as written in scenario files ("sqrt", "min", ...).
 const char* CombineRuleName(CombineRule rule);
 
+/// Which broad-phase structure Talus runs (file: world.broadPhase). Auto is
+/// the engine's default: the uniform grid, with brute force in worlds of
+/// at most 128 bodies, where it is faster; each other choice runs that
+/// structure in every world (talus::WorldSettings::forceBroadPhase), as the
+/// write-up's figure 2 needs on a 15-body scene. Every structure finds the
+/// same pairs, so results do not change, only the work counted. The peers
+/// keep their own broad phases (listed in their settings).
+enum class BroadPhaseChoice { Auto, UniformGrid, AabbTree, BruteForce };
+
+/// The choice's name as written in scenario files ("auto", "uniform_grid",
+/// "aabb_tree", "brute_force").
+const char* BroadPhaseChoiceName(BroadPhaseChoice choice);
+
 /// World settings shared by every body.
 struct WorldSpec {
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);  ///< m/s^2
@@ -47,6 +60,8 @@ struct WorldSpec {
   /// BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY, ODE dBodySetGyroscopicMode).
   /// Default true: without it a torque-free body keeps w (not L) constant.
   bool gyroscopic = true;
+  /// Talus's broad-phase structure (see BroadPhaseChoice). Default Auto.
+  BroadPhaseChoice broadPhase = BroadPhaseChoice::Auto;
 };
 
 /// A box centred on the body origin.

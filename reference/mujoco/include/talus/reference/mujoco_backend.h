@@ -7,13 +7,15 @@
 // (semi-implicit Euler, pyramidal cones, Newton solver, soft contacts with
 // solref 0.02 1 and solimp 0.9 0.95 0.001 0.5 2). "mujoco-tuned" is the
 // documented best practice for the rigid-body physics asked (MuJoCo's
-// "Computation" and "XML reference" chapters), kept only where it
-// measurably helps: elliptic friction cones, multi-point convex collision
-// (multiccd) and RK4 in worlds where no contact can occur (a single body);
-// noslip iterations, a larger impratio and the implicit integrator were
-// measured and left out (docs/testbed-backends.md). Settings() lists
-// every option that differs from the defaults, docs/testbed-backends.md
-// gives each one's measured effect.
+// "Modeling" chapter, solver settings: try elliptic cones; "when contact
+// slip is a problem", elliptic cones, a large impratio and Newton with a
+// very small tolerance, "say 1e-10", then the noslip solver if that is not
+// enough): elliptic cones, impratio 10, tolerance 1e-10, 10 noslip
+// iterations, multi-point convex collision (multiccd) and RK4 in worlds
+// where no contact can occur (a single body). The implicit integrator and
+// a harder solimp were measured and left out. Settings() lists every option
+// that differs from the defaults, docs/testbed-backends.md gives each one's
+// measured effect.
 //
 // Every scenario becomes an MJCF text in memory (mjcf_writer.h) loaded
 // through a virtual file system; MuJoCo's errors (mju_user_error) and
@@ -80,6 +82,7 @@ struct MujocoProfile {
   std::string cone;          ///< MJCF option/cone ("elliptic"); "" = pyramidal
   int noslipIterations = 0;  ///< MJCF option/noslip_iterations; 0 = off
   double impratio = 0.0;     ///< MJCF option/impratio; 0 = MuJoCo's 1
+  double tolerance = 0.0;    ///< MJCF option/tolerance (solver); 0 = MuJoCo's 1e-8
   bool multiccd = false;     ///< option/flag multiccd: several points per convex (mesh) pair
 };
 
