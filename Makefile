@@ -15,6 +15,8 @@
 #   make fuzz      build the libFuzzer targets (clang, ASan + UBSan) in
 #                  build-fuzz/ and run each for FUZZ_SECONDS (default 600)
 #   make fuzz-ci   the same, 30 s per target (the bounded CI form)
+#   make soak      the full soak suite (tests/soak: 1e5 steps of every
+#                  scenario and the abuse cases on every backend; minutes)
 #
 # JOBS sets build and test parallelism (default: all cores).
 
@@ -43,10 +45,10 @@ SCENES_ENGINES ?= talus,bullet-f32,bullet-f32-tuned,ode-quickstep-tuned,ode-step
 
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 600
-FUZZ_TARGETS ?= hull_builder point_file
+FUZZ_TARGETS ?= hull_builder point_file pair_sat scenario_loader shard_merge
 
 .PHONY: deps configure build test test-release test-asan test-tsan test-tsan-full format format-check clean report report-full \
-  fuzz-build fuzz fuzz-ci
+  fuzz-build fuzz fuzz-ci soak
 
 deps:
 	@scripts/install-deps.sh
@@ -58,7 +60,7 @@ build: configure
 	@$(CMAKE) --build $(BUILD_DIR) -j $(JOBS)
 
 test-release: build
-	cd $(BUILD_DIR) && ctest $(CTEST_FLAGS)
+	cd $(BUILD_DIR) && ctest $(CTEST_FLAGS) -LE '^soak$$'
 
 # The sanitizer tree is a debug-assert build (-O1, asserts on), so programmer
 # errors trip assertions as well as ASan/UBSan. Benchmarks are left out.
@@ -69,7 +71,7 @@ test-asan: deps
 	@$(CMAKE) -S . -B $(ASAN_DIR) -G $(GENERATOR) -DCMAKE_BUILD_TYPE=Debug \
 	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DTALUS_SANITIZE=ON -DTALUS_BUILD_BENCH=OFF >/dev/null
 	@$(CMAKE) --build $(ASAN_DIR) -j $(JOBS)
-	cd $(ASAN_DIR) && ctest $(CTEST_FLAGS) -LE slow
+	cd $(ASAN_DIR) && ctest $(CTEST_FLAGS) -LE 'slow|^soak$$'
 
 # The ThreadSanitizer tree: Debug at -O1 (asserts on) with TSan. `test-tsan`
 # (part of `make test`) builds only the engine's threaded tests
@@ -95,6 +97,12 @@ test-tsan-full: deps
 	$(TSAN_RUN) -L '^(threads|runner_threads)$$'
 
 test: format-check test-release test-asan test-tsan
+
+# The full soak suite (tests/soak, ctest label soak): every scenario for 1e5
+# steps and the abuse cases on every backend, in the Release tree. Minutes;
+# not part of `make test`, which runs its shortened form (label slow).
+soak: build
+	cd $(BUILD_DIR) && ctest $(CTEST_FLAGS) -L '^soak$$'
 
 # Every engine (talus and its variants; bullet, bullet-f32, ode-step,
 # ode-quickstep, each in its defaults and -tuned configuration) on the

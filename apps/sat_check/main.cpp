@@ -49,12 +49,21 @@ int main(int argc, char** argv) {
   app.add_option("--pairs", settings.pairs,
                  "number of random shape pairs (1 to " + std::to_string(talus::validation::kMaxPairs) + ")")
       ->capture_default_str();
-  app.add_option("--seed", settings.seed, "generator seed")->capture_default_str();
+  // Read as text and checked by ParseSeed: read as a number, "-1" and
+  // overflowing values went through without a word (issue 14).
+  std::string seedText = std::to_string(settings.seed);
+  app.add_option("--seed", seedText, "generator seed, 0 to 2^64 - 1")->capture_default_str();
   app.add_option("--repeats", settings.timingRepeats, "timed repeats per query (0: no timing)")
       ->capture_default_str();
   app.add_option("--json", jsonPath, "write the full report as JSON to this file");
   app.add_option("--markdown", markdownPath, "write the Markdown section to this file (default: stdout)");
   CLI11_PARSE(app, argc, argv);
+  const auto seed = talus::validation::ParseSeed(seedText);
+  if (!seed) {
+    std::cerr << "talus-sat-check: " << seed.GetError().message << "\n";
+    return 2;
+  }
+  settings.seed = seed.Value();
 
   const auto report = talus::validation::RunSatCheck(settings);
   if (!report) {

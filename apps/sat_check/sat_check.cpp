@@ -5,6 +5,7 @@
 #include "sat_check.h"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -238,6 +239,30 @@ double BoxPairSignedDistance(const Vec3& halfA, const Vec3& halfB, const Vec3& o
   const Vec3 overlap = halfA + halfB - offset.cwiseAbs();
   if (overlap.minCoeff() >= 0.0) return -overlap.minCoeff();
   return overlap.cwiseMin(0.0).norm();
+}
+
+Result<std::uint64_t> ParseSeed(std::string_view text) {
+  const std::string shown = text.size() > 40 ? std::string(text.substr(0, 40)) + "..." : std::string(text);
+  const bool digits =
+      !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  std::uint64_t seed = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), seed);
+  if (!digits || error != std::errc() || end != text.data() + text.size()) {
+    std::string escaped;
+    for (const char c : shown) {
+      const auto byte = static_cast<unsigned char>(c);
+      if (byte >= 0x20 && byte < 0x7f) {
+        escaped += c;
+      } else {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "\\x%02X", byte);
+        escaped += hex;
+      }
+    }
+    return Error{"--seed \"" + escaped + "\": need a whole number from 0 to 18446744073709551615" +
+                 (error == std::errc::result_out_of_range ? " (too large)" : "")};
+  }
+  return seed;
 }
 
 Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pair_generator.h"
@@ -163,6 +164,12 @@ struct SatCheckReport {
 /// field. A run that finds Talus beyond its bounds still returns a report,
 /// with `failures` filled.
 Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings);
+
+/// The text of --seed as a generator seed: decimal digits only, 0 to
+/// 2^64 - 1. A sign, another character or a value past 2^64 - 1 is refused
+/// with the text quoted (cut to 40 bytes): a seed that wrapped or was read
+/// as a different number would silently give another pair set.
+Result<std::uint64_t> ParseSeed(std::string_view text);
 
 /// The closed-form answer for two boxes with the same rotation (face
 /// aligned): signed distance (m; gap > 0, minus the depth when

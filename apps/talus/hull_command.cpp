@@ -3,7 +3,10 @@
 // error stops the run before anything is written.
 #include "hull_command.h"
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
@@ -68,9 +71,12 @@ std::string FormatJson(const Hull& hull, const MassProperties& props, double den
 }
 
 // Writes `text` to `path` via a temporary sibling renamed into place, so the
-// file either holds the complete output or is left as it was.
+// file either holds the complete output or is left as it was. The sibling's
+// name carries the process id and a per-process count (TemporarySibling),
+// so two programs writing the same output at once never share one
+// temporary file: each renames its own complete text into place.
 Result<bool> WriteWhole(const std::string& path, const std::string& text) {
-  const std::string temporary = path + ".talus-tmp";
+  const std::string temporary = TemporarySibling(path);
   {
     std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
     if (!file) return Error{path + ": cannot open for writing"};
@@ -91,6 +97,16 @@ Result<bool> WriteWhole(const std::string& path, const std::string& text) {
   }
   return true;
 }
+
+}  // namespace
+
+std::string TemporarySibling(const std::string& path) {
+  static std::atomic<unsigned> counter{0};
+  return path + ".tmp-" + std::to_string(static_cast<long long>(::getpid())) + "-" +
+         std::to_string(counter++);
+}
+
+namespace {
 
 // Everything up to the output text; the first failure is the result.
 Result<std::string> MakeOutput(const HullOptions& options) {

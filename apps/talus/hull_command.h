@@ -29,6 +29,11 @@ struct HullOptions {
 /// When the subcommand runs, its exit status is stored in `exitCode`.
 void AddHullCommand(CLI::App& app, HullOptions& options, int& exitCode);
 
+/// The temporary name `talus hull -o PATH` writes before renaming it over
+/// PATH: "PATH.tmp-<process id>-<count>", unique per process and call, so
+/// two runs writing one output at once never share a temporary file.
+std::string TemporarySibling(const std::string& path);
+
 /// Runs `talus hull` with `options`: 0 on success; 1 after printing an
 /// error ("points.xyz:7: expected 3 numbers, got 2") to stderr.
 int RunHull(const HullOptions& options);

@@ -67,6 +67,7 @@ int Sweep(const SweepOptions& options) {
   part.shard = shard;
   part.runCount = static_cast<int>(all.size());
   part.runIndices = harness::ShardRuns(part.runCount, shard);
+  part.identity = harness::MakeShardIdentity(all, options.timeSteps, options.iterations);
   std::vector<harness::Run> runs;
   for (int r : part.runIndices) runs.push_back(all[static_cast<std::size_t>(r)]);
 

@@ -127,6 +127,30 @@ TEST(TalusHull, OutputFileHoldsExactlyWhatStdoutWould) {
   EXPECT_EQ(Slurp(out), RunTalus("hull cube.xyz").out);
 }
 
+// Eight runs writing one output at once: each writes its own temporary file
+// (FILE.tmp-<pid>-<n>) and renames it into place, so every run succeeds,
+// the output is one complete hull and no temporary file is left. With one
+// fixed temporary name the runs truncated each other's file and the losers'
+// renames failed (issue 14).
+TEST(TalusHull, ConcurrentRunsWritingOneOutputNeverShareATemporaryFile) {
+  const fs::path dir = Scratch();
+  const fs::path out = dir / "cube.obj";
+  const fs::path script = Scratch("script") / "race.sh";
+  {
+    std::ofstream file(script);
+    file << "cd '" << DataFile("").string() << "' || exit 2\nstatus=0\npids=\n"
+         << "for i in 1 2 3 4 5 6 7 8; do '" << TALUS_CLI_BINARY << "' hull cube.xyz -o '" << out.string()
+         << "' & pids=\"$pids $!\"; done\n"
+         << "for p in $pids; do wait \"$p\" || status=1; done\nexit $status\n";
+  }
+  const int status = std::system(("bash '" + script.string() + "'").c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "a concurrent run failed";
+  EXPECT_EQ(Slurp(out), RunTalus("hull cube.xyz").out);
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    EXPECT_EQ(entry.path().filename(), "cube.obj") << "left behind: " << entry.path();
+  }
+}
+
 TEST(TalusHull, BadLineIsReportedWithFileAndLineAndOutputIsLeftAlone) {
   const fs::path out = Scratch() / "keep.obj";
   std::ofstream(out) << "previous contents\n";

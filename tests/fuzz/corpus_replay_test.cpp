@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,10 @@
 #include <vector>
 
 #include "fuzz_checks.h"
+#include "harness_checks.h"
+#include "pair_sat_checks.h"
+#include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/scenario/scenario_writer.h"
 
 namespace talus::fuzz {
 namespace {
@@ -48,6 +53,64 @@ TEST(FuzzCorpus, EveryPointFileInputKeepsTheInvariants) {
   const auto files = CorpusFiles("point_file");
   ASSERT_GE(files.size(), 5u);
   for (const auto& file : files) EXPECT_EQ(CheckPointFileParse(Bytes(file)), "") << file.filename();
+}
+
+TEST(FuzzCorpus, EveryPairSatInputAgreesWithTheBruteForce) {
+  const auto files = CorpusFiles("pair_sat");
+  ASSERT_GE(files.size(), 5u);
+  for (const auto& file : files) {
+    const std::string bytes = Bytes(file);
+    const auto input = DecodePairInput(
+        std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()));
+    EXPECT_EQ(CheckPairSat(input), "") << file.filename();
+  }
+}
+
+TEST(FuzzCorpus, EveryScenarioLoaderInputRoundTrips) {
+  const auto files = CorpusFiles("scenario_loader");
+  ASSERT_GE(files.size(), 5u);
+  for (const auto& file : files) EXPECT_EQ(CheckScenarioRoundTrip(Bytes(file)), "") << file.filename();
+}
+
+TEST(FuzzCorpus, EveryShardMergeInputKeepsTheInvariants) {
+  const auto files = CorpusFiles("shard_merge");
+  ASSERT_GE(files.size(), 3u);
+  for (const auto& file : files) EXPECT_EQ(CheckShardMerge(Bytes(file)), "") << file.filename();
+}
+
+// Open finding of the pair_sat fuzz target (docs/fuzzing.md, "Findings"):
+// a sliver hull (four of its six vertices within 1e-13 m of the origin)
+// overlapping a 5 cm box by 5 cm. The Gauss-map pruned SAT declares the
+// pair separated by an edge pair while its own separation, re-measured,
+// is -0.05 m (CollideShapes: touching false, separation -0.05); the Full
+// SAT finds the contact. The fix belongs to engine/src/collision/sat.cpp;
+// enable this test with it.
+TEST(FuzzOpenFindings, DISABLED_PairSatSliverHullOverlapIsNotReportedSeparated) {
+  for (const auto& entry : fs::directory_iterator(fs::path(TALUS_TEST_DATA_DIR) / "fuzz_open" / "pair_sat")) {
+    const std::string bytes = Bytes(entry.path());
+    const auto input = DecodePairInput(
+        std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()));
+    EXPECT_EQ(CheckPairSat(input), "") << entry.path().filename();
+  }
+}
+
+// Every shipped scenario file saves and reloads to the same model (the
+// fuzz target's invariant on the files users actually write), and the
+// check notices a changed field.
+TEST(ScenarioWriter, EveryShippedScenarioRoundTrips) {
+  int files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(TALUS_SCENARIO_DIR)) {
+    if (entry.path().extension() != ".json" || entry.path().filename() == "schema.json") continue;
+    ++files;
+    EXPECT_EQ(CheckScenarioRoundTrip(Bytes(entry.path())), "") << entry.path();
+  }
+  EXPECT_GE(files, 15);
+  auto runs = harness::LoadScenarioFile(std::string(TALUS_SCENARIO_DIR) + "/stacking/hull_rest.json");
+  ASSERT_TRUE(runs) << runs.GetError().message;
+  harness::Scenario changed = runs.Value().front().scenario;
+  EXPECT_EQ(ScenarioDifference(runs.Value().front().scenario, changed), "");
+  changed.bodies.back().friction = std::nextafter(changed.bodies.back().friction, 1.0);
+  EXPECT_NE(ScenarioDifference(runs.Value().front().scenario, changed), "");
 }
 
 // The decoder's modes do what fuzz_checks.h says (a mode that silently

@@ -126,5 +126,22 @@ TEST(SatCheck, JsonAndMarkdownHaveTheDocumentedStructure) {
   EXPECT_NE(markdown.find("| ccd-gjk-penetration |"), std::string::npos);
 }
 
+// --seed is a whole number 0..2^64-1: a sign, junk or overflow is refused
+// with the text quoted, never wrapped into another seed (issue 14).
+TEST(ParseSeed, TakesEveryUnsignedValueAndRefusesSignsJunkAndOverflow) {
+  EXPECT_EQ(ParseSeed("0").Value(), 0u);
+  EXPECT_EQ(ParseSeed("1").Value(), 1u);
+  EXPECT_EQ(ParseSeed("18446744073709551615").Value(), 18446744073709551615u);
+  for (const char* bad :
+       {"-1", "+1", "", " 1", "1e3", "0x10", "18446744073709551616", "99999999999999999999999"}) {
+    auto seed = ParseSeed(bad);
+    ASSERT_FALSE(seed) << bad;
+    EXPECT_NE(seed.GetError().message.find(std::string("--seed \"") + bad + "\""), std::string::npos)
+        << seed.GetError().message;
+  }
+  EXPECT_NE(ParseSeed("18446744073709551616").GetError().message.find("(too large)"), std::string::npos);
+  EXPECT_NE(ParseSeed(std::string(100, '7')).GetError().message.find("..."), std::string::npos);
+}
+
 }  // namespace
 }  // namespace talus::validation

@@ -446,7 +446,10 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
   }
   std::atomic<std::size_t> next{0};
   std::vector<std::thread> threads;
-  for (auto& [family, lane] : lanes) {
+  for (auto& entry : lanes) {
+    // A named reference, not a structured binding: clang 14 (the fuzz
+    // tree's compiler) cannot capture bindings.
+    const auto& lane = entry.second;
     threads.emplace_back([&execute, &lane] {
       for (std::size_t index : lane) execute(index);
     });

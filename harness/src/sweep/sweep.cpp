@@ -12,8 +12,10 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
+#include <type_traits>
 
 #include "support/text_util.h"
+#include "talus/harness/scenario/scenario_limits.h"
 
 namespace talus::harness {
 namespace {
@@ -297,6 +299,95 @@ std::string SweepMarkdown(const std::vector<SweepGroup>& groups) {
 namespace {
 
 constexpr std::string_view kShardFormat = "talus-testbed-shard";
+// Version 2 added the identity (build, settings, scenarios, digest);
+// version 1 files cannot be checked against each other and are refused.
+constexpr int kShardVersion = 2;
+
+// The values of `in[key]`, an array of T; false when it is not one.
+template <typename T>
+bool ReadArray(const nlohmann::ordered_json& in, const char* key, std::vector<T>& out) {
+  if (!in.contains(key) || !in[key].is_array()) return false;
+  for (const auto& item : in[key]) {
+    if constexpr (std::is_same_v<T, std::string>) {
+      if (!item.is_string()) return false;
+    } else if constexpr (std::is_integral_v<T>) {
+      if (!item.is_number_integer()) return false;
+    } else {
+      if (!item.is_number()) return false;
+    }
+    out.push_back(item.get<T>());
+  }
+  return true;
+}
+
+std::string ListText(const std::vector<double>& values) {
+  std::string text;
+  for (double v : values) {
+    char number[32];
+    // Shortest round-trip form: 0.05, not 0.050000000000000003.
+    const auto end = std::to_chars(number, number + sizeof number, v).ptr;
+    text.append(text.empty() ? "" : ",").append(number, end);
+  }
+  return text;
+}
+
+std::string Quote(std::string_view text) { return Concat({"\"", text, "\""}); }
+
+std::string ListText(const std::vector<int>& values) {
+  std::string text;
+  for (int v : values) text.append(text.empty() ? "" : ",").append(std::to_string(v));
+  return text;
+}
+
+std::string ListText(const std::vector<std::string>& values) {
+  std::string text;
+  for (const std::string& v : values) text.append(text.empty() ? "" : ",").append(v);
+  return text;
+}
+
+// Why `shard` cannot be merged with `first`, or "" when they are of one
+// partition; `name` and `firstName` label them ("shard 1/4").
+std::string PartitionMismatch(const ShardFile& shard, const std::string& name, const ShardFile& first,
+                              const std::string& firstName) {
+  const auto differ = [&](const std::string& what, const std::string& mine, const std::string& theirs) {
+    return Concat({name, " has ", what, " ", Quote(mine), " but ", firstName, " has ", Quote(theirs)});
+  };
+  const ShardIdentity& a = shard.identity;
+  const ShardIdentity& b = first.identity;
+  if (shard.shard.count != first.shard.count) {
+    return Concat({name, " is one of ", std::to_string(shard.shard.count), " shards but ", firstName,
+                   " one of ", std::to_string(first.shard.count)});
+  }
+  if (a.build != b.build) return differ("build", a.build, b.build) + " (merge shards of one build)";
+  if (a.timeSteps != b.timeSteps) return differ("time steps", ListText(a.timeSteps), ListText(b.timeSteps));
+  if (a.iterations != b.iterations) {
+    return differ("iterations", ListText(a.iterations), ListText(b.iterations));
+  }
+  if (shard.results.backends != first.results.backends) {
+    return differ("backends", ListText(shard.results.backends), ListText(first.results.backends));
+  }
+  if (shard.results.deterministic != first.results.deterministic) {
+    return differ("--deterministic", shard.results.deterministic ? "on" : "off",
+                  first.results.deterministic ? "on" : "off");
+  }
+  for (const std::string& scenario : a.scenarios) {
+    if (std::find(b.scenarios.begin(), b.scenarios.end(), scenario) == b.scenarios.end()) {
+      return Concat({name, " ran scenario ", Quote(scenario), ", which ", firstName, " did not"});
+    }
+  }
+  for (const std::string& scenario : b.scenarios) {
+    if (std::find(a.scenarios.begin(), a.scenarios.end(), scenario) == a.scenarios.end()) {
+      return Concat({firstName, " ran scenario ", Quote(scenario), ", which ", name, " did not"});
+    }
+  }
+  if (a.runsDigest != b.runsDigest || shard.runCount != first.runCount) {
+    return Concat(
+        {name, " and ", firstName, " ran the same scenario names with different contents (runs digest ",
+         a.runsDigest, " and ", b.runsDigest, ", ", std::to_string(shard.runCount), " and ",
+         std::to_string(first.runCount), " runs): the scenario files differ between their machines"});
+  }
+  return {};
+}
 
 Result<int> ParseInt(std::string_view text, std::string_view whole) {
   int value = 0;
@@ -331,9 +422,14 @@ std::vector<int> ShardRuns(int runCount, Shard shard) {
 std::string ShardToJson(const ShardFile& shard) {
   nlohmann::ordered_json out;
   out["format"] = kShardFormat;
-  out["version"] = 1;
+  out["version"] = kShardVersion;
   out["shard"] = shard.shard.index;
   out["count"] = shard.shard.count;
+  out["build"] = shard.identity.build;
+  out["timeSteps"] = shard.identity.timeSteps;
+  out["iterations"] = shard.identity.iterations;
+  out["scenarios"] = shard.identity.scenarios;
+  out["runsDigest"] = shard.identity.runsDigest;
   out["runCount"] = shard.runCount;
   out["runIndices"] = shard.runIndices;
   if (!shard.resultCounts.empty()) out["resultCounts"] = shard.resultCounts;
@@ -347,6 +443,12 @@ Result<ShardFile> ShardFromJson(std::string_view text) {
   if (in.value("format", std::string()) != kShardFormat) {
     return Error{Concat({"shard file: \"format\" is not \"", kShardFormat, "\""})};
   }
+  if (in.value("version", 0) != kShardVersion) {
+    return Error{
+        Concat({"shard file: version ", in.contains("version") ? in["version"].dump() : "(none)",
+                ", expected ", std::to_string(kShardVersion),
+                " (re-run the shard with this build: older files carry no build or scenario identity)"})};
+  }
   for (const char* key : {"shard", "count", "runCount"}) {
     if (!in.contains(key) || !in[key].is_number_integer()) {
       return Error{Concat({"shard file: missing integer \"", key, "\""})};
@@ -356,6 +458,33 @@ Result<ShardFile> ShardFromJson(std::string_view text) {
     return Error{"shard file: missing \"runIndices\" or \"results\""};
   }
   ShardFile shard;
+  if (!in.contains("build") || !in["build"].is_string() || !in.contains("runsDigest") ||
+      !in["runsDigest"].is_string()) {
+    return Error{"shard file: missing string \"build\" or \"runsDigest\""};
+  }
+  shard.identity.build = in["build"].get<std::string>();
+  shard.identity.runsDigest = in["runsDigest"].get<std::string>();
+  if (!ReadArray(in, "timeSteps", shard.identity.timeSteps) ||
+      !ReadArray(in, "iterations", shard.identity.iterations) ||
+      !ReadArray(in, "scenarios", shard.identity.scenarios)) {
+    return Error{
+        "shard file: \"timeSteps\", \"iterations\" and \"scenarios\" must be arrays of numbers, "
+        "integers and strings"};
+  }
+  // Bounded before anything is sized by them: a partition has at most
+  // kMaxRuns runs and shards (a forged count must not make the merge
+  // allocate gigabytes).
+  const auto inRange = [&](const char* key, long long low, long long high) {
+    const long long value = in[key].get<long long>();
+    return value >= low && value <= high;
+  };
+  const auto maxRuns = static_cast<long long>(kMaxRuns);
+  if (!inRange("runCount", 0, maxRuns) || !inRange("count", 1, maxRuns) ||
+      !inRange("shard", 0, in["count"].get<long long>() - 1)) {
+    return Error{Concat({"shard file: need 0 <= shard < count and count, runCount <= ",
+                         std::to_string(kMaxRuns), "; got shard ", in["shard"].dump(), ", count ",
+                         in["count"].dump(), ", runCount ", in["runCount"].dump()})};
+  }
   shard.shard = {in["shard"].get<int>(), in["count"].get<int>()};
   shard.runCount = in["runCount"].get<int>();
   for (const auto& index : in["runIndices"]) {
@@ -386,12 +515,10 @@ Result<ResultsFile> MergeShards(const std::vector<ShardFile>& shards) {
   for (const ShardFile& shard : shards) {
     const std::string name =
         Concat({"shard ", std::to_string(shard.shard.index), "/", std::to_string(shard.shard.count)});
-    if (shard.shard.count != first.shard.count || shard.runCount != first.runCount ||
-        shard.results.backends != first.results.backends ||
-        shard.results.deterministic != first.results.deterministic) {
-      return Error{Concat({"merge: ", name,
-                           " is not from the same partition (shard count, run count, backends or "
-                           "deterministic mode differ)"})};
+    const std::string firstName =
+        Concat({"shard ", std::to_string(first.shard.index), "/", std::to_string(first.shard.count)});
+    if (const std::string mismatch = PartitionMismatch(shard, name, first, firstName); !mismatch.empty()) {
+      return Error{TidyMessage(Concat({"merge: ", mismatch}))};
     }
     if (shard.shard.index < 0 || shard.shard.index >= shard.shard.count) {
       return Error{Concat({"merge: ", name, ": index out of range"})};

@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <utility>
 
@@ -370,6 +371,17 @@ std::string OdeBackend::UnsafeState() const {
     if (Vec3(p[0], p[1], p[2]).cwiseAbs().maxCoeff() > harness::kMaxLength) {
       return "body \"" + body->name + "\" is beyond " + SettingNumber(harness::kMaxLength) +
              " m from the origin; not stepped (ODE's collision arithmetic overflows there)";
+    }
+    // dHashSpace (tuned) numbers its cells with ints: a coordinate past
+    // INT_MAX cells of its finest level aborts on an internal assertion
+    // (collision_space.cpp, "aabbBound < dMaxIntExact"; found by the soak
+    // suite: a box at 1e6 m/s). Half that reach leaves room for the AABB.
+    const double hashReach =
+        0.5 * static_cast<double>(std::numeric_limits<int>::max()) * std::ldexp(1.0, kOdeHashMinLevel);
+    if (dSpaceGetClass(m_space) == dHashSpaceClass &&
+        Vec3(p[0], p[1], p[2]).cwiseAbs().maxCoeff() > hashReach) {
+      return "body \"" + body->name + "\" is beyond " + SettingNumber(hashReach) +
+             " m from the origin; not stepped (dHashSpace numbers its cells with ints and aborts there)";
     }
   }
   return {};

@@ -62,20 +62,24 @@ struct WorldSpec {
   bool gyroscopic = true;
   /// Talus's broad-phase structure (see BroadPhaseChoice). Default Auto.
   BroadPhaseChoice broadPhase = BroadPhaseChoice::Auto;
+  bool operator==(const WorldSpec&) const = default;
 };
 
 /// A box centred on the body origin.
 struct BoxShape {
   Vec3 halfExtents = Vec3::Ones();  ///< metres, each > 0
+  bool operator==(const BoxShape&) const = default;
 };
 /// A sphere centred on the body origin.
 struct SphereShape {
   double radius = 1.0;  ///< metres, > 0
+  bool operator==(const SphereShape&) const = default;
 };
 /// The convex hull of points given in the body frame. The body origin is
 /// the frame the points are written in, not necessarily the centre of mass.
 struct HullShape {
   std::vector<Vec3> points;  ///< metres, at least 4, spanning a volume
+  bool operator==(const HullShape&) const = default;
 };
 using ShapeSpec = std::variant<BoxShape, SphereShape, HullShape>;
 
@@ -107,6 +111,7 @@ enum class Quantity { Position, Orientation, Velocity, Energy, Momentum, Contact
 struct Tolerance {
   double absolute = 0.0;  ///< in the truth's unit
   double relative = 0.0;  ///< fraction
+  bool operator==(const Tolerance&) const = default;
 };
 
 /// Free fall of `body`'s centre of mass along -gravity from height y0
@@ -116,6 +121,7 @@ struct FreeFallTruth {
   /// Seconds: only samples up to this time are judged (the flight before a
   /// landing); infinity = the whole run.
   double until = std::numeric_limits<double>::infinity();
+  bool operator==(const FreeFallTruth&) const = default;
 };
 /// A body launched at v0 (m/s) on a floor with friction mu stops after
 /// v0^2 / (2 mu g) metres and v0 / (mu g) seconds, on the straight line
@@ -124,6 +130,7 @@ struct SlidingStopTruth {
   double v0 = 1.0, mu = 0.5, g = 9.81;
   Vec3 direction = Vec3::UnitX();  ///< unit, world frame, perpendicular to gravity
   double maxLateral = 0.01;        ///< metres: largest allowed distance from the launch line, >= 0
+  bool operator==(const SlidingStopTruth&) const = default;
 };
 /// The centre of mass comes to rest at `height` (metres along the up axis);
 /// over the second half of the run its peak-to-peak motion stays below
@@ -131,12 +138,14 @@ struct SlidingStopTruth {
 struct RestHeightTruth {
   double height = 0.0;
   double maxJitter = 1e-3;
+  bool operator==(const RestHeightTruth&) const = default;
 };
 /// A body dropped with its lowest point h metres above the floor, with
 /// restitution e, reaches e^(2k) h at its k-th apex (k = 1..count).
 struct BounceHeightsTruth {
   double h = 1.0, e = 0.5;
   int count = 1;
+  bool operator==(const BounceHeightsTruth&) const = default;
 };
 /// Boxes stacked in layers (bottom first) rest with their centres of mass
 /// at floor + (layer + 1/2) layerHeight and move less than maxDrift over
@@ -146,6 +155,7 @@ struct StackRestTruth {
   double floor = 0.0;                    ///< metres, top of the floor along the up axis
   double layerHeight = 1.0;              ///< metres, > 0
   double maxDrift = 0.01;                ///< metres, >= 0
+  bool operator==(const StackRestTruth&) const = default;
 };
 /// A hull body comes to rest on the face with outward body-frame normal
 /// `faceNormal`, a stable face (its centroid projects inside it), with its
@@ -159,11 +169,13 @@ struct HullRestTruth {
   double floor = 0.0;                ///< metres, top of the floor along the up axis
   double height = 0.0;               ///< metres, from the file
   double maxFaceAngle = 0.05;        ///< radians: face normal vs down at the end, in [0, pi]
+  bool operator==(const HullRestTruth&) const = default;
 };
 /// A block released at rest on an incline of `angle` radians slides
 /// InclineDistance(angle, mu, g, t) metres (0 when tan(angle) <= mu).
 struct InclineSlideTruth {
   double angle = 0.0, mu = 0.5, g = 9.81;
+  bool operator==(const InclineSlideTruth&) const = default;
 };
 /// A box of `width` x `height` (metres, along the slope and its normal)
 /// released on an incline stays, slides or tips as InclineBoxOutcome says;
@@ -175,6 +187,7 @@ struct InclineSlideTruth {
 struct InclineTipTruth {
   double angle = 0.0, mu = 0.5, width = 1.0, height = 1.0;
   double tiltThreshold = 0.5;  ///< radians, in (0, pi]
+  bool operator==(const InclineTipTruth&) const = default;
 };
 /// Torque-free rotation (no gravity, no contact) of a body with principal
 /// moments `inertia` (kg m^2, about its body axes) spinning at `omega`
@@ -183,12 +196,14 @@ struct InclineTipTruth {
 struct TorqueFreeTruth {
   Vec3 inertia = Vec3::Ones();
   Vec3 omega = Vec3::Zero();
+  bool operator==(const TorqueFreeTruth&) const = default;
 };
 /// The same body spun mainly about its intermediate axis turns over every
 /// IntermediateAxisFlipInterval(inertia, omega) seconds (torque_free_motion.h).
 struct FlipPeriodTruth {
   Vec3 inertia = Vec3::Ones();
   Vec3 omega = Vec3::Zero();
+  bool operator==(const FlipPeriodTruth&) const = default;
 };
 /// Free flight on all three axes: the centre of mass follows
 /// x0 + v0 t + g t^2 / 2 (g the world's gravity vector); the metric is the
@@ -197,13 +212,16 @@ struct FlipPeriodTruth {
 struct ProjectileTruth {
   Vec3 x0 = Vec3::Zero();  ///< metres, centre of mass at t = 0
   Vec3 v0 = Vec3::Zero();  ///< m/s
+  bool operator==(const ProjectileTruth&) const = default;
 };
 /// Total mechanical energy (translational and rotational kinetic energy plus
 /// the potential -m g.x) of `Truth::body`, or of every dynamic body when
 /// the truth names none, is conserved: the metric is the largest
 /// |E(t) - E(0)| / E0, with E0 the kinetic energy at the start (the total
 /// energy with the potential measured from the start positions).
-struct EnergyDriftTruth {};
+struct EnergyDriftTruth {
+  bool operator==(const EnergyDriftTruth&) const = default;
+};
 /// Which angular momentum drift a truth measures.
 enum class MomentumMetric {
   Vector,     ///< max |L(t) - L(0)| / |L(0)|: direction and magnitude
@@ -213,13 +231,17 @@ enum class MomentumMetric {
 /// L = I_world w) is conserved; the metric is its relative drift.
 struct AngularMomentumDriftTruth {
   MomentumMetric metric = MomentumMetric::Vector;
+  bool operator==(const AngularMomentumDriftTruth&) const = default;
 };
 /// A free body's rotational kinetic energy w.I_world w / 2 is conserved:
 /// the metric is the largest |E(t) - E(0)| / E(0).
-struct RotationalEnergyDriftTruth {};
+struct RotationalEnergyDriftTruth {
+  bool operator==(const RotationalEnergyDriftTruth&) const = default;
+};
 /// No closed form: the truth is the same engine at timeStep / divisor.
 struct ConvergedReferenceTruth {
   int timeStepDivisor = 16;
+  bool operator==(const ConvergedReferenceTruth&) const = default;
 };
 using TruthKind = std::variant<FreeFallTruth, SlidingStopTruth, RestHeightTruth, BounceHeightsTruth,
                                ConvergedReferenceTruth, StackRestTruth, HullRestTruth, InclineSlideTruth,
@@ -240,6 +262,7 @@ struct PublishedFigure {
 struct UngatedBackend {
   std::string backend;  ///< registry name, e.g. "talus-writeup"
   std::string reason;   ///< why it fails, with the measured figure
+  bool operator==(const UngatedBackend&) const = default;
 };
 
 struct Truth {
