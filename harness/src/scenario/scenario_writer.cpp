@@ -34,7 +34,7 @@ const char* QuantityName(Quantity quantity) {
   return "position";
 }
 
-ordered_json WorldJson(const WorldSettings& world) {
+ordered_json WorldJson(const WorldSpec& world) {
   ordered_json out;
   out["gravity"] = Vec(world.gravity);
   out["timeStep"] = world.timeStep;
@@ -47,10 +47,11 @@ ordered_json WorldJson(const WorldSettings& world) {
   out["frictionCombine"] = CombineRuleName(world.frictionCombine);
   out["restitutionCombine"] = CombineRuleName(world.restitutionCombine);
   out["gyroscopic"] = world.gyroscopic;
+  out["broadPhase"] = BroadPhaseChoiceName(world.broadPhase);
   return out;
 }
 
-ordered_json ShapeJson(const Shape& shape) {
+ordered_json ShapeJson(const ShapeSpec& shape) {
   if (const auto* box = std::get_if<BoxShape>(&shape)) {
     return {{"kind", "box"}, {"halfExtents", Vec(box->halfExtents)}};
   }
