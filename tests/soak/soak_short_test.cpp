@@ -4,8 +4,8 @@
 // coincident boxes for 30 steps. The same verdict as the full suite.
 #include <gtest/gtest.h>
 
-#include "talus/reference/all_backends.h"
 #include "soak_cases.h"
+#include "talus/reference/all_backends.h"
 
 namespace talus::harness::soak {
 namespace {

@@ -8,8 +8,8 @@
 #include <iostream>
 #include <thread>
 
-#include "talus/reference/all_backends.h"
 #include "soak_cases.h"
+#include "talus/reference/all_backends.h"
 
 namespace talus::harness::soak {
 namespace {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "talus/harness/analytic/truths.h"
 #include "talus/harness/run/run_metrics.h"
@@ -73,18 +74,41 @@ TEST(TruthCheck, FreeFallOnTheSymplecticSequencePassesAtEveryStride) {
   }
 }
 
-TEST(TruthCheck, FreeFallFollowingTheParabolaFailsTheIntegratorExactCheck) {
-  // The parabola is g h t / 2 = 8 cm away from the integrator after 1 s:
-  // a backend with a different integrator is caught, at its worst sample.
+TEST(TruthCheck, FreeFallAcceptsEachIntegratorsClosedFormAndNothingBetween) {
+  // The parabola (a scheme exact for constant gravity) and explicit Euler's
+  // sequence pass as the symplectic sequence does; a run between two forms
+  // (half of g h t / 2 = 4 cm off each after 1 s) fails, at its worst sample.
+  const double h = 1.0 / 60.0;
+  const ScenarioRun run = MakeRun(h, 60);
+  const Truth truth{FreeFallTruth{10.0, 2.0, 9.81}, 1, Tolerance{1e-9, 0.0}};
+  const auto parabola = [&](int n) { return FreeFallHeight(10.0, 2.0, 9.81, n * h); };
+  const auto explicitEuler = [&](int n) { return FreeFallHeightExplicitEuler(10.0, 2.0, 9.81, h, n); };
+  for (const auto& form : {std::function<double(int)>(parabola), std::function<double(int)>(explicitEuler)}) {
+    const auto metrics = EvaluateTruth(run, truth, MakeTrajectory(h, 60, 1, form));
+    ASSERT_EQ(metrics.size(), 1u);
+    EXPECT_TRUE(metrics[0].pass) << metrics[0].error;
+  }
+  const auto between = [&](int n) {
+    return 0.5 *
+           (FreeFallHeight(10.0, 2.0, 9.81, n * h) + FreeFallHeightSymplecticEuler(10.0, 2.0, 9.81, h, n));
+  };
+  const auto metrics = EvaluateTruth(run, truth, MakeTrajectory(h, 60, 1, between));
+  ASSERT_EQ(metrics.size(), 1u);
+  EXPECT_FALSE(metrics[0].pass);
+  EXPECT_NEAR(std::abs(metrics[0].error), 9.81 * h * 1.0 / 4.0, 1e-9);
+}
+
+TEST(TruthCheck, FreeFallUnderWrongGravityFailsEveryForm) {
+  // 1% too much gravity: 4.9 cm below the symplectic sequence after 1 s, and
+  // further from the other two forms.
   const double h = 1.0 / 60.0;
   const ScenarioRun run = MakeRun(h, 60);
   const Truth truth{FreeFallTruth{10.0, 2.0, 9.81}, 1, Tolerance{1e-3, 0.0}};
-  const Trajectory trajectory =
-      MakeTrajectory(h, 60, 1, [&](int n) { return FreeFallHeight(10.0, 2.0, 9.81, n * h); });
-  const auto metrics = EvaluateTruth(run, truth, trajectory);
+  const auto metrics = EvaluateTruth(run, truth, MakeTrajectory(h, 60, 1, [&](int n) {
+                                       return FreeFallHeightSymplecticEuler(10.0, 2.0, 9.81 * 1.01, h, n);
+                                     }));
   ASSERT_EQ(metrics.size(), 1u);
   EXPECT_FALSE(metrics[0].pass);
-  EXPECT_NEAR(metrics[0].error, 9.81 * h * 1.0 / 2.0, 1e-9);
 }
 
 TEST(TruthCheck, UpAxisFollowsGravity) {

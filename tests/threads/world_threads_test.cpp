@@ -109,12 +109,26 @@ void AppendBits(std::vector<std::uint64_t>& bits, const double* values, int n) {
 }
 
 void AppendStats(std::vector<std::uint64_t>& bits, const StepStatistics& s) {
-  for (const std::int64_t count :
-       {s.bodies, s.awakeBodies, s.sleepingBodies, s.spherePairs, s.sleepingPairsSkipped, s.manifolds,
-        s.manifoldsReused, s.reusedContactPoints, s.persistentPoints, s.contactPoints, s.warmStartedPoints,
-        s.islands, s.velocitySweeps, s.solverColours, s.overflowPairs, s.narrowPhase.pairsTested,
-        s.narrowPhase.satTests, s.narrowPhase.satCacheHits, s.narrowPhase.edgeAxesTested,
-        s.narrowPhase.manifoldPoints}) {
+  for (const std::int64_t count : {s.bodies,
+                                   s.awakeBodies,
+                                   s.sleepingBodies,
+                                   s.spherePairs,
+                                   s.sleepingPairsSkipped,
+                                   s.manifolds,
+                                   s.manifoldsReused,
+                                   s.reusedContactPoints,
+                                   s.persistentPoints,
+                                   s.contactPoints,
+                                   s.warmStartedPoints,
+                                   s.islands,
+                                   s.velocitySweeps,
+                                   s.solverColours,
+                                   s.overflowPairs,
+                                   s.narrowPhase.pairsTested,
+                                   s.narrowPhase.satTests,
+                                   s.narrowPhase.satCacheHits,
+                                   s.narrowPhase.edgeAxesTested,
+                                   s.narrowPhase.manifoldPoints}) {
     bits.push_back(static_cast<std::uint64_t>(count));
   }
 }

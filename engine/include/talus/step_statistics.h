@@ -47,11 +47,11 @@ struct StepStatistics {
   std::int64_t warmStartedPoints = 0;     ///< points that found last step's impulses by feature id
   std::int64_t islands = 0;               ///< islands of awake dynamic bodies
   std::int64_t velocitySweeps = 0;        ///< Gauss-Seidel velocity sweeps run (see maxVelocityIterations)
-  std::int64_t solverColours = 0;         ///< colours of the coloured solver (ContactSolverKind::ColouredWide)
-  std::int64_t overflowPairs = 0;         ///< pairs it solved one by one after the colours
-  std::int64_t positionSweeps = 0;        ///< position sweeps run (split impulses or non-linear Gauss-Seidel)
-  BroadPhaseStats broadPhase = {};        ///< the broad phase's own counters
-  NarrowPhaseStats narrowPhase = {};      ///< the narrow phase's own counters
+  std::int64_t solverColours = 0;     ///< colours of the coloured solver (ContactSolverKind::ColouredWide)
+  std::int64_t overflowPairs = 0;     ///< pairs it solved one by one after the colours
+  std::int64_t positionSweeps = 0;    ///< position sweeps run (split impulses or non-linear Gauss-Seidel)
+  BroadPhaseStats broadPhase = {};    ///< the broad phase's own counters
+  NarrowPhaseStats narrowPhase = {};  ///< the narrow phase's own counters
 };
 
 }  // namespace talus

@@ -67,12 +67,12 @@ struct PairOutcome {
     Tested,  ///< the narrow phase ran; `cache` is its new SAT cache
   };
   Kind kind = Kind::Tested;
-  bool touching = false;         ///< Reused or Tested: `contact` is this step's contact
-  bool wakeA = false;            ///< touching, and body a sleeps while b disturbs it
-  bool wakeB = false;            ///< the same for body b
-  std::int32_t oldContact = -1;  ///< index of last step's contact of the pair, or -1
-  std::int32_t oldCache = -1;    ///< index of last step's SAT cache of the pair, or -1
-  NarrowPhaseStats stats;        ///< Tested: the narrow phase's counts for this pair
+  bool touching = false;              ///< Reused or Tested: `contact` is this step's contact
+  bool wakeA = false;                 ///< touching, and body a sleeps while b disturbs it
+  bool wakeB = false;                 ///< the same for body b
+  std::int32_t oldContact = -1;       ///< index of last step's contact of the pair, or -1
+  std::int32_t oldCache = -1;         ///< index of last step's SAT cache of the pair, or -1
+  NarrowPhaseStats stats;             ///< Tested: the narrow phase's counts for this pair
   std::int32_t persistentPoints = 0;  ///< Tested: last step's points merged back (manifold_persistence.h)
   Contact contact;
   PairSatCache cache;

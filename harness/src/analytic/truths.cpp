@@ -16,6 +16,12 @@ double FreeFallHeightSymplecticEuler(double y0, double v0, double g, double h, i
   return y0 + v0 * t - 0.5 * g * t * t - 0.5 * g * h * t;
 }
 
+double FreeFallHeightExplicitEuler(double y0, double v0, double g, double h, int n) {
+  assert(h > 0.0 && n >= 0);
+  const double t = h * n;
+  return y0 + v0 * t - 0.5 * g * t * t + 0.5 * g * h * t;
+}
+
 double SlidingStopDistance(double v0, double mu, double g) {
   assert(mu > 0.0 && g > 0.0);
   return v0 * v0 / (2.0 * mu * g);

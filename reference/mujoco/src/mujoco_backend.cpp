@@ -364,8 +364,7 @@ void RegisterMujocoBackends(harness::BackendRegistry& registry) {
   registry.Register("mujoco-tuned",
                     "MuJoCo 2.2.2 (double): tuned (elliptic cones, impratio 10, tolerance 1e-10, noslip 10, "
                     "multiccd, RK4 without contact)",
-                    mujoco,
-                    [](const Run& run) { return MujocoBackend::Create(run, MujocoTunedProfile()); });
+                    mujoco, [](const Run& run) { return MujocoBackend::Create(run, MujocoTunedProfile()); });
 }
 
 }  // namespace talus::reference

@@ -402,8 +402,9 @@ void RegisterTalusBackends(harness::BackendRegistry& registry, TalusBackendOptio
   registry.Register("talus-coloured",
                     "Talus (double): engine defaults with the coloured wide solver (four pairs per SIMD "
                     "bundle, colours splittable across threads) instead of the scalar pair order",
-                    independent,
-                    [options](const Run& run) { return TalusBackend::Create(run, Variant::Coloured, options); });
+                    independent, [options](const Run& run) {
+                      return TalusBackend::Create(run, Variant::Coloured, options);
+                    });
 }
 
 }  // namespace talus::reference

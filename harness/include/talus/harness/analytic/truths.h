@@ -17,6 +17,12 @@ double FreeFallHeight(double y0, double v0, double g, double t);
 /// the integrator lags the parabola by g h t / 2.
 double FreeFallHeightSymplecticEuler(double y0, double v0, double g, double h, int n);
 
+/// The same after n explicit (forward) Euler steps (x += h v; v += h a):
+/// y_n = y0 + v0 t - g t^2/2 + g h t/2, ahead of the parabola by g h t / 2.
+/// The parabola itself is what any scheme exact for a constant force gives
+/// (velocity Verlet, RK4, Talus's ExactConstantAcceleration).
+double FreeFallHeightExplicitEuler(double y0, double v0, double g, double h, int n);
+
 /// Distance (m) a body sliding at v0 (m/s) covers before friction mu (> 0)
 /// under gravity g stops it: v0^2 / (2 mu g).
 double SlidingStopDistance(double v0, double mu, double g);
