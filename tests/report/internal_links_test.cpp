@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "talus/harness/scenes/bench_run.h"
 #include "talus/harness/report/report.h"
-#include "talus/harness/run/results_file.h"
 #include "talus/harness/report/sat_check_results.h"
+#include "talus/harness/run/results_file.h"
+#include "talus/harness/scenes/bench_run.h"
 #include "talus/harness/stress/stress.h"
 
 namespace talus::harness {

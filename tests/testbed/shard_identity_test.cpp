@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "talus/harness/support/build_id.h"
 #include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/support/build_id.h"
 #include "talus/harness/sweep/sweep.h"
 
 namespace talus::harness {

@@ -6,8 +6,8 @@
 #include <string_view>
 #include <unordered_set>
 
-#include "talus/harness/support/build_id.h"
 #include "talus/harness/scenario/scenario_writer.h"
+#include "talus/harness/support/build_id.h"
 #include "talus/harness/sweep/sweep.h"
 
 namespace talus::harness {
