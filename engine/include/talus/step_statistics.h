@@ -11,16 +11,19 @@
 
 namespace talus {
 
-/// Wall-clock seconds spent in each stage of one step.
+/// Wall-clock seconds spent in each stage of one step, one field per stage
+/// of World::Step (world_step.cpp), named as the stage function is.
 struct StageTimes {
-  double integrateVelocities = 0.0;  ///< forces, gravity, gyroscopic term
-  double collide = 0.0;              ///< broad phase and narrow phase
-  double prepareContacts = 0.0;      ///< warm-start matching and constraint rows
-  double solveVelocities = 0.0;      ///< sequential impulses
-  double solvePositions = 0.0;       ///< split-impulse pseudo-velocities
-  double integratePositions = 0.0;   ///< positions and orientations
-  double sleep = 0.0;                ///< islands and sleep timers
-  double total = 0.0;                ///< the whole step
+  double integrateVelocities = 0.0;      ///< forces, gravity, gyroscopic term
+  double collide = 0.0;                  ///< UpdateBroadPhase and FindContacts: broad and narrow phase
+  double prepareContacts = 0.0;          ///< warm-start matching and constraint rows
+  double solveVelocities = 0.0;          ///< sequential impulses
+  double solveSplitImpulses = 0.0;       ///< split-impulse pseudo-velocities (0 unless selected)
+  double scatterAndStoreImpulses = 0.0;  ///< velocities back to the bodies, impulses into the contacts
+  double integratePositions = 0.0;       ///< positions and orientations
+  double correctPositions = 0.0;         ///< non-linear Gauss-Seidel position sweeps (0 unless selected)
+  double sleep = 0.0;                    ///< islands and sleep timers
+  double total = 0.0;                    ///< the whole step
 };
 
 /// Every count is a std::int64_t, here and in BroadPhaseStats and

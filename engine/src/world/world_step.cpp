@@ -1,17 +1,24 @@
 // World::Step: THE step. It reads top to bottom as the pipeline of section 3
-// of the original write-up, each stage a function of its own:
+// of the original write-up, each stage a function of its own and timed under
+// its own name in StepStatistics::seconds (StageTimes):
 //
-//   0. UpdateBroadPhase     bounding spheres in (the only stage that may
-//                           refuse, so it runs before anything changes)
-//   1. IntegrateVelocities  gravity, forces, torques (+ implicit gyroscopic term)
-//   2. FindContacts         candidate pairs, manifolds, persistent contacts
-//   3. PrepareContacts      warm-start matching, constraint rows
-//   4. SolveVelocities      sequential impulses (+ split-impulse positions)
-//   5. IntegratePositions   x += h v, q = exp(h w / 2) q (or the schemes of
-//                           WorldSettings::rotation and ::translation)
-//   6. UpdateSleep          islands at rest fall asleep
+//   0. UpdateBroadPhase         bounding spheres in (the only stage that may
+//                               refuse, so it runs before anything changes)
+//   1. IntegrateVelocities      gravity, forces, torques (+ implicit gyroscopic term)
+//   2. FindContacts             sorted pairs; per pair kept, rebuilt (manifold
+//                               reuse) or collided (SAT, manifold, persistent
+//                               points); one persistent contact per touching pair
+//   3. PrepareContacts          warm-start matching, constraint rows (colours)
+//   4. SolveVelocities          warm start, sequential-impulse sweeps
+//   5. SolveSplitImpulses       split-impulse pseudo-velocities (when selected)
+//   6. ScatterAndStoreImpulses  solved velocities back to the bodies, each
+//                               row's impulse into its contact (next warm start)
+//   7. IntegratePositions       x += h v, q = exp(h w / 2) q (or the schemes of
+//                               WorldSettings::rotation and ::translation)
+//   8. CorrectPositions         non-linear Gauss-Seidel (when selected)
+//   9. UpdateSleep              islands at rest fall asleep
 //
-// Each stage is timed into StepStatistics. Nothing in here decides physics;
+// Nothing in here decides physics;
 // the stages live in engine/src/dynamics and engine/src/collision.
 //
 // With WorldSettings::threads > 1 the integration runs per body, and the
@@ -86,15 +93,19 @@ void SolveVelocities(WorldData& d, StepStatistics& stats) {
       d.solver.SolveVelocities(s.velocityIterations, s.maxVelocityIterations, s.velocityTolerance);
 }
 
+// Split impulses: pseudo-velocities that push overlapping pairs apart
+// without adding kinetic energy (when that correction is selected).
+void SolveSplitImpulses(WorldData& d, StepStatistics& stats) {
+  if (d.settings.positionCorrection != PositionCorrection::SplitImpulses) return;
+  d.solver.SolveSplitImpulses(d.settings.positionIterations);
+  stats.positionSweeps = d.settings.positionIterations;
+}
+
 // The solver works on its own gathered copy of the velocities; they go back
-// to the bodies here, before the position update reads them.
-void SolvePositions(WorldData& d, StepStatistics& stats) {
-  const bool split = d.settings.positionCorrection == PositionCorrection::SplitImpulses;
-  if (split) {
-    d.solver.SolveSplitImpulses(d.settings.positionIterations);
-    stats.positionSweeps = d.settings.positionIterations;
-  }
-  d.solver.Scatter(d.sims, split);
+// to the bodies here, before the position update reads them, and each row's
+// accumulated impulse goes into its contact for the next step's warm start.
+void ScatterAndStoreImpulses(WorldData& d) {
+  d.solver.Scatter(d.sims, d.settings.positionCorrection == PositionCorrection::SplitImpulses);
   d.solver.StoreImpulses(d.contacts);
 }
 
@@ -165,19 +176,25 @@ Result<StepStatistics> World::Step(double dt) {
   SolveVelocities(d, stats);
   stats.seconds.solveVelocities = clock.Lap();
 
-  SolvePositions(d, stats);
-  stats.seconds.solvePositions = clock.Lap();
+  SolveSplitImpulses(d, stats);
+  stats.seconds.solveSplitImpulses = clock.Lap();
+
+  ScatterAndStoreImpulses(d);
+  stats.seconds.scatterAndStoreImpulses = clock.Lap();
 
   IntegratePositionsOnThreads(d, dt);
-  CorrectPositions(d, stats);
   stats.seconds.integratePositions = clock.Lap();
+
+  CorrectPositions(d, stats);
+  stats.seconds.correctPositions = clock.Lap();
 
   UpdateSleep(d, dt, stats);
   stats.seconds.sleep = clock.Lap();
 
   const StageTimes& t = stats.seconds;
   stats.seconds.total = t.integrateVelocities + t.collide + t.prepareContacts + t.solveVelocities +
-                        t.solvePositions + t.integratePositions + t.sleep;
+                        t.solveSplitImpulses + t.scatterAndStoreImpulses + t.integratePositions +
+                        t.correctPositions + t.sleep;
   return stats;
 }
 
