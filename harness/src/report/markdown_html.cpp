@@ -13,29 +13,6 @@
 namespace talus::harness {
 namespace {
 
-std::string Escape(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 // Markdown links to an anchor of the page, [text](#anchor), become
 // <a href="#anchor">text</a>; other brackets stay as they are. The text
 // may hold brackets itself (run ids do): it ends at the first "](#".
@@ -59,7 +36,7 @@ std::string Links(const std::string& text) {
 // Markdown inline code `x` becomes <code>x</code> (after escaping), and
 // links to anchors become links.
 std::string Inline(std::string_view text) {
-  std::string escaped = Links(Escape(text));
+  std::string escaped = Links(EscapeHtml(text));
   std::string out;
   bool open = false;
   for (char c : escaped) {

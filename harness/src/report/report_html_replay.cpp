@@ -105,22 +105,6 @@ constexpr const char* kStyle =
 .replay-stage{position:relative}.replay-label{position:absolute;background:#fffc;padding:0 .4em;font-size:90%}
 #report-status{font-size:80%;color:#777;white-space:pre-wrap})";
 
-std::string EscapeHtml(std::string_view text) {
-  std::string out;
-  for (const char c : text) {
-    if (c == '&') {
-      out += "&amp;";
-    } else if (c == '<') {
-      out += "&lt;";
-    } else if (c == '>') {
-      out += "&gt;";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
 // One row per replayed run and backend that reports its structure: the
 // figure-2 scene's answer to "which structure met these pairs".
 std::string StructureTable(const ResultsFile& file) {

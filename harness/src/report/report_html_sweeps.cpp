@@ -14,22 +14,6 @@
 namespace talus::harness {
 namespace {
 
-std::string Escape(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '&') {
-      out += "&amp;";
-    } else if (c == '<') {
-      out += "&lt;";
-    } else if (c == '>') {
-      out += "&gt;";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
 // Headings, pipe tables and paragraphs; enough for the texts of sweep.h
 // and stress.h.
 std::string TablesToHtml(const std::string& markdown) {
@@ -65,17 +49,17 @@ std::string TablesToHtml(const std::string& markdown) {
             << (text == "FAIL" ? " class=\"fail\""
                 : text == "ok" ? " class=\"ok\""
                                : "")
-            << ">" << Escape(text) << "</" << tag << ">";
+            << ">" << EscapeHtml(text) << "</" << tag << ">";
         cell.clear();
       }
       out << "</tr>\n";
       header = false;
     } else if (line.rfind("### ", 0) == 0) {
-      out << "<h3>" << Escape(line.substr(4)) << "</h3>\n";
+      out << "<h3>" << EscapeHtml(line.substr(4)) << "</h3>\n";
     } else if (line.rfind("## ", 0) == 0) {
-      out << "<h2>" << Escape(line.substr(3)) << "</h2>\n";
+      out << "<h2>" << EscapeHtml(line.substr(3)) << "</h2>\n";
     } else if (!line.empty()) {
-      out << "<p>" << Escape(line) << "</p>\n";
+      out << "<p>" << EscapeHtml(line) << "</p>\n";
     }
   }
   if (inTable) out << "</table>\n";

@@ -26,6 +26,10 @@ inline std::string Concat(std::initializer_list<std::string_view> pieces) {
 /// end its <script> element early (text_util.cpp).
 std::string ScriptSafe(std::string text);
 
+/// `text` as HTML character data or attribute value: & < > " escaped
+/// (text_util.cpp). The one escaper of the report's pages.
+std::string EscapeHtml(std::string_view text);
+
 /// `message` made safe and short to print: control bytes (NUL included)
 /// written \xNN, an invisible byte-order mark written \uFEFF, and every
 /// quoted span ("..." or ": '...'") longer than `maxQuoted` bytes cut to its
