@@ -92,12 +92,14 @@ bool ReportRunErrors(const ResultsFile& file) {
 }  // namespace
 
 std::vector<std::string> DefaultBackends() {
-  // Each peer in its defaults and tuned configuration; Bullet's single-
-  // precision build where this build has it (not under the sanitizers).
-  std::vector<std::string> names = {"talus",          "talus-writeup", "talus-split",         "bullet",
-                                    "bullet-tuned",   "bullet-f32",    "bullet-f32-tuned",    "ode-step",
-                                    "ode-step-tuned", "ode-quickstep", "ode-quickstep-tuned", "mujoco",
-                                    "mujoco-tuned"};
+  // Every Talus variant (the coloured solver is shown so the testbed can
+  // weigh it against the reference order); each peer in its defaults and
+  // tuned configuration; Bullet's single-precision build where this build
+  // has it (not under the sanitizers).
+  std::vector<std::string> names = {"talus",    "talus-writeup",  "talus-split",   "talus-coloured",
+                                    "bullet",   "bullet-tuned",   "bullet-f32",    "bullet-f32-tuned",
+                                    "ode-step", "ode-step-tuned", "ode-quickstep", "ode-quickstep-tuned",
+                                    "mujoco",   "mujoco-tuned"};
   std::erase_if(names, [](const std::string& name) { return !reference::AllBackends().Has(name); });
   return names;
 }
