@@ -456,6 +456,15 @@ SatResult RunSat(const PosedHull& a, const PosedHull& b, SatMode mode, double ma
     EvaluateSatAxis(a, b, {SatAxisType::EdgePair, edge.edgeA, edge.edgeB}, &normal);
     axis = {SatAxisType::EdgePair, SupportingEdge(a, -normal, edge.edgeA),
             SupportingEdge(b, normal, edge.edgeB)};
+    // The supporting edges can be parallel, which spans no axis: a sliver's
+    // edge of 2e-11 m (its direction round-off) picked at the support vertex
+    // next to a box edge it happens to parallel gave a separation of -inf in
+    // both modes. The pair the search measured spans the axis by
+    // construction (it skips parallel pairs), so it is kept then.
+    Vec3 unused = Vec3::Zero();
+    if (!std::isfinite(EvaluateSatAxis(a, b, axis, &unused))) {
+      axis = {SatAxisType::EdgePair, edge.edgeA, edge.edgeB};
+    }
   }
   return finish(axis, false);
 }
