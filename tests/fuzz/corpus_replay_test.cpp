@@ -78,22 +78,6 @@ TEST(FuzzCorpus, EveryShardMergeInputKeepsTheInvariants) {
   for (const auto& file : files) EXPECT_EQ(CheckShardMerge(Bytes(file)), "") << file.filename();
 }
 
-// Open finding of the pair_sat fuzz target (docs/fuzzing.md, "Findings"):
-// a sliver hull (four of its six vertices within 1e-13 m of the origin)
-// overlapping a 5 cm box by 5 cm. The Gauss-map pruned SAT declares the
-// pair separated by an edge pair while its own separation, re-measured,
-// is -0.05 m (CollideShapes: touching false, separation -0.05); the Full
-// SAT finds the contact. The fix belongs to engine/src/collision/sat.cpp;
-// enable this test with it.
-TEST(FuzzOpenFindings, DISABLED_PairSatSliverHullOverlapIsNotReportedSeparated) {
-  for (const auto& entry : fs::directory_iterator(fs::path(TALUS_TEST_DATA_DIR) / "fuzz_open" / "pair_sat")) {
-    const std::string bytes = Bytes(entry.path());
-    const auto input = DecodePairInput(
-        std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()));
-    EXPECT_EQ(CheckPairSat(input), "") << entry.path().filename();
-  }
-}
-
 // Every shipped scenario file saves and reloads to the same model (the
 // fuzz target's invariant on the files users actually write), and the
 // check notices a changed field.

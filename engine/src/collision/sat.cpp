@@ -63,7 +63,6 @@ struct SatFrame {
   const Hull* hullB = nullptr;
   Mat3 rotation = Mat3::Identity();  // B's local axes in A's frame
   Vec3 translation = Vec3::Zero();   // B's origin in A's frame
-  Vec3 centroidA = Vec3::Zero();     // mean of A's vertices: inside A
   std::vector<Vec3> verticesB;       // B's vertices, A's frame
   std::vector<Plane> planesB;        // B's face planes, A's frame
   std::vector<Arc> arcsA;
@@ -93,9 +92,6 @@ struct SatFrame {
   }
 
   void FillArcs() {
-    centroidA = Vec3::Zero();
-    for (const Vec3& v : hullA->Vertices()) centroidA += v;
-    centroidA /= static_cast<double>(hullA->VertexCount());
     const auto facesA = hullA->Faces();
     ArcsOf(
         *hullA, [&](int f) { return facesA[static_cast<std::size_t>(f)].plane.normal; }, &arcsA);
@@ -204,7 +200,7 @@ EdgeQuery QueryAllEdges(const PosedHull& a, const PosedHull& b, double margin, N
 
 // GaussMapPruned mode (Gregorius, GDC 2013): only edge pairs that build a
 // face of the Minkowski difference A - B are measured, and those need no
-// projection. For such a pair the axis n = eA x eB (oriented away from A's
+// projection. For such a pair the axis n = eA x eB (oriented onto A's arc, away from A's
 // interior) lies on both edges' arcs, so edge eA is A's support along n and
 // edge eB is B's support along -n: the gap is n . (pB - pA) for any vertex
 // pA of eA and pB of eB. The Gauss map test reads B's face normals against
@@ -230,7 +226,24 @@ EdgeQuery QueryMinkowskiEdges(SatFrame& frame, double margin, NarrowPhaseStats* 
     const Vec3& pointA = verticesA[static_cast<std::size_t>(halfEdgesA[2 * ea].origin)];
     const Vec3 dirA = verticesA[static_cast<std::size_t>(halfEdgesA[2 * ea + 1].origin)] - pointA;
     const double dirASquared = dirA.squaredNorm();
-    const Vec3 outwardA = pointA - frame.centroidA;
+    // The side of A's arc that n must lie on. n = eA x eB is perpendicular
+    // to eA, so it lies in the plane of A's two face normals; its sign is
+    // chosen against the arc's bisector, built in that plane from the
+    // normals and the edge's outward direction (faces are counter-clockwise
+    // seen from outside, left face on half-edge 2e, so dirA x normalLeftA
+    // points out of the left face across the edge). Of n and -n exactly one
+    // lies on the arc (angle phi in [0, theta], theta <= pi), and it has
+    // cos(phi - theta / 2) >= cos(theta / 2) >= 0 with the bisector while
+    // the other has the negative. Orienting by "away from A's centroid"
+    // instead fails for a sliver hull: with n near a big face's normal,
+    // n . (pointA - centroid) is about half the sliver's thickness, and a
+    // hull whose faces are fitted within its tolerance can give it the wrong
+    // sign, turning an overlap into an equal separation (fuzz finding
+    // sliver_hull_gauss_map_separated_while_overlapping).
+    const Vec3 outwardLeftA = dirA.cross(normalLeftA).normalized();
+    const double arcAngle =
+        std::atan2(std::max(normalRightA.dot(outwardLeftA), 0.0), normalRightA.dot(normalLeftA));
+    const Vec3 bisectorA = std::cos(0.5 * arcAngle) * normalLeftA + std::sin(0.5 * arcAngle) * outwardLeftA;
     for (std::size_t eb = 0; eb < edgeCountB; ++eb) {
       const SatFrame::Arc& arcB = frame.arcsB[eb];
       // IsMinkowskiFace(a, b, b x a, c, d, d x c) with (a, b) A's normals and
@@ -255,8 +268,24 @@ EdgeQuery QueryMinkowskiEdges(SatFrame& frame, double margin, NarrowPhaseStats* 
       // Parallel edges: no reliable axis, and the face axes cover it.
       if (crossSquared <= kParallelEdgeSine * kParallelEdgeSine * dirASquared * dirB.squaredNorm()) continue;
       Vec3 n = cross / std::sqrt(crossSquared);
-      if (n.dot(outwardA) < 0.0) n = -n;
-      const double separation = n.dot(pointB - pointA);
+      if (n.dot(bisectorA) < 0.0) n = -n;
+      double separation = n.dot(pointB - pointA);
+      if (separation > margin) {
+        // A separated verdict is confirmed by projecting both hulls on n
+        // (hill climbing from the edges' own vertices, so a true Minkowski
+        // face costs two short climbs, once per query). The shortcut above
+        // assumes the edges are the supports; on an edge far shorter than
+        // the hull (a sliver's vertex cluster, 1e-13 m in the fuzz finding)
+        // the direction eA is round-off next to its faces' normals, the
+        // Gauss map test can pass a pair whose axis is off A's arc, and eA is
+        // then not A's support along n (by 2.7e-4 m in the finding). The
+        // projected gap is never larger than the shortcut's and equals it,
+        // up to round-off, on a true Minkowski face.
+        const int supportA = ClimbSupport(*frame.hullA, verticesA, n, halfEdgesA[2 * ea].origin);
+        const int supportB = ClimbSupport(*frame.hullB, verticesB, -n, halfEdgesB[2 * eb].origin);
+        separation = std::min(separation, n.dot(verticesB[static_cast<std::size_t>(supportB)] -
+                                                verticesA[static_cast<std::size_t>(supportA)]));
+      }
       if (separation > best.separation) {
         best = {.edgeA = static_cast<int>(ea), .edgeB = static_cast<int>(eb), .separation = separation};
         if (separation > margin) {
@@ -427,6 +456,15 @@ SatResult RunSat(const PosedHull& a, const PosedHull& b, SatMode mode, double ma
     EvaluateSatAxis(a, b, {SatAxisType::EdgePair, edge.edgeA, edge.edgeB}, &normal);
     axis = {SatAxisType::EdgePair, SupportingEdge(a, -normal, edge.edgeA),
             SupportingEdge(b, normal, edge.edgeB)};
+    // The supporting edges can be parallel, which spans no axis: a sliver's
+    // edge of 2e-11 m (its direction round-off) picked at the support vertex
+    // next to a box edge it happens to parallel gave a separation of -inf in
+    // both modes. The pair the search measured spans the axis by
+    // construction (it skips parallel pairs), so it is kept then.
+    Vec3 unused = Vec3::Zero();
+    if (!std::isfinite(EvaluateSatAxis(a, b, axis, &unused))) {
+      axis = {SatAxisType::EdgePair, edge.edgeA, edge.edgeB};
+    }
   }
   return finish(axis, false);
 }
