@@ -14,7 +14,8 @@
 #
 #   make fuzz      build the libFuzzer targets (clang, ASan + UBSan) in
 #                  build-fuzz/ and run each for FUZZ_SECONDS (default 600)
-#   make fuzz-ci   the same, 30 s per target (the bounded CI form)
+#   make fuzz-ci   the same, 30 s per target from a fixed seed (the bounded
+#                  form .ci/run adds after `make test`)
 #   make soak      the full soak suite (tests/soak: 1e5 steps of every
 #                  scenario and the abuse cases on every backend; minutes)
 #
@@ -45,6 +46,9 @@ SCENES_ENGINES ?= talus,bullet-f32,bullet-f32-tuned,ode-quickstep-tuned,ode-step
 
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 600
+# libFuzzer's -seed: 0 draws one per run; fuzz-ci fixes it so a CI finding
+# replays with the same command.
+FUZZ_SEED ?= 0
 FUZZ_TARGETS ?= hull_builder point_file pair_sat scenario_loader shard_merge
 
 .PHONY: deps configure build test test-release test-asan test-tsan test-tsan-full format format-check clean report report-full \
@@ -148,12 +152,12 @@ fuzz: fuzz-build
 	  mkdir -p $(FUZZ_DIR)/corpus/$$t $(FUZZ_DIR)/artifacts; \
 	  echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
 	  $(FUZZ_DIR)/fuzz/talus_fuzz_$$t $(FUZZ_DIR)/corpus/$$t tests/data/fuzz/$$t \
-	    -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+	    -max_total_time=$(FUZZ_SECONDS) -seed=$(FUZZ_SEED) -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
 	    -artifact_prefix=$(FUZZ_DIR)/artifacts/$$t- || exit 1; \
 	done
 
 fuzz-ci:
-	@$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=30
+	@$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=30 FUZZ_SEED=1
 
 # One page with every analysis: the default run and SAT validation as in
 # `report`, plus the sweep (run time against error), the stress envelope and

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "support/synthetic_results.h"
 #include "talus/harness/report/report.h"
 #include "talus/harness/report/sat_check_results.h"
 #include "talus/harness/run/results_file.h"
@@ -24,30 +25,9 @@
 namespace talus::harness {
 namespace {
 
-MetricResult Truth(const std::string& name, double error) {
-  MetricResult m;
-  m.name = name;
-  m.unit = "m";
-  m.truth = 1.0;
-  m.measured = 1.0 + error;
-  m.error = error;
-  m.tolerance.absolute = 0.01;
-  m.pass = std::abs(error) <= 0.01;
-  m.checked = true;
-  return m;
-}
-
+// One run with one truth "a" of the given error.
 RunResult Run(const std::string& runId, const std::string& backend, double error) {
-  RunResult r;
-  r.scenario = runId.substr(0, runId.find('['));
-  r.file = "x.json";
-  r.runId = runId;
-  r.backend = backend;
-  r.timeStep = 0.01;
-  r.steps = 100;
-  r.wallSecondsPerStepMedian = 1e-5;
-  r.metrics = {Truth("a", error)};
-  return r;
+  return testing_support::SyntheticRun(runId, backend, {testing_support::SyntheticTruth("a", error)}, 1e-5);
 }
 
 // Runs whose ids collide as anchors ("box[v0=1.5]", "box[v0=15]"), one named

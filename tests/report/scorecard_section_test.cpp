@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "report/report_scorecard.h"
+#include "support/synthetic_results.h"
 #include "talus/harness/report/report.h"
 #include "talus/harness/run/results_file.h"
 
@@ -16,17 +17,7 @@ namespace {
 
 // A truth with a 0.01 m tolerance; `gate` false makes it ungated (still judged).
 MetricResult Metric(const std::string& name, double error, bool gate = true) {
-  MetricResult m;
-  m.name = name;
-  m.unit = "m";
-  m.truth = 1.0;
-  m.measured = 1.0 + error;
-  m.error = error;
-  m.tolerance.absolute = 0.01;
-  m.pass = std::abs(error) <= 0.01;
-  m.checked = gate;
-  if (!gate) m.ungated = "under study";
-  return m;
+  return testing_support::SyntheticTruth(name, error, gate);
 }
 
 // A measured figure with no tolerance: never judged.
@@ -39,17 +30,7 @@ MetricResult Figure(const std::string& name) {
 
 RunResult MakeRun(const std::string& runId, const std::string& backend, std::vector<MetricResult> metrics,
                   const std::string& error = "") {
-  RunResult r;
-  r.scenario = runId.substr(0, runId.find('['));
-  r.file = "x.json";
-  r.runId = runId;
-  r.backend = backend;
-  r.timeStep = 0.01;
-  r.steps = 100;
-  r.wallSecondsPerStepMedian = 0.01;
-  r.metrics = std::move(metrics);
-  r.error = error;
-  return r;
+  return testing_support::SyntheticRun(runId, backend, std::move(metrics), 0.01, error);
 }
 
 // Two runs, three configurations:
