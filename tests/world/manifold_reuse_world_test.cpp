@@ -6,11 +6,14 @@
 // narrow phase for every pair, and the option is validated.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "talus/contact_query.h"
 #include "talus/world.h"
 
 namespace talus {
@@ -200,6 +203,56 @@ TEST(ManifoldReuse, ReuseOffAndUnreachableReuseGiveBitIdenticalStates) {
     ASSERT_EQ(state(off), state(unreachable)) << "step " << steps;
   }
   EXPECT_GE(steps, 90) << "a pair was reused before the stack came to rest";
+}
+
+// The anchors are kept beside the contacts, one entry per contact at the
+// same index (world/world_data.h), so destroying a body must remove its
+// contacts' anchors with them. Four boxes of different sizes rest apart on
+// the floor; the first is destroyed, which moves every other pair's contact
+// down one slot. Had the anchors not moved with them, each remaining pair
+// would read a neighbour's, recorded at a pose metres away, and run the
+// narrow phase instead of reusing (or, had the bound passed, rebuild points
+// under the neighbour). So: all three pairs still reuse, and every rebuilt
+// point lies under its own box.
+TEST(ManifoldReuse, DestroyingABodyKeepsTheOtherPairsAnchorsWithTheirContacts) {
+  World world = World::Create(Settings(kDefaultReuse)).Value();
+  ASSERT_TRUE(
+      world.CreateBody({.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({50, 0.5, 50})}));
+  std::vector<BodyId> boxes;
+  std::vector<Vec3> halves;
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 half(0.3 + 0.1 * i, 0.25 + 0.05 * i, 0.4 - 0.05 * i);
+    halves.push_back(half);
+    boxes.push_back(world
+                        .CreateBody({.type = BodyType::Dynamic,
+                                     .position = {3.0 * i, half.y(), 0.5 * i},
+                                     .shape = Box(half),
+                                     .density = 1000.0})
+                        .Value());
+  }
+  // One second: every box has settled and reuses its manifold.
+  for (int n = 0; n < 60; ++n) MustStep(world);
+  ASSERT_EQ(MustStep(world).manifoldsReused, 4);
+
+  ASSERT_TRUE(world.DestroyBody(boxes[0]));
+  const StepStatistics stats = MustStep(world);
+  EXPECT_EQ(stats.manifolds, 3);
+  EXPECT_EQ(stats.manifoldsReused, 3);
+  const std::vector<ContactPointInfo> points = world.GetContactPoints();
+  EXPECT_EQ(points.size(), 12u);  // four corners a box
+  for (const ContactPointInfo& point : points) {
+    const auto box =
+        static_cast<std::size_t>(std::find(boxes.begin(), boxes.end(), point.bodyB) - boxes.begin());
+    ASSERT_LT(box, boxes.size());
+    ASSERT_NE(box, 0u);
+    const Vec3 centre = world.GetBodyState(boxes[box]).Value().position;
+    // A corner of the box's footprint on the floor: the box rests within
+    // the Baumgarte slop (a few mm) of the floor and has not turned, so the
+    // corner is within 1 mm of the footprint's corner in x and z.
+    EXPECT_NEAR(std::abs(point.position.x() - centre.x()), halves[box].x(), 1e-3) << box;
+    EXPECT_NEAR(std::abs(point.position.z() - centre.z()), halves[box].z(), 1e-3) << box;
+    EXPECT_NEAR(point.position.y(), 0.0, 5e-3) << box;
+  }
 }
 
 TEST(ManifoldReuse, BadReuseDistanceIsRefusedWithTheFieldNamed) {

@@ -41,15 +41,22 @@ double MixRestitution(double a, double b, RestitutionCombine rule) {
 
 Contact MakeContact(int bodyA, int bodyB, const ContactManifold& manifold, double friction,
                     double restitution) {
-  assert(manifold.pointCount >= 0 && manifold.pointCount <= kMaxManifoldPoints);
   Contact contact;
-  contact.bodyA = bodyA;
-  contact.bodyB = bodyB;
-  contact.manifold = manifold;
-  contact.friction = friction;
-  contact.restitution = restitution;
-  for (Vec3& impulse : contact.frictionImpulse) impulse.setZero();
+  ResetContact(bodyA, bodyB, manifold, friction, restitution, &contact);
   return contact;
+}
+
+void ResetContact(int bodyA, int bodyB, const ContactManifold& manifold, double friction, double restitution,
+                  Contact* contact) {
+  assert(manifold.pointCount >= 0 && manifold.pointCount <= kMaxManifoldPoints);
+  contact->bodyA = bodyA;
+  contact->bodyB = bodyB;
+  contact->manifold = manifold;
+  contact->normalImpulse.fill(0.0);
+  for (Vec3& impulse : contact->frictionImpulse) impulse.setZero();
+  contact->friction = friction;
+  contact->restitution = restitution;
+  contact->persisted = false;
 }
 
 // Both lists are sorted by pair key, so one forward walk pairs them up. Per

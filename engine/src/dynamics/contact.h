@@ -1,14 +1,23 @@
-// Contact: the persistent record of one touching pair between steps.
+// Contact: the record of one touching pair that the step keeps between
+// steps.
 //
 // A Contact holds the pair's manifold from the narrow phase plus what must
-// survive to the next step: the accumulated normal and friction impulses of
-// each point, keyed by the point's feature id, and the pair's mixed
-// friction and restitution, and the manifold written down in the two
-// bodies' frames (collision/manifold_reuse.h) so that a pair that barely
-// moved can skip the narrow phase. The solver's per-step rows (dynamics/
-// contact_solver.h) are rebuilt from Contacts every step; only impulses flow
-// back. Keeping the two apart keeps the rows small and dense and lets the
-// warm start survive any change of manifold point order.
+// survive to the next step for warm starting: the accumulated normal and
+// friction impulses of each point, keyed by the point's feature id, and the
+// pair's mixed friction and restitution. The solver's per-step rows
+// (dynamics/contact_solver.h) are rebuilt from Contacts every step; only
+// impulses flow back. Keeping the two apart keeps the rows small and dense
+// and lets the warm start survive any change of manifold point order.
+//
+// The manifold written down in the two bodies' frames (ManifoldAnchors,
+// collision/manifold_reuse.h), which only the narrow phase of the same pair
+// reads one step later (manifold reuse and persistent points), is not part
+// of the Contact: the world keeps it in a list of its own beside the
+// contacts (world/world_data.h). Every stage that walks the contacts
+// (warm-start matching, row preparation, storing impulses, islands, the
+// contact query) then reads 648 bytes a pair instead of 1,136, and a pair
+// whose manifold is rebuilt from its anchors copies them once, from last
+// step's list to this step's, instead of through the narrow phase's output.
 //
 // Invariants: bodyA < bodyB is not required, but a pair appears once; the
 // normal points from B towards A; contact lists handed between steps are
@@ -47,14 +56,25 @@ struct Contact {
   /// Whether the pair was touching last step too (set by CarryImpulses); a
   /// new pair has no impulses to start from and gets extra solver sweeps.
   bool persisted = false;
-  /// The manifold in the bodies' frames, as the narrow phase last computed
-  /// it, for reuse while the pair barely moves (NarrowPhaseSettings::
-  /// reuseDistance); not recorded when reuse is off.
-  ManifoldAnchors anchors{};
 
   /// The order key of the pair (the free PairKey of its two bodies).
   [[nodiscard]] std::uint64_t PairKey() const { return talus::PairKey(bodyA, bodyB); }
 };
+
+// Byte budgets (x86-64, 8-byte doubles), checked so that a field added to a
+// record every stage copies or walks is a decision, not an accident:
+//   Contact         648 = 8 (body indices) + 360 (manifold: 40 header and
+//                   8 points of 40) + 64 (normal impulses) + 192 (friction
+//                   impulse vectors) + 16 (friction, restitution) + 8
+//                   (persisted, padded)
+//   ManifoldAnchors 480 = 8 (recorded, count) + 8 (padding: Eigen's
+//                   quaternion is 16-byte aligned) + 32 (rotation) + 48
+//                   (position, normal) + 384 (two anchors of 8 points)
+// The anchors were part of the Contact until the split (1,136 bytes with
+// the padding in front of them).
+static_assert(sizeof(ContactManifold) <= 360, "ContactManifold grew past its 360-byte budget");
+static_assert(sizeof(Contact) <= 648, "Contact grew past its 648-byte budget");
+static_assert(sizeof(ManifoldAnchors) <= 480, "ManifoldAnchors grew past its 480-byte budget");
 
 /// The pair's friction from each body's coefficient (both >= 0).
 double MixFriction(double a, double b, FrictionCombine rule);
@@ -64,6 +84,10 @@ double MixRestitution(double a, double b, RestitutionCombine rule);
 /// A fresh contact for a manifold, impulses zero.
 Contact MakeContact(int bodyA, int bodyB, const ContactManifold& manifold, double friction,
                     double restitution);
+/// Makes `*contact` a fresh contact for a manifold, impulses zero, in place:
+/// the same record MakeContact returns, without a temporary copy.
+void ResetContact(int bodyA, int bodyB, const ContactManifold& manifold, double friction, double restitution,
+                  Contact* contact);
 
 /// How far (metres) a contact point may be from an old point of the same
 /// pair with a different feature id and still inherit its impulses. 1 cm:

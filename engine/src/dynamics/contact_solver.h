@@ -160,8 +160,6 @@ class ContactSolver {
   /// returned (max is exact in any order, so the cut does not matter).
   double ForEachColour(const std::function<double(int colour, int begin, int end)>& pass);
   void WarmStartPair(const PairRows& pair);
-  /// Records the velocity change (impulse / mass) of a row of a new pair.
-  void NoteChange(const PairRows& pair, double impulse, double mass);
 
   SolverBodies m_bodies;
   std::vector<PairRows> m_pairs;

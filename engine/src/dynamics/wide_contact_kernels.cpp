@@ -136,7 +136,7 @@ void Apply(BundleVelocities& v, Wide delta, const Vector& d, const Jacobian& j, 
 }
 
 // The velocity change |delta| / m of a row of a new pair with m > 0 (0
-// otherwise), as the scalar NoteChange computes it.
+// otherwise), as the scalar ChangeTracker computes it.
 Wide Change(Wide delta, Wide mass, lanes::Mask newPair) {
   const lanes::Mask tracked = newPair & !lanes::GreaterEqual(lanes::Zero(), mass);
   return lanes::Select(tracked, lanes::Abs(delta) / mass, lanes::Zero());

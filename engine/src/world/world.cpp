@@ -291,9 +291,20 @@ std::string StaleMessage(BodyId id) {
          "} does not name a live body (destroyed or never created)";
 }
 
-template <typename List>
-void EraseContactsOf(List& contacts, int index) {
-  std::erase_if(contacts, [index](const Contact& c) { return c.bodyA == index || c.bodyB == index; });
+// Removes the contacts of body `index` and their anchors (the entry at the
+// same index of `anchors`), keeping the rest in order and side by side.
+void EraseContactsOf(std::vector<Contact>& contacts, std::vector<ManifoldAnchors>& anchors, int index) {
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    if (contacts[i].bodyA == index || contacts[i].bodyB == index) continue;
+    if (kept != i) {
+      contacts[kept] = contacts[i];
+      anchors[kept] = anchors[i];
+    }
+    ++kept;
+  }
+  contacts.resize(kept);
+  anchors.resize(kept);
 }
 
 }  // namespace
@@ -307,8 +318,8 @@ Status World::DestroyBody(BodyId id) {
     if (c.bodyA == id.index) WakeBody(d, static_cast<std::size_t>(c.bodyB));
     if (c.bodyB == id.index) WakeBody(d, static_cast<std::size_t>(c.bodyA));
   }
-  EraseContactsOf(d.contacts, id.index);
-  EraseContactsOf(d.previousContacts, id.index);
+  EraseContactsOf(d.contacts, d.contactAnchors, id.index);
+  EraseContactsOf(d.previousContacts, d.previousContactAnchors, id.index);
   // The SAT caches of its pairs name its hull: a new body in the slot must
   // not inherit them.
   const auto involves = [index = id.index](const PairSatCache& c) {

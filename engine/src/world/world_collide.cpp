@@ -53,26 +53,28 @@ double RadiusAboutOrigin(const Shape& shape) {
 // on, neither shape is a sphere, the narrow phase recorded the manifold,
 // and neither body has moved relative to the other by reuseDistance or more
 // since then. Returns false (nothing written) otherwise.
-bool ReuseManifold(const WorldData& d, const Contact& before, std::size_t a, std::size_t b,
-                   const Transform& xfA, const Transform& xfB, ContactManifold* manifold) {
+bool ReuseManifold(const WorldData& d, const Contact& before, const ManifoldAnchors& anchors, std::size_t a,
+                   std::size_t b, const Transform& xfA, const Transform& xfB, ContactManifold* manifold) {
   const double reuseDistance = d.settings.narrowPhase.reuseDistance;
   const Shape& shapeA = *d.shapes[a];
   const Shape& shapeB = *d.shapes[b];
-  if (!(reuseDistance > 0.0) || !before.anchors.recorded || shapeA.Type() == ShapeType::Sphere ||
+  if (!(reuseDistance > 0.0) || !anchors.recorded || shapeA.Type() == ShapeType::Sphere ||
       shapeB.Type() == ShapeType::Sphere) {
     return false;
   }
   const double moved =
-      RelativeMotionBound(before.anchors, xfA, xfB, RadiusAboutOrigin(shapeA), RadiusAboutOrigin(shapeB));
+      RelativeMotionBound(anchors, xfA, xfB, RadiusAboutOrigin(shapeA), RadiusAboutOrigin(shapeB));
   if (!(moved < reuseDistance)) return false;
   *manifold = before.manifold;
-  RebuildManifold(before.anchors, xfA, xfB, manifold);
+  RebuildManifold(anchors, xfA, xfB, manifold);
   return true;
 }
 
 // One pair through the narrow phase: reads the world (bodies, shapes, last
-// step's contacts and caches) and writes only `out`, so pairs can run on any
-// thread in any order. `out.oldContact` and `out.oldCache` are already set.
+// step's contacts, anchors and caches) and writes only `out`, so pairs can
+// run on any thread in any order. `out.oldContact` and `out.oldCache` are
+// already set. The contact is built in place in `out.contact`; a Reused
+// pair's anchors stay in last step's list (the gather copies them once).
 void CollidePair(const WorldData& d, const BroadPhasePair& pair, PairOutcome& out) {
   const auto a = static_cast<std::size_t>(pair.a);
   const auto b = static_cast<std::size_t>(pair.b);
@@ -93,14 +95,12 @@ void CollidePair(const WorldData& d, const BroadPhasePair& pair, PairOutcome& ou
   const Transform xfB = BodyTransform(simB);
   const BodyRecord& ra = d.records[a];
   const BodyRecord& rb = d.records[b];
-  const auto setContact = [&](const ContactManifold& manifold, const ManifoldAnchors& anchors) {
+  const auto setContact = [&](const ContactManifold& manifold) {
     out.touching = true;
     out.wakeA = ShouldWake(simA, simB);
     out.wakeB = ShouldWake(simB, simA);
-    out.contact = MakeContact(pair.a, pair.b, manifold,
-                              MixFriction(ra.friction, rb.friction, d.settings.frictionCombine),
-                              MixRestitution(ra.restitution, rb.restitution, d.settings.restitutionCombine));
-    out.contact.anchors = anchors;
+    ResetContact(pair.a, pair.b, manifold, MixFriction(ra.friction, rb.friction, d.settings.frictionCombine),
+                 MixRestitution(ra.restitution, rb.restitution, d.settings.restitutionCombine), &out.contact);
   };
   ContactManifold manifold{};
 
@@ -108,10 +108,10 @@ void CollidePair(const WorldData& d, const BroadPhasePair& pair, PairOutcome& ou
   // manifold and keep the anchors (and the SAT cache) as they were, so the
   // reference pose stays the narrow phase's.
   if (out.oldContact >= 0) {
-    const Contact& before = d.previousContacts[static_cast<std::size_t>(out.oldContact)];
-    if (ReuseManifold(d, before, a, b, xfA, xfB, &manifold)) {
+    const auto old = static_cast<std::size_t>(out.oldContact);
+    if (ReuseManifold(d, d.previousContacts[old], d.previousContactAnchors[old], a, b, xfA, xfB, &manifold)) {
       out.kind = PairOutcome::Kind::Reused;
-      setContact(manifold, before.anchors);
+      setContact(manifold);
       return;
     }
   }
@@ -130,18 +130,19 @@ void CollidePair(const WorldData& d, const BroadPhasePair& pair, PairOutcome& ou
   // pairs remember points.
   const bool persists = narrow.persistence == ManifoldPersistence::Accumulate &&
                         d.shapes[a]->Type() != ShapeType::Sphere && d.shapes[b]->Type() != ShapeType::Sphere;
-  ManifoldAnchors anchors =
+  out.anchors =
       narrow.reuseDistance > 0.0 || persists ? RecordAnchors(manifold, xfA, xfB) : ManifoldAnchors{};
-  if (persists) SnapAnchorsToSurfaces(*d.shapes[a], xfA, *d.shapes[b], xfB, manifold, &anchors);
+  if (persists) SnapAnchorsToSurfaces(*d.shapes[a], xfA, *d.shapes[b], xfB, manifold, &out.anchors);
   if (persists && out.oldContact >= 0) {
-    const Contact& before = d.previousContacts[static_cast<std::size_t>(out.oldContact)];
+    const auto old = static_cast<std::size_t>(out.oldContact);
     const double breakDistance =
         PersistentBreakDistance(narrow.persistenceDistance, d.shapes[a]->LocalBoundingSphere().radius,
                                 d.shapes[b]->LocalBoundingSphere().radius);
-    out.persistentPoints = MergePersistentPoints(before.manifold, before.anchors, xfA, xfB, breakDistance,
-                                                 kPersistentFreshPoints, &manifold, &anchors);
+    out.persistentPoints =
+        MergePersistentPoints(d.previousContacts[old].manifold, d.previousContactAnchors[old], xfA, xfB,
+                              breakDistance, kPersistentFreshPoints, &manifold, &out.anchors);
   }
-  setContact(manifold, anchors);
+  setContact(manifold);
 }
 
 }  // namespace
@@ -177,6 +178,8 @@ Result<int> UpdateBroadPhase(WorldData& d) {
 void FindContacts(WorldData& d, StepStatistics& stats) {
   d.previousContacts.swap(d.contacts);
   d.contacts.clear();
+  d.previousContactAnchors.swap(d.contactAnchors);
+  d.contactAnchors.clear();
   d.previousSatCaches.swap(d.satCaches);
   d.satCaches.clear();
   d.broadPhase.FindPairs(d.pairs, stats.broadPhase);
@@ -219,8 +222,11 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
     switch (outcome.kind) {
       case PairOutcome::Kind::Kept:
         ++stats.sleepingPairsSkipped;
-        if (outcome.oldContact >= 0)
-          d.contacts.push_back(d.previousContacts[static_cast<std::size_t>(outcome.oldContact)]);
+        if (outcome.oldContact >= 0) {
+          const auto old = static_cast<std::size_t>(outcome.oldContact);
+          d.contacts.push_back(d.previousContacts[old]);
+          d.contactAnchors.push_back(d.previousContactAnchors[old]);
+        }
         if (hadCache) d.satCaches.push_back(d.previousSatCaches[oldCacheIndex]);
         continue;
       case PairOutcome::Kind::Reused:
@@ -240,6 +246,9 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
     if (outcome.wakeA) Wake(d, a);
     if (outcome.wakeB) Wake(d, b);
     d.contacts.push_back(outcome.contact);
+    d.contactAnchors.push_back(outcome.kind == PairOutcome::Kind::Reused
+                                   ? d.previousContactAnchors[static_cast<std::size_t>(outcome.oldContact)]
+                                   : outcome.anchors);
   }
   stats.manifolds = static_cast<std::int64_t>(d.contacts.size());
 }

@@ -16,8 +16,9 @@
 // and costs nothing. A polyhedron pair that barely moved relative to the
 // pose at which the narrow phase last computed its manifold (less than
 // NarrowPhaseSettings::reuseDistance) skips the narrow phase too: its
-// manifold is rebuilt from the anchors stored in its Contact
-// (collision/manifold_reuse.h), and its SAT cache is kept as it was.
+// manifold is rebuilt from the anchors kept beside its Contact
+// (WorldData::contactAnchors, collision/manifold_reuse.h), and its SAT cache
+// is kept as it was.
 //
 // Threads (WorldSettings::threads): the proxies are computed per body and
 // the narrow phase per pair on the world's JobPool. Each pair writes its own

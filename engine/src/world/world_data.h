@@ -19,7 +19,11 @@
 //
 // `contacts` holds this step's touching pairs sorted by pair key, with the
 // accumulated impulses the solver wrote back; the next step matches against
-// it for warm starting.
+// it for warm starting. `contactAnchors` runs beside it, one entry per
+// contact at the same index: the pair's manifold in the bodies' frames,
+// read only by the narrow phase of the same pair next step (manifold reuse,
+// persistent points), so the stages that walk the contacts do not drag it
+// along (dynamics/contact.h).
 #pragma once
 
 #include <cstdint>
@@ -28,6 +32,7 @@
 #include <vector>
 
 #include "collision/broad_phase.h"
+#include "collision/manifold_reuse.h"
 #include "collision/sat.h"
 
 #include "dynamics/body_sim.h"
@@ -75,6 +80,9 @@ struct PairOutcome {
   NarrowPhaseStats stats;             ///< Tested: the narrow phase's counts for this pair
   std::int32_t persistentPoints = 0;  ///< Tested: last step's points merged back (manifold_persistence.h)
   Contact contact;
+  /// Tested and touching: the new manifold's anchors (Reused keeps last
+  /// step's, copied straight from WorldData::previousContactAnchors).
+  ManifoldAnchors anchors;
   PairSatCache cache;
 };
 
@@ -95,6 +103,9 @@ struct WorldData {
 
   std::vector<Contact> contacts;          ///< this step's, sorted by pair key
   std::vector<Contact> previousContacts;  ///< last step's, for warm starting
+  /// Each contact's manifold in its bodies' frames, same index as `contacts`.
+  std::vector<ManifoldAnchors> contactAnchors;
+  std::vector<ManifoldAnchors> previousContactAnchors;  ///< same index as `previousContacts`
   ContactSolver solver;
   SleepManager sleepManager;
 
