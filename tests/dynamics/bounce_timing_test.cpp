@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "dynamics/bounce_timing.h"
@@ -279,6 +280,17 @@ TEST(TimedBounces, HeadOnBallsKeepMomentumAndReflectTheRelativeSpeed) {
           << "e " << e << " h " << h;
     }
   }
+}
+
+TEST(TimedBounces, AnUnknownBounceTimingIsRefusedByName) {
+  WorldSettings s;
+  s.bounceTiming = static_cast<BounceTiming>(7);
+  const auto world = World::Create(s);
+  ASSERT_FALSE(world);
+  EXPECT_NE(world.GetError().message.find("WorldSettings.bounceTiming = 7 is not a BounceTiming"),
+            std::string::npos)
+      << world.GetError().message;
+  EXPECT_EQ(ValidateSettings(BounceSettings()), "");
 }
 
 }  // namespace
