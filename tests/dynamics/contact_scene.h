@@ -98,11 +98,11 @@ class ContactScene {
     if (m_settings.warmStarting) m_solver.WarmStart();
     m_solver.SolveVelocities(m_settings.velocityIterations, m_settings.maxVelocityIterations,
                              m_settings.velocityTolerance);
-    const bool split = m_settings.positionCorrection == PositionCorrection::SplitImpulses;
-    if (split) m_solver.SolveSplitImpulses(m_settings.positionIterations);
-    m_solver.Scatter(m_bodies, split);
+    const bool pseudo = m_solver.UsesPseudoVelocities();
+    if (pseudo) m_solver.SolveSplitImpulses(m_settings.positionIterations);
+    m_solver.Scatter(m_bodies, pseudo);
     m_solver.StoreImpulses(m_contacts);
-    IntegratePositions(m_bodies, h, split, m_settings.rotation, m_settings.translation);
+    IntegratePositions(m_bodies, h, pseudo, m_settings.rotation, m_settings.translation);
     if (m_settings.positionCorrection == PositionCorrection::NonlinearGaussSeidel) {
       m_solver.SolveNonlinearPositions(m_bodies, m_settings.positionIterations, m_settings.baumgarte,
                                        m_settings.positionSlop);

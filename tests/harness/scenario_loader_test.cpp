@@ -5,6 +5,7 @@
 #include <string>
 
 #include "talus/harness/scenario/scenario_loader.h"
+#include "talus/harness/scenario/scenario_writer.h"
 
 namespace talus::harness {
 namespace {
@@ -146,6 +147,32 @@ TEST(ScenarioLoader, UnknownBroadPhaseIsRefusedWithItsPointerAndTheChoices) {
     EXPECT_NE(
         runs.GetError().message.find(
             R"(bp.json: /world/broadPhase: must be one of ["auto","uniform_grid","aabb_tree","brute_force"])"),
+        std::string::npos)
+        << runs.GetError().message;
+  }
+}
+
+TEST(ScenarioLoader, BounceTimingIsReadWrittenBackAndRefusedWhenUnknown) {
+  auto none = WithBroadPhase("");
+  ASSERT_TRUE(none) << none.GetError().message;
+  EXPECT_EQ(none.Value()[0].scenario.world.bounceTiming, BounceTimingChoice::Auto);
+  for (const BounceTimingChoice choice :
+       {BounceTimingChoice::Auto, BounceTimingChoice::TimeOfImpact, BounceTimingChoice::StepBoundary}) {
+    auto runs = WithBroadPhase(std::string(R"(, "bounceTiming": ")") + BounceTimingChoiceName(choice) + "\"");
+    ASSERT_TRUE(runs) << runs.GetError().message;
+    const Scenario& scenario = runs.Value()[0].scenario;
+    EXPECT_EQ(scenario.world.bounceTiming, choice) << BounceTimingChoiceName(choice);
+    // The writer's text reads back to the same choice.
+    auto again = ParseScenarioText(ScenarioToJson(scenario), "again.json");
+    ASSERT_TRUE(again) << again.GetError().message;
+    EXPECT_EQ(again.Value()[0].scenario.world.bounceTiming, choice) << BounceTimingChoiceName(choice);
+  }
+  for (const char* entry : {R"(, "bounceTiming": "toi")", R"(, "bounceTiming": true)"}) {
+    auto runs = WithBroadPhase(entry);
+    ASSERT_FALSE(runs) << entry;
+    EXPECT_NE(
+        runs.GetError().message.find(
+            R"(bp.json: /world/bounceTiming: must be one of ["auto","time_of_impact","step_boundary"])"),
         std::string::npos)
         << runs.GetError().message;
   }

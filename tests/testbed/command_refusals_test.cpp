@@ -44,13 +44,14 @@ TEST(TestbedCommand, ARunWhoseStepFailsIsReportedAndTheOthersFinish) {
   const Outcome outcome =
       Execute("run " + scenario + " -q --deterministic -b talus,bullet -j 1 -o " + out.string());
   EXPECT_EQ(outcome.code, 1);  // a run failed (it used to exit 0 with "error": "")
-  EXPECT_TRUE(Has(outcome.output, "gravity_to_bound with talus failed: step 142: talus: World::Step refused"))
+  // Step 143: talus falls exactly for constant gravity (step_failure_test.cpp).
+  EXPECT_TRUE(Has(outcome.output, "gravity_to_bound with talus failed: step 143: talus: World::Step refused"))
       << outcome.output;
   EXPECT_FALSE(Has(outcome.output, "with bullet failed")) << outcome.output;
   std::ifstream results(out / "results.json");
   std::ostringstream text;
   text << results.rdbuf();
-  EXPECT_TRUE(Has(text.str(), "\"error\": \"step 142: talus: World::Step refused"))
+  EXPECT_TRUE(Has(text.str(), "\"error\": \"step 143: talus: World::Step refused"))
       << text.str().substr(0, 2000);
   // Written whole through a temporary sibling, which is gone.
   for (const auto& entry : fs::directory_iterator(out)) EXPECT_EQ(entry.path().filename(), "results.json");

@@ -47,6 +47,7 @@ struct StepStatistics {
   std::int64_t frictionRows = 0;          ///< tangent rows solved (two per point with mu > 0)
   std::int64_t frictionRowsSkipped = 0;   ///< tangent rows not built because mu = 0
   std::int64_t restitutionSkipped = 0;    ///< points whose restitution work was skipped (e = 0)
+  std::int64_t timedBounces = 0;          ///< points bouncing at a time of impact inside the step
   std::int64_t warmStartedPoints = 0;     ///< points that found last step's impulses by feature id
   std::int64_t islands = 0;               ///< islands of awake dynamic bodies
   std::int64_t velocitySweeps = 0;        ///< Gauss-Seidel velocity sweeps run (see maxVelocityIterations)

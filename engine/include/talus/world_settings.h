@@ -99,6 +99,28 @@ enum class TranslationIntegrator {
   ExactConstantAcceleration,
 };
 
+/// When a bounce happens within a step (restitution e > 0, closing faster
+/// than WorldSettings::restitutionThreshold).
+enum class BounceTiming {
+  /// The write-up's: the impact is taken at the step's boundary. The
+  /// velocity row asks for -e times the closing speed after gravity, and the
+  /// body then moves by h times that. A 1 m drop at 60 Hz hits up to one
+  /// step early or late, so its apex errs by up to (1 + e^2) v h (11 cm for
+  /// e = 0.7).
+  StepBoundary,
+  /// The impact is timed inside the step (dynamics/bounce_timing.h): from
+  /// the point's gap, normal speed and normal acceleration at the step's
+  /// start, the time t* in [-h, h] where it reaches the surface and its
+  /// speed there. The velocity row asks for the normal speed the reflected
+  /// flight has at the step's end, and a position row (a pseudo velocity,
+  /// as split impulses) puts the point at that flight's end gap: the bounce
+  /// is the exact one under constant acceleration, wherever in the step it
+  /// falls. A point the last step carried through the surface (t* < 0) has
+  /// that overshoot undone. Penetrations deeper than one step of approach
+  /// (t* < -h) fall back to StepBoundary.
+  TimeOfImpact,
+};
+
 /// How the contact rows are visited in a velocity sweep.
 enum class ContactSolverKind {
   /// The write-up's Sequential Impulses: one pair after another in pair
@@ -175,6 +197,8 @@ struct WorldSettings {
   /// 0.5: resting bodies stop micro-bouncing under gravity (g h = 0.16 m/s
   /// at 60 Hz stays well under it).
   double restitutionThreshold = 0.5;
+  /// When bounces happen (see BounceTiming). Default TimeOfImpact.
+  BounceTiming bounceTiming = BounceTiming::TimeOfImpact;
   /// Carry accumulated impulses over from last step by feature id. Default
   /// on: stacks converge in a few iterations instead of hundreds.
   bool warmStarting = true;

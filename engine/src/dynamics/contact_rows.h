@@ -33,8 +33,12 @@ struct FrictionRow {
 
 /// Per point, read only by the position passes and the split impulses.
 struct PointCold {
-  double positionTarget = 0.0;       ///< m/s, split-impulse pseudo target
-  double pseudoImpulse = 0.0;        ///< N s, accumulated split impulse
+  double positionTarget = 0.0;  ///< m/s, split-impulse pseudo target
+  double pseudoImpulse = 0.0;   ///< N s, accumulated split impulse
+  /// The point bounces inside the step (BounceTiming::TimeOfImpact): its
+  /// pseudo row is an equality that puts it on the reflected flight's end
+  /// gap (the impulse may pull), and its impulses are not carried over.
+  bool timedBounce = false;
   Vec3 localAnchorA = Vec3::Zero();  ///< A's surface point, A's axes, from its centre of mass
   Vec3 localAnchorB = Vec3::Zero();  ///< B's surface point, B's axes, from its centre of mass
   Vec3 armA = Vec3::Zero();          ///< rA = p - cA, world, metres (the wide solver's input)

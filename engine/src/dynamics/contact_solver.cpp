@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dynamics/bounce_timing.h"
+
 namespace talus {
 namespace {
 
@@ -32,6 +34,12 @@ Vec3 AnyPerpendicular(const Vec3& n) {
     axis = Vec3::UnitZ();
   }
   return n.cross(axis).normalized();
+}
+
+// Linear velocity at the step's start: the integrator records it for the
+// bodies it accelerated (awake dynamic); every other body keeps its own.
+const Vec3& StartVelocity(const BodySim& body) {
+  return body.IsSolverDynamic() ? body.startLinearVelocity : body.linearVelocity;
 }
 
 // Velocity of A relative to B at the contact point (see header).
@@ -75,6 +83,8 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
   m_cold.clear();
   m_blockInverses.clear();
   m_newPairs = 0;
+  m_timedBounces = 0;
+  m_split = settings.positionCorrection == PositionCorrection::SplitImpulses;
   const double invH = 1.0 / h;
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const Contact& contact = contacts[c];
@@ -143,10 +153,32 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
       if (contact.restitution > 0.0) {
         const double vn = n.dot(RelativeVelocity(a.linearVelocity, a.angularVelocity, rA, b.linearVelocity,
                                                  b.angularVelocity, rB));
-        // Bounce when closing fast enough and the point touches by the end of
-        // the step (a speculative point that stays apart must not bounce).
-        if (vn < -settings.restitutionThreshold && cp.depth - vn * h > 0.0) {
-          row.target = std::max(row.target, -contact.restitution * vn);
+        TimedBounce bounce;
+        double acceleration = 0.0;
+        if (settings.bounceTiming == BounceTiming::TimeOfImpact) {
+          const double u0 = n.dot(RelativeVelocity(StartVelocity(a), a.angularVelocity, rA, StartVelocity(b),
+                                                   b.angularVelocity, rB));
+          acceleration = (vn - u0) * invH;
+          bounce =
+              TimeBounce(-cp.depth, u0, acceleration, h, contact.restitution, settings.restitutionThreshold);
+        }
+        if (bounce.hits) {
+          row.target = bounce.endSpeed;
+          cold.positionTarget = (bounce.endGap + cp.depth) * invH - bounce.endSpeed;
+          cold.timedBounce = true;
+          ++m_timedBounces;
+          ++stats.timedBounces;
+        } else if (settings.bounceTiming == BounceTiming::StepBoundary || bounce.tooDeep) {
+          // Bounce when closing fast enough and the point touches by the end
+          // of the step (a speculative point that stays apart must not bounce).
+          if (vn < -settings.restitutionThreshold && cp.depth - vn * h > 0.0) {
+            row.target = std::max(row.target, -contact.restitution * vn);
+          }
+        } else if (cp.depth < 0.0 && vn < -settings.restitutionThreshold &&
+                   settings.translation == TranslationIntegrator::ExactConstantAcceleration) {
+          // A fast approach that misses the surface this step: an untouched
+          // body closes the gap by h (vn - a h / 2), not h vn.
+          row.target = cp.depth * invH + 0.5 * acceleration * h;
         }
       } else {
         ++stats.restitutionSkipped;
@@ -232,11 +264,14 @@ void ContactSolver::SolveSplitImpulses(int iterations) {
       for (int i = 0; i < pair.pointCount; ++i) {
         const std::size_t p = static_cast<std::size_t>(pair.firstPoint + i);
         PointCold& cold = m_cold[p];
-        if (cold.positionTarget <= 0.0 && cold.pseudoImpulse == 0.0) continue;
+        if (!cold.timedBounce && cold.positionTarget <= 0.0 && cold.pseudoImpulse == 0.0) continue;
         const NormalRow& row = m_normals[p];
         const double vn = pair.normal.dot(a.v - b.v) + row.j.angularA.dot(a.w) - row.j.angularB.dot(b.w);
         const double previous = cold.pseudoImpulse;
-        cold.pseudoImpulse = std::max(previous - row.mass * (vn - cold.positionTarget), 0.0);
+        // A timed bounce's row is an equality (its end gap, above or below
+        // where h times the velocity would put it); the others only push.
+        const double next = previous - row.mass * (vn - cold.positionTarget);
+        cold.pseudoImpulse = cold.timedBounce ? next : std::max(next, 0.0);
         const double delta = cold.pseudoImpulse - previous;
         const Vec3 impulse = delta * pair.normal;
         a.v += pair.invMassA * impulse;
@@ -301,6 +336,13 @@ void ContactSolver::StoreImpulses(std::span<Contact> contacts) const {
     Contact& contact = contacts[static_cast<std::size_t>(pair.contact)];
     for (int i = 0; i < pair.pointCount; ++i) {
       const std::size_t pi = static_cast<std::size_t>(i);
+      // A timed bounce's impulse is the impact's, not a load the next step
+      // should start from: warm starting it would kick the rising body.
+      if (m_cold[static_cast<std::size_t>(pair.firstPoint + i)].timedBounce) {
+        contact.normalImpulse[pi] = 0.0;
+        contact.frictionImpulse[pi] = Vec3::Zero();
+        continue;
+      }
       contact.normalImpulse[pi] = m_normals[static_cast<std::size_t>(pair.firstPoint + i)].impulse;
       if (pair.hasFriction) {
         const std::size_t f = static_cast<std::size_t>(pair.firstFriction + 2 * i);

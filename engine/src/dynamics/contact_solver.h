@@ -17,7 +17,19 @@
 //   penetrating point; depth/h (< 0: the gap may close this step) for a
 //   point not yet touching; max'ed with -e n.dv0 (restitution) when the
 //   closing speed -n.dv0 exceeds the restitution threshold and the point
-//   touches by the end of the step (depth - h n.dv0 > 0).
+//   touches by the end of the step (depth - h n.dv0 > 0). That is
+//   BounceTiming::StepBoundary; with TimeOfImpact (dynamics/bounce_timing.h)
+//   a point that reaches the surface at t* in [-h, h] (from its gap, its
+//   normal speed at the step's start and the normal acceleration forces
+//   gave it, (n.dv0 - n.dv_start) / h) gets instead the reflected flight's
+//   end speed as target, and a pseudo-velocity row with target
+//   (g(h) + depth) / h - u(h), solved as an equality, moves it onto the
+//   reflected flight's end gap g(h). A speculative point that closes faster
+//   than the threshold but misses this step, on a body that moves exactly
+//   under constant acceleration (TranslationIntegrator::
+//   ExactConstantAcceleration), gets the target -gap/h + a h / 2 (the gap
+//   its untouched flight closes), so the approach is not braked a step
+//   early.
 //
 // Order. Each iteration sweeps all normal rows, then all friction rows.
 //
@@ -118,8 +130,17 @@ class ContactSolver {
   /// a new pair by more than `tolerance` (m/s), up to `maxIterations` sweeps
   /// in all. Returns the sweeps run.
   int SolveVelocities(int minIterations, int maxIterations, double tolerance);
-  /// Runs `iterations` sweeps of the split-impulse pseudo-velocity rows.
+  /// Runs `iterations` sweeps of the split-impulse pseudo-velocity rows
+  /// (and of the timed bounces' position rows).
   void SolveSplitImpulses(int iterations);
+  /// Points of the last Prepare that bounce inside the step.
+  [[nodiscard]] int TimedBounceCount() const { return m_timedBounces; }
+  /// Whether this step's positions take pseudo velocities: split impulses
+  /// were selected at the last Prepare, or some point bounces inside the
+  /// step (its position row needs them whatever the position correction).
+  /// Then SolveSplitImpulses runs, Scatter writes them and the position
+  /// update adds them.
+  [[nodiscard]] bool UsesPseudoVelocities() const { return m_split || m_timedBounces > 0; }
   /// Writes the solved velocities of the bodies contacts can move back to
   /// `bodies` (the array handed to Prepare), with `pseudo` the split-impulse
   /// pseudo velocities too. Bodies without rows are not touched.
@@ -169,8 +190,10 @@ class ContactSolver {
   std::vector<Eigen::Matrix4d> m_blockInverses;
   WideContactSolver m_wide;
   bool m_useWide = false;  ///< ColouredWide selected at the last Prepare
+  bool m_split = false;    ///< SplitImpulses selected at the last Prepare
   RangeRunner m_runner;
   int m_newPairs = 0;            ///< pairs that did not persist
+  int m_timedBounces = 0;        ///< points with a timed bounce (PointCold::timedBounce)
   double m_largestChange = 0.0;  ///< m/s, the largest row velocity change of this sweep
 };
 

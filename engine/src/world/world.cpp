@@ -129,6 +129,10 @@ std::string ValidateSettings(const WorldSettings& s) {
     return "WorldSettings.translation = " + std::to_string(static_cast<int>(s.translation)) +
            " is not a TranslationIntegrator";
   }
+  if (s.bounceTiming != BounceTiming::StepBoundary && s.bounceTiming != BounceTiming::TimeOfImpact) {
+    return "WorldSettings.bounceTiming = " + std::to_string(static_cast<int>(s.bounceTiming)) +
+           " is not a BounceTiming";
+  }
   if (s.broadPhase != BroadPhaseKind::UniformGrid && s.broadPhase != BroadPhaseKind::AabbTree &&
       s.broadPhase != BroadPhaseKind::BruteForce) {
     return "WorldSettings.broadPhase = " + std::to_string(static_cast<int>(s.broadPhase)) +

@@ -38,7 +38,12 @@ bool ShouldWake(const BodySim& sleeper, const BodySim& other) {
 }
 
 void Wake(WorldData& d, std::size_t sleeper) {
-  d.sims[sleeper].awake = true;
+  BodySim& body = d.sims[sleeper];
+  body.awake = true;
+  // It was not integrated this step: it starts it, and keeps, the velocity
+  // it has (the solver times bounces from the start velocity).
+  body.startLinearVelocity = body.linearVelocity;
+  body.freeLinearVelocity = body.linearVelocity;
   d.sleep[sleeper].restTime = 0.0;
 }
 

@@ -10,7 +10,8 @@
 //                               points); one persistent contact per touching pair
 //   3. PrepareContacts          warm-start matching, constraint rows (colours)
 //   4. SolveVelocities          warm start, sequential-impulse sweeps
-//   5. SolveSplitImpulses       split-impulse pseudo-velocities (when selected)
+//   5. SolveSplitImpulses       split-impulse pseudo-velocities (when selected),
+//                               timed bounces' position rows
 //   6. ScatterAndStoreImpulses  solved velocities back to the bodies, each
 //                               row's impulse into its contact (next warm start)
 //   7. IntegratePositions       x += h v, q = exp(h w / 2) q (or the schemes of
@@ -94,9 +95,10 @@ void SolveVelocities(WorldData& d, StepStatistics& stats) {
 }
 
 // Split impulses: pseudo-velocities that push overlapping pairs apart
-// without adding kinetic energy (when that correction is selected).
+// without adding kinetic energy (when that correction is selected), and put
+// timed bounces on their reflected flights.
 void SolveSplitImpulses(WorldData& d, StepStatistics& stats) {
-  if (d.settings.positionCorrection != PositionCorrection::SplitImpulses) return;
+  if (!d.solver.UsesPseudoVelocities()) return;
   d.solver.SolveSplitImpulses(d.settings.positionIterations);
   stats.positionSweeps = d.settings.positionIterations;
 }
@@ -105,7 +107,7 @@ void SolveSplitImpulses(WorldData& d, StepStatistics& stats) {
 // to the bodies here, before the position update reads them, and each row's
 // accumulated impulse goes into its contact for the next step's warm start.
 void ScatterAndStoreImpulses(WorldData& d) {
-  d.solver.Scatter(d.sims, d.settings.positionCorrection == PositionCorrection::SplitImpulses);
+  d.solver.Scatter(d.sims, d.solver.UsesPseudoVelocities());
   d.solver.StoreImpulses(d.contacts);
 }
 
@@ -137,7 +139,7 @@ int IntegrateVelocitiesOnThreads(WorldData& d, double h) {
 
 // The position half of the integrator over every body, on the world's threads.
 void IntegratePositionsOnThreads(WorldData& d, double h) {
-  const bool split = d.settings.positionCorrection == PositionCorrection::SplitImpulses;
+  const bool split = d.solver.UsesPseudoVelocities();
   d.jobs->ParallelFor(static_cast<int>(d.sims.size()), kBodyGrain, [&d, h, split](int begin, int end) {
     const std::span<BodySim> bodies(d.sims.data() + begin, static_cast<std::size_t>(end - begin));
     IntegratePositions(bodies, h, split, d.settings.rotation, d.settings.translation);

@@ -43,6 +43,18 @@ const char* BroadPhaseChoiceName(BroadPhaseChoice choice) {
   return "auto";
 }
 
+const char* BounceTimingChoiceName(BounceTimingChoice choice) {
+  switch (choice) {
+    case BounceTimingChoice::Auto:
+      return "auto";
+    case BounceTimingChoice::TimeOfImpact:
+      return "time_of_impact";
+    case BounceTimingChoice::StepBoundary:
+      return "step_boundary";
+  }
+  return "auto";
+}
+
 namespace {
 
 using nlohmann::json;
@@ -162,6 +174,14 @@ Result<WorldSpec> MapWorld(const json& world, std::string_view file) {
     for (const BroadPhaseChoice choice : {BroadPhaseChoice::Auto, BroadPhaseChoice::UniformGrid,
                                           BroadPhaseChoice::AabbTree, BroadPhaseChoice::BruteForce}) {
       if (name == BroadPhaseChoiceName(choice)) settings.broadPhase = choice;
+    }
+  }
+  if (world.contains("bounceTiming")) {
+    // The schema admits only the three names; each maps to its choice.
+    const std::string name = world["bounceTiming"].get<std::string>();
+    for (const BounceTimingChoice choice :
+         {BounceTimingChoice::Auto, BounceTimingChoice::TimeOfImpact, BounceTimingChoice::StepBoundary}) {
+      if (name == BounceTimingChoiceName(choice)) settings.bounceTiming = choice;
     }
   }
   return settings;

@@ -48,6 +48,7 @@ ordered_json WorldJson(const WorldSpec& world) {
   out["restitutionCombine"] = CombineRuleName(world.restitutionCombine);
   out["gyroscopic"] = world.gyroscopic;
   out["broadPhase"] = BroadPhaseChoiceName(world.broadPhase);
+  out["bounceTiming"] = BounceTimingChoiceName(world.bounceTiming);
   return out;
 }
 

@@ -47,6 +47,16 @@ enum class BroadPhaseChoice { Auto, UniformGrid, AabbTree, BruteForce };
 /// "aabb_tree", "brute_force").
 const char* BroadPhaseChoiceName(BroadPhaseChoice choice);
 
+/// When Talus times a bounce (file: world.bounceTiming). Auto is each Talus
+/// variant's own: the engine's default (talus::BounceTiming::TimeOfImpact)
+/// for "talus", "talus-split" and "talus-coloured", the impact at the step's
+/// boundary for "talus-writeup". The peers keep their own contact handling.
+enum class BounceTimingChoice { Auto, TimeOfImpact, StepBoundary };
+
+/// The choice's name as written in scenario files ("auto",
+/// "time_of_impact", "step_boundary").
+const char* BounceTimingChoiceName(BounceTimingChoice choice);
+
 /// World settings shared by every body.
 struct WorldSpec {
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);  ///< m/s^2
@@ -62,6 +72,8 @@ struct WorldSpec {
   bool gyroscopic = true;
   /// Talus's broad-phase structure (see BroadPhaseChoice). Default Auto.
   BroadPhaseChoice broadPhase = BroadPhaseChoice::Auto;
+  /// Talus's bounce timing (see BounceTimingChoice). Default Auto.
+  BounceTimingChoice bounceTiming = BounceTimingChoice::Auto;
   bool operator==(const WorldSpec&) const = default;
 };
 

@@ -20,8 +20,11 @@
 // sleeping off (the peers never sleep, and a sleeping body would hide
 // jitter); the gyroscopic term as the scenario says (on:
 // WorldSettings::rotation = MomentumSplitting, which keeps L; off:
-// ConstantRate); position update symplectic Euler (the engine's default);
-// combine
+// ConstantRate); position update exact for constant acceleration
+// (WorldSettings::translation = ExactConstantAcceleration; symplectic Euler
+// for talus-writeup); bounces timed as the scenario's world.bounceTiming
+// says (auto: inside the step, the engine's default; at the step's
+// boundary for talus-writeup); combine
 // rules from the scenario (restitution "sqrt" has no engine rule and is
 // refused); iterations from the run (0 = the engine's default, 10); threads
 // from TalusBackendOptions (default 1).
