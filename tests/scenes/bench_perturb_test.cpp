@@ -14,6 +14,7 @@
 #include <string>
 
 #include "support/command_outcome.h"
+#include "talus/harness/scenes/bench_report_json.h"
 #include "talus/harness/support/split_mix64.h"
 #include "talus/reference/all_backends.h"
 
@@ -205,6 +206,20 @@ TEST(SummarizeRepeats, HullPileVerdictIsNothingEscapedAndSkippedRunsAreLeftOut) 
   EXPECT_FALSE(summary.Value().sameVerdict);
   EXPECT_FALSE(SummarizeRepeats({skipped}).Ok());
   EXPECT_FALSE(SummarizeRepeats({}).Ok());
+}
+
+TEST(BenchRepeats, PerturbedJsonLinesCarryTheRepeatAndReadBackAsPlainReports) {
+  BenchReport report = PyramidRun(0.001);
+  report.bodies = 1240;
+  report.steps = 600;
+  report.perturbation = BenchPerturbation{2, kProbe, 12};
+  const std::string line = BenchReportToJson(report);
+  EXPECT_NE(line.find(R"("repeat":2,"perturb_m":1e-09,"perturb_seed":12)"), std::string::npos) << line;
+  auto read = ParseBenchReportLines(line, "test");
+  ASSERT_TRUE(read.Ok()) << read.GetError().message;
+  ASSERT_EQ(read.Value().size(), 1u);
+  EXPECT_EQ(read.Value()[0].drift, report.drift);
+  EXPECT_FALSE(read.Value()[0].perturbation.has_value());  // not read back (bench_report_json.h)
 }
 
 #ifdef TALUS_SCENES_BINARY
