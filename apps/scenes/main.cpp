@@ -6,14 +6,20 @@
 //   talus-scenes --scene pyramid --param 15 --engines bullet,ode-quickstep
 //   talus-scenes --series --format jsonl      (every scene's scaling series)
 //   talus-scenes --scene pyramid --param 20 --engines talus --threads 2
+//   talus-scenes --scene pyramid --engines talus,bullet --perturb 1e-9 --repeats 10
+//       (each repeat from initial positions moved by up to 1e-9 m; the spread
+//       and whether the verdict held in every repeat go to stderr)
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "report_writer.h"
+#include "talus/harness/scenes/bench_perturb.h"
 #include "talus/harness/scenes/bench_run.h"
 #include "talus/harness/scenes/bench_scenes.h"
 #include "talus/reference/all_backends.h"
@@ -30,7 +36,10 @@ struct Options {
   int steps = talus::harness::kBenchDefaultSteps;
   std::string format = "csv";
   bool series = false;
-  int threads = 1;  // WorldSettings::threads of the Talus backends
+  int threads = 1;                           // WorldSettings::threads of the Talus backends
+  std::optional<double> perturb;             // metres; absent: unperturbed
+  std::optional<int> repeats;                // absent: 1
+  std::optional<std::uint64_t> perturbSeed;  // absent: 0
 };
 
 std::vector<std::string> SplitList(const std::string& text) {
@@ -67,7 +76,35 @@ int main(int argc, char** argv) {
   app.add_option("--threads", options.threads,
                  "threads of the Talus backends' worlds (WorldSettings::threads; peers are unchanged)")
       ->check(CLI::Range(1, talus::kMaxThreads));
+  app.add_option(
+      "--perturb", options.perturb,
+      "move every dynamic body's initial position by a seeded uniform offset in [-A, A) m per axis "
+      "(0 <= A <= 1e-3)");
+  app.add_option(
+      "--repeats", options.repeats,
+      "with --perturb: runs per scene and engine, repeat r seeded with --perturb-seed + r (1 to 1000)");
+  app.add_option("--perturb-seed", options.perturbSeed,
+                 "with --perturb: the first repeat's SplitMix64 seed (default 0)")
+      ->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
+
+  if (!options.perturb && (options.repeats || options.perturbSeed)) {
+    std::cerr
+        << "talus-scenes: --repeats and --perturb-seed need --perturb (unperturbed repeats give the same "
+           "figures; use --perturb 0 to repeat on purpose)\n";
+    return 2;
+  }
+  if (options.perturb) {
+    if (auto problem = talus::harness::BenchPerturbationProblem(*options.perturb)) {
+      std::cerr << "talus-scenes: --perturb: " << *problem << '\n';
+      return 2;
+    }
+  }
+  const int repeats = options.repeats.value_or(1);
+  if (auto problem = talus::harness::BenchRepeatsProblem(repeats)) {
+    std::cerr << "talus-scenes: --repeats: " << *problem << '\n';
+    return 2;
+  }
 
   const talus::harness::BackendRegistry registry = talus::reference::MakeAllBackends(options.threads);
 
@@ -104,36 +141,53 @@ int main(int argc, char** argv) {
   }
 
   const bool csv = options.format == "csv";
-  if (csv) std::cout << talus::scenes::CsvHeader() << '\n' << std::flush;
+  if (csv) std::cout << talus::scenes::CsvHeader(options.perturb.has_value()) << '\n' << std::flush;
   int failures = 0;
   for (const Job& job : jobs) {
     for (const std::string& engine : engines) {
       const std::string label = std::string(job.scene->name) + " " + std::string(job.scene->parameterName) +
                                 "=" + std::to_string(job.parameter) + " " + engine;
-      talus::harness::BenchProgress progress;
-      if (options.series) {
-        std::cerr << label << ": building\n";
-        progress = [&label](int step, int steps) {
-          if (step % 100 == 0 || step == steps)
-            std::cerr << label << ": step " << step << "/" << steps << '\n';
-        };
+      std::vector<talus::harness::BenchReport> series;
+      for (int repeat = 0; repeat < repeats; ++repeat) {
+        std::optional<talus::harness::BenchPerturbation> perturbation;
+        if (options.perturb) {
+          perturbation = talus::harness::BenchPerturbation{
+              repeat, *options.perturb, talus::harness::RepeatSeed(options.perturbSeed.value_or(0), repeat)};
+        }
+        const std::string runLabel = repeats > 1 ? label + " repeat " + std::to_string(repeat) : label;
+        talus::harness::BenchProgress progress;
+        if (options.series) {
+          std::cerr << runLabel << ": building\n";
+          progress = [&runLabel](int step, int steps) {
+            if (step % 100 == 0 || step == steps)
+              std::cerr << runLabel << ": step " << step << "/" << steps << '\n';
+          };
+        }
+        auto report = talus::harness::RunBenchScene(registry, engine, *job.scene, job.parameter,
+                                                    options.steps, progress, perturbation);
+        if (!report) {
+          std::cerr << "talus-scenes: " << runLabel << ": " << report.GetError().message << '\n';
+          ++failures;
+          continue;
+        }
+        // The Talus worlds stepped on --threads threads; every peer on one.
+        if (engine.starts_with("talus")) report.Value().threads = options.threads;
+        if (options.series && !report.Value().skipped.empty()) {
+          std::cerr << runLabel << ": skipped: " << report.Value().skipped << '\n';
+        }
+        std::cout << (csv ? talus::scenes::FormatCsv(report.Value())
+                          : talus::scenes::FormatJson(report.Value()))
+                  << '\n'
+                  << std::flush;
+        const bool skipped = !report.Value().skipped.empty();
+        series.push_back(std::move(report.Value()));
+        if (skipped) break;  // every repeat would be skipped for the same reason
       }
-      auto report =
-          talus::harness::RunBenchScene(registry, engine, *job.scene, job.parameter, options.steps, progress);
-      if (!report) {
-        std::cerr << "talus-scenes: " << label << ": " << report.GetError().message << '\n';
-        ++failures;
-        continue;
+      if (options.perturb && !series.empty() && series.front().skipped.empty()) {
+        auto summary = talus::harness::SummarizeRepeats(series);
+        if (summary)
+          std::cerr << talus::harness::FormatRepeatSummary(series.front(), summary.Value()) << '\n';
       }
-      // The Talus worlds stepped on --threads threads; every peer on one.
-      if (engine.starts_with("talus")) report.Value().threads = options.threads;
-      if (options.series && !report.Value().skipped.empty()) {
-        std::cerr << label << ": skipped: " << report.Value().skipped << '\n';
-      }
-      std::cout << (csv ? talus::scenes::FormatCsv(report.Value())
-                        : talus::scenes::FormatJson(report.Value()))
-                << '\n'
-                << std::flush;
     }
   }
   return failures == 0 ? 0 : 1;

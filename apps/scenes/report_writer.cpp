@@ -30,20 +30,34 @@ std::string Quote(const std::string& text) {
 
 }  // namespace
 
-std::string CsvHeader() {
-  return "engine,scene,parameter,bodies,threads,steps,ms_per_step_median,ms_per_step_mean,max_contacts,"
-         "drift_m,max_penetration_m,kinetic_energy_j,escaped,skipped";
+std::string CsvHeader(bool perturbed) {
+  std::string header =
+      "engine,scene,parameter,bodies,threads,steps,ms_per_step_median,ms_per_step_mean,max_contacts,"
+      "drift_m,max_penetration_m,kinetic_energy_j,escaped,skipped";
+  if (perturbed) header.append(",repeat,perturb_m,perturb_seed");
+  return header;
 }
 
 std::string FormatCsv(const harness::BenchReport& report) {
   std::string line = report.engine + "," + report.scene + "," + std::to_string(report.parameter) + "," +
                      std::to_string(report.bodies) + "," + std::to_string(report.threads) + "," +
                      std::to_string(report.steps) + ",";
-  if (!report.skipped.empty()) return line + ",,,,,,," + Quote(report.skipped);
-  line += Number(report.msMedian) + "," + Number(report.msMean) + "," + std::to_string(report.maxContacts) +
-          "," + Optional(report.drift) + "," + Optional(report.maxPenetration) + "," +
-          Optional(report.kineticEnergy) + "," + (report.escaped ? std::to_string(*report.escaped) : "") +
-          ",";
+  if (!report.skipped.empty()) {
+    line += ",,,,,,," + Quote(report.skipped);
+  } else {
+    line += Number(report.msMedian) + "," + Number(report.msMean) + "," + std::to_string(report.maxContacts) +
+            "," + Optional(report.drift) + "," + Optional(report.maxPenetration) + "," +
+            Optional(report.kineticEnergy) + "," + (report.escaped ? std::to_string(*report.escaped) : "") +
+            ",";
+  }
+  if (report.perturbation) {
+    // 17 significant digits: the amount reads back as the same double.
+    // Appended piece by piece: GCC 12 warns (-Wrestrict) on a chain of
+    // temporaries here.
+    line.append(",").append(std::to_string(report.perturbation->repeat));
+    line.append(",").append(harness::FormatNumber(report.perturbation->amount, 17));
+    line.append(",").append(std::to_string(report.perturbation->seed));
+  }
   return line;
 }
 

@@ -16,12 +16,15 @@ enum class ReportFormat { Csv, JsonLines };
 
 /// The CSV header line (no newline): engine, scene, parameter, bodies,
 /// threads, steps, ms_per_step_median, ms_per_step_mean, max_contacts,
-/// drift_m, max_penetration_m, kinetic_energy_j, escaped, skipped.
-std::string CsvHeader();
+/// drift_m, max_penetration_m, kinetic_energy_j, escaped, skipped; when
+/// `perturbed` (talus-scenes --perturb/--repeats), then repeat, perturb_m,
+/// perturb_seed.
+std::string CsvHeader(bool perturbed = false);
 
 /// One report as a CSV line (no newline). Figures a scene does not have are
 /// empty fields; the skip reason is quoted. Numbers carry 6 significant
-/// digits; a non-finite figure prints as nan or inf.
+/// digits; a non-finite figure prints as nan or inf. A perturbed run's line
+/// ends with its repeat, amount (17 digits) and seed.
 std::string FormatCsv(const harness::BenchReport& report);
 
 /// One report as a compact JSON object (no newline). A non-finite figure is

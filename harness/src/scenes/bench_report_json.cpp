@@ -42,6 +42,11 @@ std::string BenchReportToJson(const BenchReport& report) {
   line["bodies"] = report.bodies;
   line["threads"] = report.threads;
   line["steps"] = report.steps;
+  if (report.perturbation) {
+    line["repeat"] = report.perturbation->repeat;
+    line["perturb_m"] = report.perturbation->amount;
+    line["perturb_seed"] = report.perturbation->seed;
+  }
   if (!report.skipped.empty()) {
     line["skipped"] = report.skipped;
     return line.dump();

@@ -6,6 +6,8 @@
 // at the last step are read once the loop ends.
 #include "talus/harness/scenes/bench_run.h"
 
+#include "talus/harness/scenes/bench_perturb.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -81,10 +83,15 @@ std::optional<std::string> BenchSkipReason(std::string_view engine, int dynamicB
 
 Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_view engine,
                                   const BenchScene& scene, int parameter, int steps,
-                                  const BenchProgress& progress) {
+                                  const BenchProgress& progress,
+                                  const std::optional<BenchPerturbation>& perturbation) {
   if (steps < 1) return Error{"steps = " + std::to_string(steps) + ": must be >= 1"};
   auto built = scene.make(parameter);
   if (!built) return built.GetError();
+  if (perturbation) {
+    built = PerturbDynamicPositions(std::move(built.Value()), perturbation->amount, perturbation->seed);
+    if (!built) return built.GetError();
+  }
   const Scenario& scenario = built.Value();
   const int dynamicBodies = CountDynamicBodies(scenario);
 
@@ -94,6 +101,7 @@ Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_v
   report.parameter = parameter;
   report.bodies = dynamicBodies;
   report.steps = steps;
+  report.perturbation = perturbation;
   if (!registry.Has(engine)) {
     // Let the registry word the error (it lists the known names).
     Run none;

@@ -6,11 +6,14 @@
 // Layout of a line (keys in this order; figures a scene does not have are
 // absent; a non-finite figure is null, since JSON has no NaN):
 //   {"engine", "scene", "parameter", "bodies", "threads", "steps",
+//    ["repeat", "perturb_m", "perturb_seed" when perturbed],
 //    "ms_per_step_median", "ms_per_step_mean", "max_contacts",
 //    "drift_m" | "max_penetration_m", "kinetic_energy_j", "escaped"}
 // A skipped run is {"engine", ..., "steps", "skipped": "why"} with no
 // figures. Reading validates every field and names the file, the line and
-// the key of the first problem; nothing is returned from a bad file.
+// the key of the first problem; nothing is returned from a bad file. The
+// perturbation keys of `talus-scenes --perturb` are not read back: the
+// report's large-scenes section takes unperturbed runs.
 #pragma once
 
 #include <filesystem>

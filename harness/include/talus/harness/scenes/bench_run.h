@@ -10,6 +10,7 @@
 // thread, so `threads` is 1.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -49,6 +50,16 @@ inline constexpr int kOdeMaxBodies = 5000;
 /// run.
 inline constexpr int kMujocoMaxBodies = 63;
 
+/// The initial positions of one perturbed repeat (bench_perturb.h): every
+/// dynamic body moved by up to `amount` metres per axis, drawn from
+/// SplitMix64 seeded with `seed` (the repeat's own seed, so that a repeat
+/// is reproduced alone by `--repeats 1 --perturb-seed <seed>`).
+struct BenchPerturbation {
+  int repeat = 0;          ///< 0-based index in its series
+  double amount = 0.0;     ///< metres, in [0, kMaxBenchPerturbation]
+  std::uint64_t seed = 0;  ///< RepeatSeed(series seed, repeat)
+};
+
 /// One line of a benchmark report.
 struct BenchReport {
   std::string engine;     ///< backend name, e.g. "bullet"
@@ -72,6 +83,8 @@ struct BenchReport {
   /// hull_pile: dynamic bodies whose centre of mass ended below y = 0 or
   /// outside the walls (|x| > w or |z| > w).
   std::optional<int> escaped;
+  /// Set when the run started from perturbed initial positions.
+  std::optional<BenchPerturbation> perturbation;
   /// Not empty when the run was not made: why (then only the identity
   /// fields above are filled).
   std::string skipped;
@@ -88,9 +101,12 @@ using BenchProgress = std::function<void(int step, int steps)>;
 /// Builds `scene` at `parameter` with the named backend, runs `steps` steps
 /// (>= 1) and reports. A parameter out of range, an unknown engine or a world
 /// the backend refuses is an Error. When BenchSkipReason says so, the report
-/// comes back with `skipped` set and nothing run.
+/// comes back with `skipped` set and nothing run. With a `perturbation`, the
+/// scene's dynamic bodies start from PerturbDynamicPositions(amount, seed)
+/// and the report carries it; a bad amount is an Error.
 Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_view engine,
                                   const BenchScene& scene, int parameter, int steps,
-                                  const BenchProgress& progress = {});
+                                  const BenchProgress& progress = {},
+                                  const std::optional<BenchPerturbation>& perturbation = std::nullopt);
 
 }  // namespace talus::harness

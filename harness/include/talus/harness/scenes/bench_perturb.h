@@ -1,0 +1,90 @@
+// Perturbed repeats of a reference benchmark scene: the round-off probe of
+// issue 12 ("the pyramid verdict must not be a round-off lottery").
+//
+// A scene's verdict (pyramid: drift <= 5 mm; hull_pile: nothing escapes)
+// is only worth judging code by if it does not hang on the last bits of the
+// initial state. PerturbDynamicPositions moves every dynamic body's initial
+// position by an independent uniform offset in [-amount, +amount) per axis,
+// drawn from SplitMix64 (support/split_mix64.h) so that the same seed gives
+// the same scene bit for bit on every platform; repeat r of a series is
+// seeded with RepeatSeed(seed, r). SummarizeRepeats reduces a series of runs
+// to the spread of the scene's figure and says whether the verdict held the
+// same way in every repeat (docs/bench-scenes.md, "Perturbed repeats").
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "talus/harness/scenario/scenario.h"
+#include "talus/harness/scenes/bench_run.h"
+#include "talus/result.h"
+
+namespace talus::harness {
+
+/// Largest perturbation accepted, metres. The probe is for round-off-sized
+/// changes; above 1 mm the cubes of a pyramid layer (which touch exactly)
+/// would start up to 2 mm inside each other, and the run would measure a
+/// different scene rather than the same one's sensitivity.
+inline constexpr double kMaxBenchPerturbation = 1e-3;
+
+/// Largest number of repeats of one (scene, engine) pair: a bound on a
+/// mistyped count (pyramid 15 takes about 15 s a run on one core).
+inline constexpr int kMaxBenchRepeats = 1000;
+
+/// The pyramid's verdict (issue 12's goal): it holds when drift_m <= this,
+/// metres. Stricter than the 5 cm "stands" line of SCENES.md.
+inline constexpr double kPyramidDriftGoal = 0.005;
+
+/// Why `amount` is not a usable perturbation (NaN, infinite, negative or
+/// above kMaxBenchPerturbation), naming the value, or nothing when it is.
+std::optional<std::string> BenchPerturbationProblem(double amount);
+
+/// Why `repeats` is not a usable repeat count (outside 1..kMaxBenchRepeats),
+/// or nothing when it is.
+std::optional<std::string> BenchRepeatsProblem(int repeats);
+
+/// The seed of repeat `repeat` (0-based) of a series seeded with `seed`:
+/// seed + repeat, modulo 2^64. SplitMix64 streams from neighbouring seeds
+/// share no values in any practical length (each is a bijective mix of a
+/// counter advanced by the golden-ratio gamma).
+std::uint64_t RepeatSeed(std::uint64_t seed, int repeat);
+
+/// `scene` with every dynamic body's position moved by
+/// amount * (2 u - 1) on x, then y, then z, u = SplitMix64(seed).NextUniform()
+/// drawn in body order (static and kinematic bodies draw nothing and stay
+/// put). An amount of 0 returns the scene unchanged, bit for bit. A bad
+/// amount (BenchPerturbationProblem) is an Error and nothing is changed.
+Result<Scenario> PerturbDynamicPositions(Scenario scene, double amount, std::uint64_t seed);
+
+/// The scene's verdict for one run: pyramid, drift_m <= kPyramidDriftGoal
+/// (a NaN drift fails); hull_pile, no body escaped. Nothing for a skipped
+/// run or one without its figure.
+std::optional<bool> BenchVerdict(const BenchReport& report);
+
+/// The figure a scene's verdict reads: drift_m for the pyramid,
+/// max_penetration_m for the hull pile (whose verdict, escaped == 0, is a
+/// count; the penetration shows how close the pile came to it).
+std::optional<double> BenchVerdictFigure(const BenchReport& report);
+
+/// The spread of a series of repeats of one (scene, parameter, engine).
+struct BenchRepeatSummary {
+  int runs = 0;             ///< repeats that were made (not skipped)
+  double min = 0.0;         ///< smallest BenchVerdictFigure (NaN if any is NaN)
+  double median = 0.0;      ///< median BenchVerdictFigure
+  double max = 0.0;         ///< largest BenchVerdictFigure (NaN if any is NaN)
+  int verdictsHeld = 0;     ///< runs whose BenchVerdict held
+  bool sameVerdict = true;  ///< all held or none did
+};
+
+/// Reduces the repeats of one series; skipped runs are left out. An empty
+/// series (or one where every run was skipped) is an Error.
+Result<BenchRepeatSummary> SummarizeRepeats(const std::vector<BenchReport>& repeats);
+
+/// One readable line: "<scene> <P>=<n> <engine>: <figure> over N repeats
+/// (+-amount m, seed S): min .. median .. max ..; verdict <rule> held in K of
+/// N: same|DIFFERS".
+std::string FormatRepeatSummary(const BenchReport& first, const BenchRepeatSummary& summary);
+
+}  // namespace talus::harness
