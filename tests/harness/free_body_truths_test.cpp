@@ -110,7 +110,9 @@ TEST(FreeBodyTruths, EnergyDriftMeasuresTheLagOfSymplecticEuler) {
       0.5 * 10.0 * 72.0 + 0.5 * Vec3(0.1, 5.0, 0.1).dot(kInertia.cwiseProduct(Vec3(0.1, 5.0, 0.1)));
   EXPECT_NEAR(Metric(metrics, "energy_drift.relative").measured, 10.0 * 9.8 * 0.049 / e0, 1e-12);
   EXPECT_FALSE(Metric(metrics, "energy_drift.relative").pass);
-  EXPECT_FALSE(Metric(metrics, "energy_drift.relative").checked);  // gate false in the file
+  // Gated in the file since Talus's variants move exactly under constant
+  // gravity (issue 15); only the write-up's step is exempted, by backend.
+  EXPECT_TRUE(Metric(metrics, "energy_drift.relative").checked);
 }
 
 TEST(FreeBodyTruths, AngularMomentumMagnitudeAndVectorDiffer) {
