@@ -6,14 +6,17 @@
 // Only Backend::Step() is timed (std::chrono::steady_clock around each
 // call); reading contacts and states for the figures happens between steps,
 // outside the timed region. Every figure other than the times is a
-// deterministic function of the backend's results. All backends step on one
-// thread, so `threads` is 1.
+// deterministic function of the backend's results. An engine that times its
+// own stages (Backend::StageTimings: Talus) also gets each stage's median
+// and mean ms/step, read between steps. Every peer steps on one thread; the
+// caller sets `threads` for a Talus world built with more (talus-scenes).
 #pragma once
 
 #include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "talus/harness/backend/backend.h"
 #include "talus/harness/scenes/bench_scenes.h"
@@ -49,6 +52,16 @@ inline constexpr int kOdeMaxBodies = 5000;
 /// run.
 inline constexpr int kMujocoMaxBodies = 63;
 
+/// One stage of the engine's step over a run (Backend::StageTimings).
+struct BenchStage {
+  std::string name;       ///< the engine's name for it, e.g. "FindContacts"
+  double msMedian = 0.0;  ///< median over the steps of its wall time, milliseconds
+  /// mean over the steps, milliseconds: the means of the stages add up to
+  /// the engine's mean step, so stage mean / BenchReport::msMean is the
+  /// stage's share of the step
+  double msMean = 0.0;
+};
+
 /// One line of a benchmark report.
 struct BenchReport {
   std::string engine;     ///< backend name, e.g. "bullet"
@@ -72,6 +85,9 @@ struct BenchReport {
   /// hull_pile: dynamic bodies whose centre of mass ended below y = 0 or
   /// outside the walls (|x| > w or |z| > w).
   std::optional<int> escaped;
+  /// The engine's step stages in its order; empty for an engine that does
+  /// not time them (every peer).
+  std::vector<BenchStage> stages;
   /// Not empty when the run was not made: why (then only the identity
   /// fields above are filled).
   std::string skipped;
@@ -86,8 +102,9 @@ std::optional<std::string> BenchSkipReason(std::string_view engine, int dynamicB
 using BenchProgress = std::function<void(int step, int steps)>;
 
 /// Builds `scene` at `parameter` with the named backend, runs `steps` steps
-/// (>= 1) and reports. A parameter out of range, an unknown engine or a world
-/// the backend refuses is an Error. When BenchSkipReason says so, the report
+/// (>= 1) and reports. A parameter out of range, an unknown engine, a world
+/// the backend refuses, or stage timings that change their stages from one
+/// step to the next is an Error. When BenchSkipReason says so, the report
 /// comes back with `skipped` set and nothing run.
 Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_view engine,
                                   const BenchScene& scene, int parameter, int steps,
