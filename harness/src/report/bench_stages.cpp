@@ -146,8 +146,10 @@ std::string BenchStagesMarkdown(const std::vector<const BenchReport*>& rows) {
   for (const SizeRows& size : GroupBySize(rows)) WriteStageTable(out, size);
   if (out.str().empty()) return "";
   return "\nEach cell: the stage's median ms/step over the run, and (in brackets) its share of the "
-         "step, from the means, which add up where medians do not; \"other\" is the step's time outside "
-         "the engine's stages. A speed-up column divides an engine's 1-thread median by its N-thread "
+         "step's time, from the means, which add up where medians do not and which count in full a stage "
+         "whose cost varies from step to step (more velocity sweeps in a step where new pairs touch); "
+         "\"other\" is the step's time outside the engine's stages. A speed-up column divides an engine's "
+         "1-thread median by its N-thread "
          "one from the same invocation: a stage near 1 does not run on the thread pool.\n" +
          out.str();
 }
