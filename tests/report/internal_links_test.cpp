@@ -182,7 +182,7 @@ TEST_F(InternalLinks, EveryHtmlLinkLandsOnOneElement) {
     }
   }
   for (const char* section : {"run-time-against-error", "stability-envelope", "large-scenes",
-                              "thread-scaling", "pyramid-h--15-where-the-time-goes"})
+                              "thread-scaling", "where-the-time-goes", "pyramid-h--15-where-the-time-goes"})
     EXPECT_EQ(ids.count(section), 1u) << section;
   EXPECT_NE(html.find("<a href=\"#thread-scaling\">"), std::string::npos);
   // The scorecard points at the sections its sweep and scenes columns summarise.
@@ -197,9 +197,10 @@ TEST_F(InternalLinks, EveryMarkdownLinkLandsOnAHeading) {
   EXPECT_GE(links.size(), 10u);
   for (const std::string& link : links) EXPECT_EQ(anchors.count(link), 1u) << "dangling link #" << link;
   for (const char* section : {"run-time-against-error", "stability-envelope", "large-scenes",
-                              "thread-scaling", "pyramid-h--15-where-the-time-goes"})
+                              "thread-scaling", "where-the-time-goes", "pyramid-h--15-where-the-time-goes"})
     EXPECT_EQ(anchors.count(section), 1u) << section;
   EXPECT_NE(md.find("](#thread-scaling)"), std::string::npos);
+  EXPECT_NE(md.find("](#where-the-time-goes)"), std::string::npos);
   EXPECT_NE(md.find("](#run-time-against-error)"), std::string::npos);
   EXPECT_NE(md.find("](#large-scenes)"), std::string::npos);
 }

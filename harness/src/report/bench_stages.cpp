@@ -59,10 +59,11 @@ std::string Ratio(double numerator, double denominator) {
   return FormatNumber(numerator / denominator, 3);
 }
 
-// "12.5%" of a part in a whole, "-" when the whole is not a positive finite time.
+// "12.5%" of a part in a whole (one decimal: a stage under 0.05% reads 0.0%), "-" when the whole is not a
+// positive finite time.
 std::string Share(double part, double whole) {
   if (!(whole > 0.0) || !std::isfinite(whole) || !std::isfinite(part)) return "-";
-  return FormatNumber(100.0 * part / whole, 3) + "%";
+  return FormatPrintf("%.1f%%", 100.0 * part / whole);
 }
 
 const BenchStage* FindStage(const BenchReport& r, const std::string& name) {
@@ -145,7 +146,8 @@ std::string BenchStagesMarkdown(const std::vector<const BenchReport*>& rows) {
   std::ostringstream out;
   for (const SizeRows& size : GroupBySize(rows)) WriteStageTable(out, size);
   if (out.str().empty()) return "";
-  return "\nEach cell: the stage's median ms/step over the run, and (in brackets) its share of the "
+  return "\n### Where the time goes\n\nEach cell: the stage's median ms/step over the run, and (in brackets) "
+         "its share of the "
          "step's time, from the means, which add up where medians do not and which count in full a stage "
          "whose cost varies from step to step (more velocity sweeps in a step where new pairs touch); "
          "\"other\" is the step's time outside the engine's stages. A speed-up column divides an engine's "

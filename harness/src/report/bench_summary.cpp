@@ -225,7 +225,8 @@ std::string BenchMarkdown(const std::vector<BenchReport>& reports) {
          "than one thread is named with its thread count, every other on one.";
   if (!threads.empty()) out << " [Thread scaling](#thread-scaling) compares an engine's thread counts.";
   if (!stages.empty())
-    out << " For an engine that times its stages, a table per size says where the time goes.";
+    out << " For an engine that times its stages, a table per size says [where the time "
+           "goes](#where-the-time-goes).";
   out << "\n";
   for (const SceneRows& group : groups) WriteTable(out, group, reports);
   out << threads << stages;
