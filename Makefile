@@ -43,6 +43,10 @@ SCENES = $(BUILD_DIR)/apps/scenes/talus-scenes
 # about an hour. MuJoCo 2.2.2 is listed so the section says why it cannot
 # run the series sizes (its skip costs no time; docs/testbed-backends.md).
 SCENES_ENGINES ?= talus,bullet-f32,bullet-f32-tuned,ode-quickstep-tuned,ode-step-tuned,mujoco,mujoco-tuned
+# The Talus engines run the series at each of these thread counts, back to
+# back, for the report's thread-scaling and where-the-time-goes tables
+# (docs/bench-scenes.md); each count adds Talus's share of the series again.
+SCENES_THREADS ?= 1,2
 
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 600
@@ -175,6 +179,6 @@ report-full: build
 	    extras="$$extras --sweep $(FULL_DIR)/sweep/results.json"; else status=1; fi; \
 	  if $(TESTBED) stress -b talus,talus-split,bullet,ode-step,ode-quickstep -o $(FULL_DIR)/stress >/dev/null; \
 	    then extras="$$extras --stress $(FULL_DIR)/stress/stress.json"; else status=1; fi; \
-	  if $(SCENES) --series --engines $(SCENES_ENGINES) --format jsonl >$(FULL_DIR)/scenes.jsonl; then \
+	  if $(SCENES) --series --engines $(SCENES_ENGINES) --threads $(SCENES_THREADS) --format jsonl >$(FULL_DIR)/scenes.jsonl; then \
 	    extras="$$extras --scenes $(FULL_DIR)/scenes.jsonl"; else status=1; fi; \
 	  $(TESTBED) report $(FULL_DIR)/results.json $$extras && exit $$status

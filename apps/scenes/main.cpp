@@ -5,14 +5,20 @@
 //
 //   talus-scenes --scene pyramid --param 15 --engines bullet,ode-quickstep
 //   talus-scenes --series --format jsonl      (every scene's scaling series)
-//   talus-scenes --scene pyramid --param 20 --engines talus --threads 2
+//   talus-scenes --scene pyramid --param 20 --engines talus-coloured --threads 1,2
 //   talus-scenes --scene pyramid --engines talus,bullet --perturb 1e-9 --repeats 10
 //       (each repeat from initial positions moved by up to 1e-9 m; the spread
 //       and whether the verdict held in every repeat go to stderr)
+//
+// With a list of thread counts each Talus engine runs once per count, one
+// right after the other, so the speed-ups compare runs minutes apart; every
+// peer runs once, on one thread.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -36,7 +42,7 @@ struct Options {
   int steps = talus::harness::kBenchDefaultSteps;
   std::string format = "csv";
   bool series = false;
-  int threads = 1;                           // WorldSettings::threads of the Talus backends
+  std::vector<int> threads = {1};            // WorldSettings::threads of the Talus backends, one run each
   std::optional<double> perturb;             // metres; absent: unperturbed
   std::optional<int> repeats;                // absent: 1
   std::optional<std::uint64_t> perturbSeed;  // absent: 0
@@ -49,6 +55,17 @@ std::vector<std::string> SplitList(const std::string& text) {
     if (!item.empty()) items.push_back(item);
   }
   return items;
+}
+
+// A thread count the list names more than once, or nothing.
+std::optional<int> RepeatedCount(const std::vector<int>& counts) {
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    if (std::find(counts.begin(), counts.begin() + static_cast<std::ptrdiff_t>(i), counts[i]) !=
+        counts.begin() + static_cast<std::ptrdiff_t>(i)) {
+      return counts[i];
+    }
+  }
+  return std::nullopt;
 }
 
 // One (scene, parameter) pair to run on every engine.
@@ -74,7 +91,9 @@ int main(int argc, char** argv) {
                "run the scaling series (pyramid H = 10, 15, 20, 30; hull_pile L = 10, 20, 40); progress on "
                "stderr");
   app.add_option("--threads", options.threads,
-                 "threads of the Talus backends' worlds (WorldSettings::threads; peers are unchanged)")
+                 "comma-separated thread counts of the Talus backends' worlds (WorldSettings::threads), "
+                 "each Talus engine run once per count; peers run once, on one thread")
+      ->delimiter(',')
       ->check(CLI::Range(1, talus::kMaxThreads));
   app.add_option(
       "--perturb", options.perturb,
@@ -105,8 +124,15 @@ int main(int argc, char** argv) {
     std::cerr << "talus-scenes: --repeats: " << *problem << '\n';
     return 2;
   }
-
-  const talus::harness::BackendRegistry registry = talus::reference::MakeAllBackends(options.threads);
+  if (const auto repeat = RepeatedCount(options.threads)) {
+    std::cerr << "talus-scenes: --threads names " << *repeat << " twice\n";
+    return 2;
+  }
+  // One registry per thread count: a Talus backend's worlds take their
+  // thread count from the registry that builds them.
+  std::map<int, talus::harness::BackendRegistry> registries;
+  for (int threads : options.threads) registries.emplace(threads, talus::reference::MakeAllBackends(threads));
+  const talus::harness::BackendRegistry& registry = registries.begin()->second;
 
   if (!options.series && options.scene.empty()) {
     std::cerr << "talus-scenes: --scene is required unless --series is given\n";
@@ -145,48 +171,54 @@ int main(int argc, char** argv) {
   int failures = 0;
   for (const Job& job : jobs) {
     for (const std::string& engine : engines) {
-      const std::string label = std::string(job.scene->name) + " " + std::string(job.scene->parameterName) +
-                                "=" + std::to_string(job.parameter) + " " + engine;
-      std::vector<talus::harness::BenchReport> series;
-      for (int repeat = 0; repeat < repeats; ++repeat) {
-        std::optional<talus::harness::BenchPerturbation> perturbation;
-        if (options.perturb) {
-          perturbation = talus::harness::BenchPerturbation{
-              repeat, *options.perturb, talus::harness::RepeatSeed(options.perturbSeed.value_or(0), repeat)};
+      // The Talus worlds step on each of the --threads counts; every peer on one.
+      const bool talus = engine.starts_with("talus");
+      for (int threads : talus ? options.threads : std::vector<int>{1}) {
+        std::string label = std::string(job.scene->name) + " " + std::string(job.scene->parameterName) + "=" +
+                            std::to_string(job.parameter) + " " + engine;
+        if (talus && options.threads.size() > 1) label += " threads=" + std::to_string(threads);
+        const talus::harness::BackendRegistry& builder = talus ? registries.at(threads) : registry;
+        std::vector<talus::harness::BenchReport> series;
+        for (int repeat = 0; repeat < repeats; ++repeat) {
+          std::optional<talus::harness::BenchPerturbation> perturbation;
+          if (options.perturb) {
+            perturbation = talus::harness::BenchPerturbation{
+                repeat, *options.perturb,
+                talus::harness::RepeatSeed(options.perturbSeed.value_or(0), repeat)};
+          }
+          const std::string runLabel = repeats > 1 ? label + " repeat " + std::to_string(repeat) : label;
+          talus::harness::BenchProgress progress;
+          if (options.series) {
+            std::cerr << runLabel << ": building\n";
+            progress = [&runLabel](int step, int steps) {
+              if (step % 100 == 0 || step == steps)
+                std::cerr << runLabel << ": step " << step << "/" << steps << '\n';
+            };
+          }
+          auto report = talus::harness::RunBenchScene(builder, engine, *job.scene, job.parameter,
+                                                      options.steps, progress, perturbation);
+          if (!report) {
+            std::cerr << "talus-scenes: " << runLabel << ": " << report.GetError().message << '\n';
+            ++failures;
+            continue;
+          }
+          if (talus) report.Value().threads = threads;
+          if (options.series && !report.Value().skipped.empty()) {
+            std::cerr << runLabel << ": skipped: " << report.Value().skipped << '\n';
+          }
+          std::cout << (csv ? talus::scenes::FormatCsv(report.Value())
+                            : talus::scenes::FormatJson(report.Value()))
+                    << '\n'
+                    << std::flush;
+          const bool skipped = !report.Value().skipped.empty();
+          series.push_back(std::move(report.Value()));
+          if (skipped) break;  // every repeat would be skipped for the same reason
         }
-        const std::string runLabel = repeats > 1 ? label + " repeat " + std::to_string(repeat) : label;
-        talus::harness::BenchProgress progress;
-        if (options.series) {
-          std::cerr << runLabel << ": building\n";
-          progress = [&runLabel](int step, int steps) {
-            if (step % 100 == 0 || step == steps)
-              std::cerr << runLabel << ": step " << step << "/" << steps << '\n';
-          };
+        if (options.perturb && !series.empty() && series.front().skipped.empty()) {
+          auto summary = talus::harness::SummarizeRepeats(series);
+          if (summary)
+            std::cerr << talus::harness::FormatRepeatSummary(series.front(), summary.Value()) << '\n';
         }
-        auto report = talus::harness::RunBenchScene(registry, engine, *job.scene, job.parameter,
-                                                    options.steps, progress, perturbation);
-        if (!report) {
-          std::cerr << "talus-scenes: " << runLabel << ": " << report.GetError().message << '\n';
-          ++failures;
-          continue;
-        }
-        // The Talus worlds stepped on --threads threads; every peer on one.
-        if (engine.starts_with("talus")) report.Value().threads = options.threads;
-        if (options.series && !report.Value().skipped.empty()) {
-          std::cerr << runLabel << ": skipped: " << report.Value().skipped << '\n';
-        }
-        std::cout << (csv ? talus::scenes::FormatCsv(report.Value())
-                          : talus::scenes::FormatJson(report.Value()))
-                  << '\n'
-                  << std::flush;
-        const bool skipped = !report.Value().skipped.empty();
-        series.push_back(std::move(report.Value()));
-        if (skipped) break;  // every repeat would be skipped for the same reason
-      }
-      if (options.perturb && !series.empty() && series.front().skipped.empty()) {
-        auto summary = talus::harness::SummarizeRepeats(series);
-        if (summary)
-          std::cerr << talus::harness::FormatRepeatSummary(series.front(), summary.Value()) << '\n';
       }
     }
   }

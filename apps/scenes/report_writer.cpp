@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "talus/harness/scenes/bench_report_json.h"
 #include "talus/harness/support/number_text.h"
@@ -28,12 +29,24 @@ std::string Quote(const std::string& text) {
   return quoted + "\"";
 }
 
+// "UpdateBroadPhase=0.12;FindContacts=3.4;...": each stage's median ms in
+// one field (stage names hold no ',' or ';'), so the columns stay fixed
+// whatever stages an engine times.
+std::string StageField(const std::vector<harness::BenchStage>& stages) {
+  std::string field;
+  for (const harness::BenchStage& stage : stages) {
+    if (!field.empty()) field += ';';
+    field += stage.name + "=" + Number(stage.msMedian);
+  }
+  return field;
+}
+
 }  // namespace
 
 std::string CsvHeader(bool perturbed) {
   std::string header =
       "engine,scene,parameter,bodies,threads,steps,ms_per_step_median,ms_per_step_mean,max_contacts,"
-      "drift_m,max_penetration_m,kinetic_energy_j,escaped,skipped";
+      "drift_m,max_penetration_m,kinetic_energy_j,escaped,skipped,stage_ms_median";
   if (perturbed) header.append(",repeat,perturb_m,perturb_seed");
   return header;
 }
@@ -43,12 +56,12 @@ std::string FormatCsv(const harness::BenchReport& report) {
                      std::to_string(report.bodies) + "," + std::to_string(report.threads) + "," +
                      std::to_string(report.steps) + ",";
   if (!report.skipped.empty()) {
-    line += ",,,,,,," + Quote(report.skipped);
+    line += ",,,,,,," + Quote(report.skipped) + ",";
   } else {
     line += Number(report.msMedian) + "," + Number(report.msMean) + "," + std::to_string(report.maxContacts) +
             "," + Optional(report.drift) + "," + Optional(report.maxPenetration) + "," +
             Optional(report.kineticEnergy) + "," + (report.escaped ? std::to_string(*report.escaped) : "") +
-            ",";
+            ",," + StageField(report.stages);
   }
   if (report.perturbation) {
     // 17 significant digits: the amount reads back as the same double.

@@ -16,9 +16,11 @@ enum class ReportFormat { Csv, JsonLines };
 
 /// The CSV header line (no newline): engine, scene, parameter, bodies,
 /// threads, steps, ms_per_step_median, ms_per_step_mean, max_contacts,
-/// drift_m, max_penetration_m, kinetic_energy_j, escaped, skipped; when
-/// `perturbed` (talus-scenes --perturb/--repeats), then repeat, perturb_m,
-/// perturb_seed.
+/// drift_m, max_penetration_m, kinetic_energy_j, escaped, skipped,
+/// stage_ms_median (for an engine that times its stages:
+/// "Stage=ms;Stage=ms;..." in its stage order, each the median over the
+/// steps; empty otherwise); when `perturbed` (talus-scenes
+/// --perturb/--repeats), then repeat, perturb_m, perturb_seed.
 std::string CsvHeader(bool perturbed = false);
 
 /// One report as a CSV line (no newline). Figures a scene does not have are

@@ -74,6 +74,14 @@ std::vector<BenchReport> Scenes() {
     r.drift = 0.01;
     scenes.push_back(r);
   }
+  // talus again on two threads, both with stage times: the thread-scaling
+  // and where-the-time-goes headings, and the link to the first.
+  scenes[0].stages = {{"FindContacts", 0.5, 0.5}, {"SolveVelocities", 1.0, 1.0}};
+  BenchReport twoThreads = scenes[0];
+  twoThreads.threads = 2;
+  twoThreads.msMedian = 1.5;
+  twoThreads.msMean = 1.5;
+  scenes.push_back(twoThreads);
   return scenes;
 }
 
@@ -153,8 +161,10 @@ TEST_F(InternalLinks, EveryHtmlLinkLandsOnOneElement) {
       EXPECT_EQ(html.compare(at + 3, 5, " id=\""), 0) << html.substr(at, 80);
     }
   }
-  for (const char* section : {"run-time-against-error", "stability-envelope", "large-scenes"})
+  for (const char* section : {"run-time-against-error", "stability-envelope", "large-scenes",
+                              "thread-scaling", "where-the-time-goes", "pyramid-h--15-where-the-time-goes"})
     EXPECT_EQ(ids.count(section), 1u) << section;
+  EXPECT_NE(html.find("<a href=\"#thread-scaling\">"), std::string::npos);
   // The scorecard points at the sections its sweep and scenes columns summarise.
   EXPECT_NE(html.find("<a href=\"#run-time-against-error\">"), std::string::npos);
   EXPECT_NE(html.find("<a href=\"#large-scenes\">"), std::string::npos);
@@ -166,8 +176,11 @@ TEST_F(InternalLinks, EveryMarkdownLinkLandsOnAHeading) {
   const std::vector<std::string> links = MarkdownLinks(md);
   EXPECT_GE(links.size(), 10u);
   for (const std::string& link : links) EXPECT_EQ(anchors.count(link), 1u) << "dangling link #" << link;
-  for (const char* section : {"run-time-against-error", "stability-envelope", "large-scenes"})
+  for (const char* section : {"run-time-against-error", "stability-envelope", "large-scenes",
+                              "thread-scaling", "where-the-time-goes", "pyramid-h--15-where-the-time-goes"})
     EXPECT_EQ(anchors.count(section), 1u) << section;
+  EXPECT_NE(md.find("](#thread-scaling)"), std::string::npos);
+  EXPECT_NE(md.find("](#where-the-time-goes)"), std::string::npos);
   EXPECT_NE(md.find("](#run-time-against-error)"), std::string::npos);
   EXPECT_NE(md.find("](#large-scenes)"), std::string::npos);
 }

@@ -4,8 +4,10 @@
 // ODE's dWorldStep and the report lines of talus-scenes.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "report_writer.h"
 #include "talus/harness/scenes/bench_run.h"
@@ -122,6 +124,66 @@ TEST(BenchRun, FiguresOtherThanTimesAreDeterministic) {
   EXPECT_EQ(first.escaped, second.escaped);
 }
 
+// Talus times its ten step stages (World::Step, StageTimes) and the run
+// keeps them in step order; their means lie inside the timed Step(), so
+// they add up to at most its mean. A peer times none.
+TEST(BenchRun, TalusReportsItsStepStagesInStepOrder) {
+  const BenchReport talus = RunScene("talus", "pyramid", 2, 30);
+  const std::vector<std::string> expected = {"UpdateBroadPhase",
+                                             "IntegrateVelocities",
+                                             "FindContacts",
+                                             "PrepareContacts",
+                                             "SolveVelocities",
+                                             "SolveSplitImpulses",
+                                             "ScatterAndStoreImpulses",
+                                             "IntegratePositions",
+                                             "CorrectPositions",
+                                             "UpdateSleep"};
+  ASSERT_EQ(talus.stages.size(), expected.size());
+  double sumOfMeans = 0.0;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const BenchStage& stage = talus.stages[i];
+    EXPECT_EQ(stage.name, expected[i]);
+    EXPECT_GE(stage.msMedian, 0.0) << stage.name;
+    EXPECT_GE(stage.msMean, 0.0) << stage.name;
+    sumOfMeans += stage.msMean;
+  }
+  EXPECT_LE(sumOfMeans, talus.msMean);
+  EXPECT_GT(sumOfMeans, 0.0);
+  EXPECT_TRUE(RunScene("bullet", "pyramid", 2, 3).stages.empty());
+}
+
+// A backend whose stage list changes between steps cannot be summarised
+// per stage: the run is an Error naming the step, not a silent mix.
+class ShiftingStagesBackend final : public Backend {
+ public:
+  std::string Name() const override { return "shifting"; }
+  void Step() override { ++m_steps; }
+  int BodyCount() const override { return 0; }
+  BodyReading GetBodyState(int) const override { return {}; }
+  std::vector<ContactReading> GetContacts() const override { return {}; }
+  std::vector<Setting> Settings() const override { return {}; }
+  std::vector<StageTiming> StageTimings() const override {
+    if (m_steps < 3) return {{"Collide", 0.001}, {"Solve", 0.002}};
+    return {{"Solve", 0.002}, {"Collide", 0.001}};
+  }
+
+ private:
+  int m_steps = 0;
+};
+
+TEST(BenchRun, StagesThatChangeBetweenStepsAreAnError) {
+  BackendRegistry registry;
+  registry.Register("shifting", "stage list changes at step 3", ThreadSafety::Independent(),
+                    [](const harness::Run&) -> Result<std::unique_ptr<Backend>> {
+                      return std::unique_ptr<Backend>(std::make_unique<ShiftingStagesBackend>());
+                    });
+  const auto report = RunBenchScene(registry, "shifting", *FindBenchScene("hull_pile"), 1, 5);
+  ASSERT_FALSE(report.Ok());
+  EXPECT_EQ(report.GetError().message,
+            "step 3: the backend's stage timings (Solve, Collide) are not those of step 1 (Collide, Solve)");
+}
+
 BenchReport Identity(const char* engine, const char* scene, int parameter, int bodies) {
   BenchReport report;
   report.engine = engine;
@@ -144,12 +206,19 @@ TEST(ReportWriter, CsvLinesHaveTheHeaderColumns) {
   };
   BenchReport report = Identity("bullet", "pyramid", 4, 30);
   report.drift = 0.001;
-  EXPECT_EQ(columns(scenes::CsvHeader()), 14);
-  EXPECT_EQ(columns(scenes::FormatCsv(report)), 14);
-  EXPECT_EQ(scenes::FormatCsv(report), "bullet,pyramid,4,30,1,600,0,0,0,0.001,,,,");
+  EXPECT_EQ(columns(scenes::CsvHeader()), 15);
+  EXPECT_EQ(columns(scenes::FormatCsv(report)), 15);
+  EXPECT_EQ(scenes::FormatCsv(report), "bullet,pyramid,4,30,1,600,0,0,0,0.001,,,,,");
+  // An engine that times its stages: each stage's median in the last field.
+  BenchReport staged = report;
+  staged.engine = "talus";
+  staged.threads = 2;
+  staged.stages = {{"FindContacts", 1.5, 1.75}, {"SolveVelocities", 0.25, 0.5}};
+  EXPECT_EQ(scenes::FormatCsv(staged),
+            "talus,pyramid,4,30,2,600,0,0,0,0.001,,,,,FindContacts=1.5;SolveVelocities=0.25");
   BenchReport skipped = report;
   skipped.skipped = "too \"big\", sorry";
-  EXPECT_EQ(columns(scenes::FormatCsv(skipped)), 14);
+  EXPECT_EQ(columns(scenes::FormatCsv(skipped)), 15);
   EXPECT_NE(scenes::FormatCsv(skipped).find("\"too \"\"big\"\", sorry\""), std::string::npos);
 }
 

@@ -12,10 +12,12 @@
 namespace talus {
 
 /// Wall-clock seconds spent in each stage of one step, one field per stage
-/// of World::Step (world_step.cpp), named as the stage function is.
+/// of World::Step (world_step.cpp), named as the stage function is; the
+/// stages partition the step, so `total` is their sum.
 struct StageTimes {
+  double updateBroadPhase = 0.0;         ///< bounding spheres in, the structure rebuilt or refitted
   double integrateVelocities = 0.0;      ///< forces, gravity, gyroscopic term
-  double collide = 0.0;                  ///< UpdateBroadPhase and FindContacts: broad and narrow phase
+  double findContacts = 0.0;             ///< broad-phase pairs, narrow phase, contacts gathered in pair order
   double prepareContacts = 0.0;          ///< warm-start matching and constraint rows
   double solveVelocities = 0.0;          ///< sequential impulses
   double solveSplitImpulses = 0.0;       ///< split-impulse pseudo-velocities (0 unless selected)

@@ -164,13 +164,13 @@ Result<StepStatistics> World::Step(double dt) {
     return Error{"World::Step refused: " + proxies.GetError().message};
   }
   CountBodies(d, stats);
-  const double broadPhaseUpdate = clock.Lap();
+  stats.seconds.updateBroadPhase = clock.Lap();
 
   stats.awakeBodies = IntegrateVelocitiesOnThreads(d, dt);
   stats.seconds.integrateVelocities = clock.Lap();
 
   FindContacts(d, stats);
-  stats.seconds.collide = broadPhaseUpdate + clock.Lap();
+  stats.seconds.findContacts = clock.Lap();
 
   PrepareContacts(d, dt, stats);
   stats.seconds.prepareContacts = clock.Lap();
@@ -194,9 +194,9 @@ Result<StepStatistics> World::Step(double dt) {
   stats.seconds.sleep = clock.Lap();
 
   const StageTimes& t = stats.seconds;
-  stats.seconds.total = t.integrateVelocities + t.collide + t.prepareContacts + t.solveVelocities +
-                        t.solveSplitImpulses + t.scatterAndStoreImpulses + t.integratePositions +
-                        t.correctPositions + t.sleep;
+  stats.seconds.total = t.updateBroadPhase + t.integrateVelocities + t.findContacts + t.prepareContacts +
+                        t.solveVelocities + t.solveSplitImpulses + t.scatterAndStoreImpulses +
+                        t.integratePositions + t.correctPositions + t.sleep;
   return stats;
 }
 

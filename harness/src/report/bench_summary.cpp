@@ -16,6 +16,7 @@
 #include <optional>
 #include <sstream>
 
+#include "report/bench_stages.h"
 #include "report/markdown_html.h"
 #include "support/text_util.h"
 #include "talus/harness/scenes/bench_scenes.h"
@@ -65,7 +66,10 @@ std::vector<SceneRows> GroupByScene(const std::vector<BenchReport>& reports) {
 const BenchReport* Find(const std::vector<BenchReport>& reports, const std::string& engine,
                         const std::string& scene, int parameter) {
   for (const BenchReport& r : reports) {
-    if (r.engine == engine && r.scene == scene && r.parameter == parameter && r.skipped.empty()) return &r;
+    if (r.engine == engine && r.scene == scene && r.parameter == parameter && r.threads == 1 &&
+        r.skipped.empty()) {
+      return &r;
+    }
   }
   return nullptr;
 }
@@ -104,7 +108,7 @@ void WriteTable(std::ostringstream& out, const SceneRows& group, const std::vect
       << (pyramid ? "drift (m)" : "max penetration (m) | kinetic energy (J) | escaped")
       << " |\n|---|---|---|---|---|---|---|" << (pyramid ? "---|" : "---|---|---|") << "\n";
   for (const BenchReport* r : group.rows) {
-    out << "| " << r->parameter << " | " << r->bodies << " | " << r->engine << " | ";
+    out << "| " << r->parameter << " | " << r->bodies << " | " << BenchRunLabel(*r) << " | ";
     if (!r->skipped.empty()) {
       out << "skipped: " << r->skipped << " |\n";
       continue;
@@ -134,7 +138,8 @@ std::string Compare(const char* name, const std::optional<double>& ours, const s
                  noWorse ? "no worse" : "worse", ")"});
 }
 
-void WriteGoals(std::ostringstream& out, const std::vector<BenchReport>& reports) {
+void WriteGoals(std::ostringstream& out, const std::vector<BenchReport>& reports,
+                const std::vector<const BenchReport*>& rows) {
   std::ostringstream goals;
   for (const auto& [scene, parameter] : {std::pair<std::string, int>{"pyramid", 15}, {"hull_pile", 10}}) {
     const BenchReport* ours = Find(reports, kBenchGoalEngine, scene, parameter);
@@ -154,6 +159,7 @@ void WriteGoals(std::ostringstream& out, const std::vector<BenchReport>& reports
     }
     goals << "\n";
   }
+  goals << BenchThreadGoals(rows);
   if (goals.str().empty()) return;
   out << "\n### Goals\n\n" << goals.str();
 }
@@ -166,8 +172,9 @@ nlohmann::ordered_json ChartData(const std::vector<SceneRows>& groups) {
     std::map<std::string, nlohmann::ordered_json> points;
     for (const BenchReport* r : group.rows) {
       if (!r->skipped.empty() || !std::isfinite(r->msMedian)) continue;
-      if (!points.count(r->engine)) engines.push_back(r->engine);
-      points[r->engine].push_back({{"bodies", r->bodies}, {"parameter", r->parameter}, {"ms", r->msMedian}});
+      const std::string label = BenchRunLabel(*r);
+      if (!points.count(label)) engines.push_back(label);
+      points[label].push_back({{"bodies", r->bodies}, {"parameter", r->parameter}, {"ms", r->msMedian}});
     }
     nlohmann::ordered_json lines = nlohmann::ordered_json::array();
     for (const std::string& e : engines) lines.push_back({{"engine", e}, {"points", points[e]}});
@@ -205,12 +212,25 @@ constexpr const char* kScalingScript = R"(
 
 std::string BenchMarkdown(const std::vector<BenchReport>& reports) {
   if (reports.empty()) return "";
+  const std::vector<SceneRows> groups = GroupByScene(reports);
+  std::vector<const BenchReport*> rows;
+  for (const SceneRows& group : groups) rows.insert(rows.end(), group.rows.begin(), group.rows.end());
+  const std::string stages = BenchStagesMarkdown(rows);
+  const std::string threads = BenchThreadsMarkdown(rows);
   std::ostringstream out;
   out << "## Large scenes\n\nThe reference scenes of bench/SCENES.md (talus-scenes): median and mean wall "
          "time of one step, and each engine's median divided by that of "
-      << kBenchRatioPeer << "'s fastest configuration (named in brackets) from the same invocation.\n";
-  for (const SceneRows& group : GroupByScene(reports)) WriteTable(out, group, reports);
-  WriteGoals(out, reports);
+      << kBenchRatioPeer
+      << "'s fastest configuration (named in brackets) from the same invocation; an engine run on more "
+         "than one thread is named with its thread count, every other on one.";
+  if (!threads.empty()) out << " [Thread scaling](#thread-scaling) compares an engine's thread counts.";
+  if (!stages.empty())
+    out << " For an engine that times its stages, a table per size says [where the time "
+           "goes](#where-the-time-goes).";
+  out << "\n";
+  for (const SceneRows& group : groups) WriteTable(out, group, reports);
+  out << threads << stages;
+  WriteGoals(out, reports, rows);
   return out.str();
 }
 
@@ -228,7 +248,8 @@ std::vector<BenchHeadline> BenchHeadlines(const std::vector<BenchReport>& report
     headline.title = Concat(
         {group.scene, " ", ParameterName(group.scene), " = ", std::to_string(parameter), " (ms/step)"});
     for (const BenchReport* r : group.rows) {
-      if (r->parameter != parameter) continue;
+      // One thread: the scorecard's rows are engines, and the goals judge one thread.
+      if (r->parameter != parameter || r->threads != 1) continue;
       headline.cellByEngine[r->engine] = r->skipped.empty() ? FormatNumber(r->msMedian, 4) : "skipped";
     }
     headlines.push_back(std::move(headline));

@@ -14,6 +14,37 @@ nlohmann::ordered_json JsonNumber(double value) {
   return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
 }
 
+// The stage times of an engine that reports them: each stage a non-empty
+// name met once, its median and mean finite and >= 0, and the means adding
+// up to no more than the step's mean (the stages run inside the timed step).
+void ReadStages(JsonChecker& check, const Json& line, const std::string& path, BenchReport& report) {
+  const Json* stages = check.Array(line, path, "stages");
+  if (stages == nullptr) return;
+  const std::string stagesPath = path + ".stages";
+  double sumOfMeans = 0.0;
+  for (std::size_t i = 0; i < stages->size() && !check.Failed(); ++i) {
+    const std::string at = Concat({stagesPath, "[", std::to_string(i), "]"});
+    BenchStage stage;
+    stage.name = check.Text((*stages)[i], at, "stage");
+    stage.msMedian = check.Number((*stages)[i], at, "ms_median", true);
+    stage.msMean = check.Number((*stages)[i], at, "ms_mean", true);
+    if (check.Failed()) return;
+    for (const BenchStage& before : report.stages) {
+      if (before.name == stage.name) {
+        check.Fail(Concat({at, ".stage"}), "a stage named once");
+        return;
+      }
+    }
+    sumOfMeans += stage.msMean;
+    report.stages.push_back(std::move(stage));
+  }
+  // The step's mean holds every stage and a little more; 1e-9 relative
+  // leaves room for the rounding of the sums, nothing for a wrong file.
+  if (!check.Failed() && std::isfinite(report.msMean) && sumOfMeans > report.msMean * (1.0 + 1e-9)) {
+    check.Fail(stagesPath, "stage means adding up to at most ms_per_step_mean");
+  }
+}
+
 // The figures of a run that was made; `path` is the line's JSON path.
 void ReadFigures(JsonChecker& check, const Json& line, const std::string& path, BenchReport& report) {
   report.msMedian = check.NumberOrNull(line, path, "ms_per_step_median");
@@ -30,6 +61,7 @@ void ReadFigures(JsonChecker& check, const Json& line, const std::string& path, 
     report.kineticEnergy = check.NumberOrNull(line, path, "kinetic_energy_j");
   }
   if (JsonChecker::Has(line, "escaped")) report.escaped = check.Count(line, path, "escaped");
+  if (JsonChecker::Has(line, "stages")) ReadStages(check, line, path, report);
 }
 
 }  // namespace
@@ -58,6 +90,15 @@ std::string BenchReportToJson(const BenchReport& report) {
   if (report.maxPenetration) line["max_penetration_m"] = JsonNumber(*report.maxPenetration);
   if (report.kineticEnergy) line["kinetic_energy_j"] = JsonNumber(*report.kineticEnergy);
   if (report.escaped) line["escaped"] = *report.escaped;
+  if (!report.stages.empty()) {
+    nlohmann::ordered_json stages = nlohmann::ordered_json::array();
+    for (const BenchStage& stage : report.stages) {
+      stages.push_back({{"stage", stage.name},
+                        {"ms_median", JsonNumber(stage.msMedian)},
+                        {"ms_mean", JsonNumber(stage.msMean)}});
+    }
+    line["stages"] = std::move(stages);
+  }
   return line.dump();
 }
 

@@ -12,6 +12,8 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace talus::harness {
@@ -38,6 +40,51 @@ double Median(std::vector<double> values) {
   const size_t n = values.size();
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
+
+double Mean(const std::vector<double>& values) {
+  return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+}
+
+std::string Join(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+// Each stage's times over the steps, in the engine's stage order.
+class StageRecorder {
+ public:
+  // Adds one step's timings, or says why not: the stages must be those of
+  // the first step.
+  std::optional<Error> Add(const std::vector<StageTiming>& timings, int step) {
+    if (m_names.empty() && step == 1) {
+      for (const StageTiming& t : timings) m_names.push_back(t.stage);
+      m_milliseconds.resize(m_names.size());
+    }
+    bool same = timings.size() == m_names.size();
+    for (std::size_t i = 0; same && i < timings.size(); ++i) same = timings[i].stage == m_names[i];
+    if (!same) {
+      std::vector<std::string> names;
+      for (const StageTiming& t : timings) names.push_back(t.stage);
+      return Error{"step " + std::to_string(step) + ": the backend's stage timings (" + Join(names) +
+                   ") are not those of step 1 (" + Join(m_names) + ")"};
+    }
+    for (std::size_t i = 0; i < timings.size(); ++i) m_milliseconds[i].push_back(timings[i].seconds * 1e3);
+    return std::nullopt;
+  }
+
+  std::vector<BenchStage> Stages() const {
+    std::vector<BenchStage> stages;
+    for (std::size_t i = 0; i < m_names.size(); ++i) {
+      stages.push_back({m_names[i], Median(m_milliseconds[i]), Mean(m_milliseconds[i])});
+    }
+    return stages;
+  }
+
+ private:
+  std::vector<std::string> m_names;
+  std::vector<std::vector<double>> m_milliseconds;  // per stage, per step
+};
 
 // The hull pile's figures at the end of a run.
 void MeasureHullPile(const Backend& backend, const Scenario& scene, int dynamicBodies, int side,
@@ -124,6 +171,7 @@ Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_v
 
   const int driftStart = std::min(kPyramidDriftStartStep, steps);
   std::vector<Vec3> startCenters;
+  StageRecorder stages;
   std::vector<double> times;
   times.reserve(static_cast<size_t>(steps));
   for (int step = 1; step <= steps; ++step) {
@@ -131,6 +179,7 @@ Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_v
     backend.Step();
     const auto end = std::chrono::steady_clock::now();
     times.push_back(std::chrono::duration<double, std::milli>(end - begin).count());
+    if (auto refused = stages.Add(backend.StageTimings(), step)) return *refused;
     report.maxContacts = std::max(report.maxContacts, static_cast<int>(backend.GetContacts().size()));
     if (scene.kind == BenchSceneKind::Pyramid && step == driftStart) {
       startCenters = HorizontalCenters(backend, dynamicBodies);
@@ -138,7 +187,8 @@ Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_v
     if (progress) progress(step, steps);
   }
   report.msMedian = Median(times);
-  report.msMean = std::accumulate(times.begin(), times.end(), 0.0) / static_cast<double>(times.size());
+  report.msMean = Mean(times);
+  report.stages = stages.Stages();
 
   if (scene.kind == BenchSceneKind::Pyramid) {
     const std::vector<Vec3> endCenters = HorizontalCenters(backend, dynamicBodies);

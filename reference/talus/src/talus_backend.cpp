@@ -105,6 +105,7 @@ class TalusBackend final : public harness::Backend {
   [[nodiscard]] std::vector<harness::ContactReading> GetContacts() const override;
   [[nodiscard]] std::vector<harness::Setting> Settings() const override { return m_settings; }
   [[nodiscard]] std::vector<harness::StepCounter> StepCounters() const override;
+  [[nodiscard]] std::vector<harness::StageTiming> StageTimings() const override;
   [[nodiscard]] std::string StepFailure() const override { return m_failure; }
 
  private:
@@ -305,6 +306,22 @@ std::vector<harness::StepCounter> TalusBackend::StepCounters() const {
                         s.broadPhase.kindUsed == kind ? 1.0 : 0.0});
   }
   return counters;
+}
+
+// World::Step's stages (StepStatistics::seconds), named as the stage
+// functions of world_step.cpp are, in the order they run.
+std::vector<harness::StageTiming> TalusBackend::StageTimings() const {
+  const StageTimes& t = m_lastStep.seconds;
+  return {{"UpdateBroadPhase", t.updateBroadPhase},
+          {"IntegrateVelocities", t.integrateVelocities},
+          {"FindContacts", t.findContacts},
+          {"PrepareContacts", t.prepareContacts},
+          {"SolveVelocities", t.solveVelocities},
+          {"SolveSplitImpulses", t.solveSplitImpulses},
+          {"ScatterAndStoreImpulses", t.scatterAndStoreImpulses},
+          {"IntegratePositions", t.integratePositions},
+          {"CorrectPositions", t.correctPositions},
+          {"UpdateSleep", t.sleep}};
 }
 
 harness::BodyReading TalusBackend::GetBodyState(int index) const {

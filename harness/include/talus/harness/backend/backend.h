@@ -65,6 +65,14 @@ struct StepCounter {
   double value = 0.0;
 };
 
+/// Wall-clock seconds one stage of the engine's step took ("FindContacts",
+/// 0.004): how an engine that times its own stages says where a step's time
+/// went. Times vary run to run; the list of stages does not.
+struct StageTiming {
+  std::string stage;
+  double seconds = 0.0;
+};
+
 /// A step counter whose name starts with this prefix says which structure
 /// did a piece of work ("structure: uniform grid"): 1 for the one that ran
 /// this step, 0 for the others. The report shows these as labels, not as
@@ -97,6 +105,11 @@ class Backend {
   /// contact points...), in a fixed order, for the report's broad-phase
   /// figure; empty (the default) when the engine reports none.
   [[nodiscard]] virtual std::vector<StepCounter> StepCounters() const { return {}; }
+  /// The time of each stage of the last Step, in the engine's step order,
+  /// the same stages every step; together they cover the engine's step (not
+  /// the backend's own work around it). Empty (the default) when the engine
+  /// does not time its stages; talus-scenes reports them (bench_run.h).
+  [[nodiscard]] virtual std::vector<StageTiming> StageTimings() const { return {}; }
 };
 
 /// Whether a backend's worlds may step on several threads at once: declared

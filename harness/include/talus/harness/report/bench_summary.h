@@ -25,16 +25,20 @@ inline constexpr const char* kBenchGoalEngine = "talus";
 inline constexpr double kBenchGoalRatio = 0.5;
 
 /// The section as Markdown: "## Large scenes", a table per scene (rows by
-/// parameter, then engine in first-seen order; skipped runs say why), then
-/// "### Goals" for pyramid H = 15 and hull_pile L = 10 when both the goal
-/// engine and the peer ran them. Deterministic for the same reports. Empty
-/// for no reports.
+/// parameter, then engine in first-seen order, a run on N > 1 threads named
+/// "engine, N threads"; skipped runs say why), then "### Thread scaling"
+/// and a "where the time goes" table per scene and size when the reports
+/// have several thread counts or stage times (src/report/bench_stages.h),
+/// then "### Goals": pyramid H = 15 and hull_pile L = 10 when both the goal
+/// engine (on one thread) and the peer ran them, and the two-thread
+/// speed-up on pyramid H = 20 and hull_pile L = 20. Deterministic for the
+/// same reports. Empty for no reports.
 std::string BenchMarkdown(const std::vector<BenchReport>& reports);
 
 /// The report scorecard's large-scene figures: one per scene (in the
 /// section's order) at its reference size (BenchScene::defaultParameter)
 /// when the reports hold it, else at their largest, with each engine's median
-/// ms/step there as the section's table prints it, or "skipped".
+/// ms/step on one thread there as the section's table prints it, or "skipped".
 struct BenchHeadline {
   std::string title;                                ///< e.g. "pyramid H = 15 (ms/step)"
   std::map<std::string, std::string> cellByEngine;  ///< engines that have a row there

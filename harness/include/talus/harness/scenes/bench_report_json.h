@@ -8,7 +8,11 @@
 //   {"engine", "scene", "parameter", "bodies", "threads", "steps",
 //    ["repeat", "perturb_m", "perturb_seed" when perturbed],
 //    "ms_per_step_median", "ms_per_step_mean", "max_contacts",
-//    "drift_m" | "max_penetration_m", "kinetic_energy_j", "escaped"}
+//    "drift_m" | "max_penetration_m", "kinetic_energy_j", "escaped",
+//    "stages": [{"stage", "ms_median", "ms_mean"}, ...]}
+// where "stages" (only for an engine that times its step's stages, in its
+// order) must name each stage once, with finite times >= 0 whose means add
+// up to no more than ms_per_step_mean.
 // A skipped run is {"engine", ..., "steps", "skipped": "why"} with no
 // figures. Reading validates every field and names the file, the line and
 // the key of the first problem; nothing is returned from a bad file. The

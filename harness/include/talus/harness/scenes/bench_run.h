@@ -6,8 +6,10 @@
 // Only Backend::Step() is timed (std::chrono::steady_clock around each
 // call); reading contacts and states for the figures happens between steps,
 // outside the timed region. Every figure other than the times is a
-// deterministic function of the backend's results. All backends step on one
-// thread, so `threads` is 1.
+// deterministic function of the backend's results. An engine that times its
+// own stages (Backend::StageTimings: Talus) also gets each stage's median
+// and mean ms/step, read between steps. Every peer steps on one thread; the
+// caller sets `threads` for a Talus world built with more (talus-scenes).
 #pragma once
 
 #include <cstdint>
@@ -15,6 +17,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "talus/harness/backend/backend.h"
 #include "talus/harness/scenes/bench_scenes.h"
@@ -49,6 +52,16 @@ inline constexpr int kOdeMaxBodies = 5000;
 /// reaches the limit; pyramid H = 5 (55 cubes) and hull_pile L = 2 (40)
 /// run.
 inline constexpr int kMujocoMaxBodies = 63;
+
+/// One stage of the engine's step over a run (Backend::StageTimings).
+struct BenchStage {
+  std::string name;       ///< the engine's name for it, e.g. "FindContacts"
+  double msMedian = 0.0;  ///< median over the steps of its wall time, milliseconds
+  /// mean over the steps, milliseconds: the means of the stages add up to
+  /// the engine's mean step, so stage mean / BenchReport::msMean is the
+  /// stage's share of the step
+  double msMean = 0.0;
+};
 
 /// The initial positions of one perturbed repeat (bench_perturb.h): every
 /// dynamic body moved by up to `amount` metres per axis, drawn from
@@ -85,6 +98,9 @@ struct BenchReport {
   std::optional<int> escaped;
   /// Set when the run started from perturbed initial positions.
   std::optional<BenchPerturbation> perturbation;
+  /// The engine's step stages in its order; empty for an engine that does
+  /// not time them (every peer).
+  std::vector<BenchStage> stages;
   /// Not empty when the run was not made: why (then only the identity
   /// fields above are filled).
   std::string skipped;
@@ -99,8 +115,9 @@ std::optional<std::string> BenchSkipReason(std::string_view engine, int dynamicB
 using BenchProgress = std::function<void(int step, int steps)>;
 
 /// Builds `scene` at `parameter` with the named backend, runs `steps` steps
-/// (>= 1) and reports. A parameter out of range, an unknown engine or a world
-/// the backend refuses is an Error. When BenchSkipReason says so, the report
+/// (>= 1) and reports. A parameter out of range, an unknown engine, a world
+/// the backend refuses, or stage timings that change their stages from one
+/// step to the next is an Error. When BenchSkipReason says so, the report
 /// comes back with `skipped` set and nothing run. With a `perturbation`, the
 /// scene's dynamic bodies start from PerturbDynamicPositions(amount, seed)
 /// and the report carries it; a bad amount is an Error.
