@@ -9,7 +9,9 @@
 //   projected on n by hill climbing from the edges' own vertices,
 //   separation = the larger of the two one-sided gaps (the write-up);
 // - GaussMapPruned, an edge pair that builds a Minkowski face: the edges are
-//   the supports, so separation = n . (pB - pA) with n oriented away from A.
+//   the supports, so separation = n . (pB - pA) with n oriented away from A;
+//   a pair that would become the best is confirmed by projection (round-off
+//   on a sliver's tiny edge can pass a pair whose edges are not supports).
 // The minimum overlap over all E^2 edge axes equals the minimum over the
 // Minkowski-face pairs (the overlap along a direction is the support
 // distance of A - B, smallest at one of its faces), which is why pruning
@@ -173,6 +175,18 @@ double EdgeSeparation(const PosedHull& a, int ea, const Vec3& dirA, const PosedH
   return alongPlus;
 }
 
+// max over `vertices` of n . v, by scanning them all: exact on any hull,
+// where hill climbing can stop at a vertex that is a local maximum only
+// through round-off (a sliver's faces fitted within its tolerance).
+double HighestAlong(std::span<const Vec3> vertices, const Vec3& n) {
+  double high = kNegativeInfinity;
+  for (const Vec3& v : vertices) high = std::max(high, n.dot(v));
+  return high;
+}
+
+// min over `vertices` of n . v (see HighestAlong).
+double LowestAlong(std::span<const Vec3> vertices, const Vec3& n) { return -HighestAlong(vertices, -n); }
+
 // Full mode: every edge pair measured by projection (the write-up).
 EdgeQuery QueryAllEdges(const PosedHull& a, const PosedHull& b, double margin, NarrowPhaseStats* stats) {
   EdgeQuery best;
@@ -200,13 +214,12 @@ EdgeQuery QueryAllEdges(const PosedHull& a, const PosedHull& b, double margin, N
 
 // GaussMapPruned mode (Gregorius, GDC 2013): only edge pairs that build a
 // face of the Minkowski difference A - B are measured, and those need no
-// projection. For such a pair the axis n = eA x eB (oriented onto A's arc, away from A's
-// interior) lies on both edges' arcs, so edge eA is A's support along n and
-// edge eB is B's support along -n: the gap is n . (pB - pA) for any vertex
-// pA of eA and pB of eB. The Gauss map test reads B's face normals against
-// A's arc plane from a table filled once per edge of A (one dot per face of
-// B instead of two per edge pair), and runs the same predicates, on the
-// same numbers, as IsMinkowskiFace.
+// projection in exact arithmetic (a pair that would become the best is
+// still projected once, see below). For such a pair the axis n = eA x eB (oriented onto A's arc, away from
+// A's interior) lies on both edges' arcs, so edge eA is A's support along n and edge eB is B's support along
+// -n: the gap is n . (pB - pA) for any vertex pA of eA and pB of eB. The Gauss map test reads B's face
+// normals against A's arc plane from a table filled once per edge of A (one dot per face of B instead of two
+// per edge pair), and runs the same predicates, on the same numbers, as IsMinkowskiFace.
 EdgeQuery QueryMinkowskiEdges(SatFrame& frame, double margin, NarrowPhaseStats* stats) {
   const auto verticesA = frame.hullA->Vertices();
   const auto halfEdgesA = frame.hullA->HalfEdges();
@@ -270,22 +283,27 @@ EdgeQuery QueryMinkowskiEdges(SatFrame& frame, double margin, NarrowPhaseStats* 
       Vec3 n = cross / std::sqrt(crossSquared);
       if (n.dot(bisectorA) < 0.0) n = -n;
       double separation = n.dot(pointB - pointA);
-      if (separation > margin) {
-        // A separated verdict is confirmed by projecting both hulls on n
-        // (hill climbing from the edges' own vertices, so a true Minkowski
-        // face costs two short climbs, once per query). The shortcut above
-        // assumes the edges are the supports; on an edge far shorter than
-        // the hull (a sliver's vertex cluster, 1e-13 m in the fuzz finding)
-        // the direction eA is round-off next to its faces' normals, the
-        // Gauss map test can pass a pair whose axis is off A's arc, and eA is
-        // then not A's support along n (by 2.7e-4 m in the finding). The
-        // projected gap is never larger than the shortcut's and equals it,
-        // up to round-off, on a true Minkowski face.
-        const int supportA = ClimbSupport(*frame.hullA, verticesA, n, halfEdgesA[2 * ea].origin);
-        const int supportB = ClimbSupport(*frame.hullB, verticesB, -n, halfEdgesB[2 * eb].origin);
-        separation = std::min(separation, n.dot(verticesB[static_cast<std::size_t>(supportB)] -
-                                                verticesA[static_cast<std::size_t>(supportA)]));
-      }
+      // The shortcut is never below the projected gap (pA is no higher
+      // than A's top on n, pB no lower than B's bottom), so a pair that
+      // cannot beat the best so far needs no more work.
+      if (!(separation > best.separation)) continue;
+      // A pair that would become the best is confirmed by projecting every
+      // vertex of both hulls on n (not by hill climbing, which a sliver can
+      // stop early; only pairs that improve the best pay the V_A + V_B
+      // dots, a few per query). The shortcut assumes the edges are the
+      // supports; on an edge far shorter than the hull (a sliver's vertex
+      // cluster, 1e-13 m in the fuzz findings) the direction eA is
+      // round-off next to its faces' normals, the Gauss map test can pass a
+      // pair whose axis is off A's arc, and eA is then not A's support
+      // along n. Unconfirmed, such a pair turned an overlap into a
+      // separation (by 2.7e-4 m, sliver_hull_gauss_map_separated_while_-
+      // overlapping) and, overlapping, claimed 3.6e-8 m less overlap than
+      // its axis has, beating A's face of least overlap by more than the
+      // preference band, so the reported depth was 1.8e-8 m beyond the true
+      // minimum (sliver_edge_axis_beat_face_by_shortcut). The projected gap
+      // equals the shortcut, up to round-off, on a true Minkowski face, so
+      // the least overlap is still found.
+      separation = std::min(separation, LowestAlong(verticesB, n) - HighestAlong(verticesA, n));
       if (separation > best.separation) {
         best = {.edgeA = static_cast<int>(ea), .edgeB = static_cast<int>(eb), .separation = separation};
         if (separation > margin) {
@@ -452,19 +470,24 @@ SatResult RunSat(const PosedHull& a, const PosedHull& b, SatMode mode, double ma
     separation = faceB.separation;
   }
   if (edge.edgeA >= 0 && edge.separation > separation + band) {
+    const SatAxis searched{SatAxisType::EdgePair, edge.edgeA, edge.edgeB};
     Vec3 normal = Vec3::Zero();
-    EvaluateSatAxis(a, b, {SatAxisType::EdgePair, edge.edgeA, edge.edgeB}, &normal);
+    const double searchedSeparation = EvaluateSatAxis(a, b, searched, &normal);
     axis = {SatAxisType::EdgePair, SupportingEdge(a, -normal, edge.edgeA),
             SupportingEdge(b, normal, edge.edgeB)};
-    // The supporting edges can be parallel, which spans no axis: a sliver's
-    // edge of 2e-11 m (its direction round-off) picked at the support vertex
+    // The re-picked edges must measure what the searched pair does; the
+    // pair the search measured spans the axis by construction (it skips
+    // parallel pairs), so it is kept otherwise. Two ways they differ on a
+    // sliver: the supporting edges can be parallel, which spans no axis (an
+    // edge of 2e-11 m, its direction round-off, picked at the support vertex
     // next to a box edge it happens to parallel gave a separation of -inf in
-    // both modes. The pair the search measured spans the axis by
-    // construction (it skips parallel pairs), so it is kept then.
+    // both modes); and hill climbing can stop at a vertex that is a local
+    // maximum only through round-off, so SupportingEdge starts from the
+    // wrong vertex and its edge's axis, measured by climbing, reported
+    // 1.7e-4 m less overlap than the true minimum (SatSliver case 446).
     Vec3 unused = Vec3::Zero();
-    if (!std::isfinite(EvaluateSatAxis(a, b, axis, &unused))) {
-      axis = {SatAxisType::EdgePair, edge.edgeA, edge.edgeB};
-    }
+    const double repickedSeparation = EvaluateSatAxis(a, b, axis, &unused);
+    if (!(std::abs(repickedSeparation - searchedSeparation) <= band)) axis = searched;
   }
   return finish(axis, false);
 }
