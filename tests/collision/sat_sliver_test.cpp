@@ -112,6 +112,47 @@ TEST(SatSliver, PrunedVerdictAndReportedAxisMatchBruteForceOnRandomSlivers) {
   EXPECT_GT(overlapping, 1000);
 }
 
+// The Full mode's reported overlap on random slivers, both orders, against
+// the brute force: never less than the least overlap over all axes (no
+// axis overlaps less than the minimum, so a smaller figure is an axis
+// measured wrong), and at most the preference band above it (the SAT
+// prefers faces within the band). The shape of the fuzz finding
+// full_mode_edge_climb_stalled_on_sliver_reported_too_shallow: hill
+// climbing stopped on a sliver's round-off-flat edge, so an edge pair's
+// gap read too large and its axis beat every correct one (1.7e-4 m too
+// shallow in that input).
+TEST(SatSliver, FullModeOverlapMatchesBruteForceOnRandomSlivers) {
+  std::mt19937_64 rng(kSeed);
+  int built = 0;
+  int overlapping = 0;
+  for (int i = 0; i < kCases; ++i) {
+    const auto pair = RandomSliverPair(rng);
+    if (!pair) continue;
+    ++built;
+    for (const bool sliverFirst : {true, false}) {
+      const PosedHull sliver = PosedHull::Make(*pair->sliver, pair->xfSliver);
+      const PosedHull box = PosedHull::Make(*pair->box, pair->xfBox);
+      const PosedHull& a = sliverFirst ? sliver : box;
+      const PosedHull& b = sliverFirst ? box : sliver;
+      const double oracle = test::BruteMinimumOverlap(a, b);
+      const double band = pair->sliver->Tolerance() + pair->box->Tolerance() + kRoundOff;
+      if (oracle < band) continue;  // separated, or touching within the hulls' tolerance
+      const SatResult sat = RunSat(a, b, SatMode::Full, 0.0, nullptr, nullptr);
+      ASSERT_FALSE(sat.separated) << "case " << i << ": oracle overlap " << oracle;
+      ++overlapping;
+      const double preference = AxisPreferenceBand(*a.hull, *b.hull);
+      EXPECT_GE(-sat.separation, oracle - kRoundOff)
+          << "case " << i << (sliverFirst ? " sliver first" : " box first") << ", axis type "
+          << static_cast<int>(sat.axis.type);
+      EXPECT_LE(-sat.separation, oracle + preference + kRoundOff)
+          << "case " << i << (sliverFirst ? " sliver first" : " box first") << ", axis type "
+          << static_cast<int>(sat.axis.type);
+    }
+  }
+  EXPECT_GT(built, 2000);
+  EXPECT_GT(overlapping, 1000);
+}
+
 // Every answer is a finite separation along a unit normal, in both modes.
 // The supporting edges chosen after the search can be parallel (a sliver
 // edge of 2e-11 m next to a box edge), which once gave -inf; 8000 slivers

@@ -115,12 +115,53 @@ struct SatFrame {
   }
 };
 
+// max over `vertices` of n . v, by scanning them all: exact on any hull,
+// where hill climbing can stop at a vertex that is a local maximum only
+// through round-off (a sliver's faces fitted within its tolerance).
+double HighestAlong(std::span<const Vec3> vertices, const Vec3& n) {
+  double high = kNegativeInfinity;
+  for (const Vec3& v : vertices) high = std::max(high, n.dot(v));
+  return high;
+}
+
+// min over `vertices` of n . v (see HighestAlong).
+double LowestAlong(std::span<const Vec3> vertices, const Vec3& n) { return -HighestAlong(vertices, -n); }
+
+// max over p's vertices of n . vertex in world space, by scanning them all:
+// exact on any hull, where hill climbing (PosedHull::Support) can stop at a
+// vertex that is a local maximum only through round-off (a sliver's edge
+// of 1e-13 m whose direction is round-off, its far end exactly level with
+// the start along n). A climb can only stop short, so its figure is a lower
+// bound of this one; the two are bit-identical whenever the climb reaches
+// the top (the same expression on the same vertex).
+double ProjectedSupport(const PosedHull& p, const Vec3& n) {
+  double high = kNegativeInfinity;
+  for (int v = 0; v < p.hull->VertexCount(); ++v) high = std::max(high, n.dot(p.Vertex(v)));
+  return high;
+}
+
+// The vertex farthest along `direction`: the hill climb from `start`, unless
+// some vertex lies strictly farther (the climb stalled at a round-off local
+// maximum), then the first such farthest vertex. Ties keep the climb's
+// answer, so a well-shaped hull gets the vertex it always got.
+int ProjectedSupportVertex(const PosedHull& p, const Vec3& direction, int start) {
+  int best = p.Support(direction, start);
+  double high = direction.dot(p.Vertex(best));
+  for (int v = 0; v < p.hull->VertexCount(); ++v) {
+    const double value = direction.dot(p.Vertex(v));
+    if (value > high) {
+      high = value;
+      best = v;
+    }
+  }
+  return best;
+}
+
 // Separation of face f of `p` against `q` in world space: how far q's
-// deepest vertex is in front of the face plane. `start` is q's support hint.
-double FaceSeparation(const PosedHull& p, int f, const PosedHull& q, int* start) {
+// deepest vertex is in front of the face plane, every vertex of q projected.
+double FaceSeparation(const PosedHull& p, int f, const PosedHull& q) {
   const Plane plane = p.FacePlane(f);
-  *start = q.Support(-plane.normal, *start);
-  return plane.normal.dot(q.Vertex(*start)) - plane.offset;
+  return -ProjectedSupport(q, -plane.normal) - plane.offset;
 }
 
 // The face of one hull whose plane the other hull, `q` with its vertices
@@ -137,7 +178,14 @@ FaceQuery QueryFaces(int faceCount, PlaneOf planeOf, const Hull& q, std::span<co
     ++tested;
     const Plane& plane = planeOf(f);
     start = ClimbSupport(q, qVertices, -plane.normal, start);
-    const double separation = plane.normal.dot(qVertices[static_cast<std::size_t>(start)]) - plane.offset;
+    double separation = plane.normal.dot(qVertices[static_cast<std::size_t>(start)]) - plane.offset;
+    // The climb can stop short of q's deepest vertex (a round-off local
+    // maximum on a sliver), so its separation is an upper bound: enough to
+    // discard a face, not to keep one. A face that would become the best is
+    // measured by projecting every vertex of q (equal to the climb's figure,
+    // bit for bit, when the climb reached the bottom).
+    if (!(separation > best.separation)) continue;
+    separation = std::min(separation, -HighestAlong(qVertices, -plane.normal) - plane.offset);
     if (separation > best.separation) {
       best = {.face = f, .separation = separation};
       if (separation > margin) break;
@@ -147,12 +195,23 @@ FaceQuery QueryFaces(int faceCount, PlaneOf planeOf, const Hull& q, std::span<co
   return best;
 }
 
+// How EdgeSeparation finds each hull's extent along the axis.
+enum class Extent : std::uint8_t {
+  // Hill climbing from the edges' own vertices: a step or two, but it can
+  // stop short on a sliver, so the gap is an upper bound of the true one
+  // (each extent can only come out too small). Discards pairs.
+  Climbed,
+  // Every vertex projected: the true gap. Measures a pair that is kept.
+  Projected,
+};
+
 // The projection gap along the cross product of edges ea (of a) and eb (of
-// b), in world space, with both hulls projected by hill climbing from the
-// edges' own vertices; `axis` gets the direction from A towards B that
-// achieves it. The write-up's measure, valid for any edge pair.
+// b), in world space; `axis` gets the direction from A towards B that
+// achieves it. The write-up's measure, valid for any edge pair. With
+// Extent::Climbed the figure is an upper bound of the Projected one (equal
+// whenever every climb reaches its hull's top).
 double EdgeSeparation(const PosedHull& a, int ea, const Vec3& dirA, const PosedHull& b, int eb,
-                      const Vec3& dirB, Vec3* axis) {
+                      const Vec3& dirB, Extent extent, Vec3* axis) {
   const Vec3 cross = dirA.cross(dirB);
   const double crossSquared = cross.squaredNorm();
   if (crossSquared <= kParallelEdgeSine * kParallelEdgeSine * dirA.squaredNorm() * dirB.squaredNorm()) {
@@ -161,10 +220,11 @@ double EdgeSeparation(const PosedHull& a, int ea, const Vec3& dirA, const PosedH
   const Vec3 n = cross / std::sqrt(crossSquared);
   const int startA = a.EdgeStart(ea);
   const int startB = b.EdgeStart(eb);
-  const double highA = a.SupportDistance(n, startA);
-  const double lowA = -a.SupportDistance(-n, startA);
-  const double highB = b.SupportDistance(n, startB);
-  const double lowB = -b.SupportDistance(-n, startB);
+  const bool climb = extent == Extent::Climbed;
+  const double highA = climb ? a.SupportDistance(n, startA) : ProjectedSupport(a, n);
+  const double lowA = climb ? -a.SupportDistance(-n, startA) : -ProjectedSupport(a, -n);
+  const double highB = climb ? b.SupportDistance(n, startB) : ProjectedSupport(b, n);
+  const double lowB = climb ? -b.SupportDistance(-n, startB) : -ProjectedSupport(b, -n);
   const double alongPlus = lowB - highA;   // B beyond A along +n
   const double alongMinus = lowA - highB;  // B beyond A along -n
   if (alongMinus > alongPlus) {
@@ -175,19 +235,13 @@ double EdgeSeparation(const PosedHull& a, int ea, const Vec3& dirA, const PosedH
   return alongPlus;
 }
 
-// max over `vertices` of n . v, by scanning them all: exact on any hull,
-// where hill climbing can stop at a vertex that is a local maximum only
-// through round-off (a sliver's faces fitted within its tolerance).
-double HighestAlong(std::span<const Vec3> vertices, const Vec3& n) {
-  double high = kNegativeInfinity;
-  for (const Vec3& v : vertices) high = std::max(high, n.dot(v));
-  return high;
-}
-
-// min over `vertices` of n . v (see HighestAlong).
-double LowestAlong(std::span<const Vec3> vertices, const Vec3& n) { return -HighestAlong(vertices, -n); }
-
-// Full mode: every edge pair measured by projection (the write-up).
+// Full mode: every edge pair (the write-up), discarded by its climbed gap
+// (an upper bound) and, when that would beat the best so far, measured by
+// projecting every vertex. Measured by the climb alone, a sliver's pair
+// whose climb stalled on a round-off-flat edge 1.5e-13 m long read a gap
+// 2.5e-4 m too large and beat every correct axis, so the reported overlap
+// was 1.7e-4 m less than the least overlap of any axis (fuzz finding
+// full_mode_edge_climb_stalled_on_sliver_reported_too_shallow).
 EdgeQuery QueryAllEdges(const PosedHull& a, const PosedHull& b, double margin, NarrowPhaseStats* stats) {
   EdgeQuery best;
   std::uint64_t tested = 0;
@@ -198,7 +252,10 @@ EdgeQuery QueryAllEdges(const PosedHull& a, const PosedHull& b, double margin, N
     for (int eb = 0; eb < edgeCountB; ++eb) {
       ++tested;
       Vec3 axis = Vec3::Zero();
-      const double separation = EdgeSeparation(a, ea, dirA, b, eb, b.EdgeDirection(eb), &axis);
+      const Vec3 dirB = b.EdgeDirection(eb);
+      double separation = EdgeSeparation(a, ea, dirA, b, eb, dirB, Extent::Climbed, &axis);
+      if (!(separation > best.separation)) continue;
+      separation = EdgeSeparation(a, ea, dirA, b, eb, dirB, Extent::Projected, &axis);
       if (separation > best.separation) {
         best = {.edgeA = ea, .edgeB = eb, .separation = separation};
         if (separation > margin) {
@@ -333,7 +390,9 @@ int SupportingEdge(const PosedHull& p, const Vec3& direction, int edge) {
   constexpr double kPlaneTolerance = 1e-9;  // |cos| differences below this are ties
   const Vec3 along = p.EdgeDirection(edge).normalized();
   const Vec3 axis = direction.normalized();
-  const int v = p.Support(direction, p.EdgeStart(edge));
+  // The support vertex by projection: a climb stalled at a round-off local
+  // maximum of a sliver would start the walk from the wrong vertex.
+  const int v = ProjectedSupportVertex(p, direction, p.EdgeStart(edge));
   const auto halfEdges = p.hull->HalfEdges();
   const int first = p.hull->VertexEdges()[static_cast<std::size_t>(v)];
   int best = edge;
@@ -385,20 +444,21 @@ bool IsMinkowskiFace(const Vec3& a, const Vec3& b, const Vec3& bxa, const Vec3& 
 }
 
 double EvaluateSatAxis(const PosedHull& a, const PosedHull& b, const SatAxis& axis, Vec3* normal) {
-  int start = 0;
+  // Every axis is measured by projecting every vertex of both hulls: this is
+  // the figure the SAT reports and the cache trusts.
   switch (axis.type) {
     case SatAxisType::FaceA: {
       *normal = -a.FaceNormal(axis.indexA);
-      return FaceSeparation(a, axis.indexA, b, &start);
+      return FaceSeparation(a, axis.indexA, b);
     }
     case SatAxisType::FaceB: {
       *normal = b.FaceNormal(axis.indexB);
-      return FaceSeparation(b, axis.indexB, a, &start);
+      return FaceSeparation(b, axis.indexB, a);
     }
     case SatAxisType::EdgePair: {
       Vec3 fromAToB = Vec3::Zero();
       const double separation = EdgeSeparation(a, axis.indexA, a.EdgeDirection(axis.indexA), b, axis.indexB,
-                                               b.EdgeDirection(axis.indexB), &fromAToB);
+                                               b.EdgeDirection(axis.indexB), Extent::Projected, &fromAToB);
       *normal = -fromAToB;
       return separation;
     }
