@@ -82,6 +82,13 @@ enum class RotationIntegrator {
   /// drift; the body turns over about its intermediate axis at the right
   /// period to O(h^2).
   MomentumSplitting,
+  /// MomentumSplitting's drift made fourth order: the symmetric step S is
+  /// composed as S(a h) S(b h) S(a h), a = 1 / (2 - 2^(1/3)), b = 1 - 2a
+  /// (Yoshida, Phys. Lett. A 150, 1990). Still a sequence of exact rotations
+  /// about the principal axes, so L is kept to round-off and the scheme is
+  /// symplectic; the energy and attitude errors fall as O((h |w|)^4) instead
+  /// of O((h |w|)^2), for 13 sub-rotations a step instead of 5.
+  MomentumSplittingFourthOrder,
 };
 
 /// How centres of mass advance over a step.

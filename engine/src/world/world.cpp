@@ -115,7 +115,8 @@ std::string ValidateSettings(const WorldSettings& s) {
   }
   if (s.rotation != RotationIntegrator::ConstantRate &&
       s.rotation != RotationIntegrator::ImplicitGyroscopic &&
-      s.rotation != RotationIntegrator::MomentumSplitting) {
+      s.rotation != RotationIntegrator::MomentumSplitting &&
+      s.rotation != RotationIntegrator::MomentumSplittingFourthOrder) {
     return "WorldSettings.rotation = " + std::to_string(static_cast<int>(s.rotation)) +
            " is not a RotationIntegrator";
   }

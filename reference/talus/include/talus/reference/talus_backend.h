@@ -19,8 +19,11 @@
 // and the centre of mass sits at its centroid, with no re-centring;
 // sleeping off (the peers never sleep, and a sleeping body would hide
 // jitter); the gyroscopic term as the scenario says (on:
-// WorldSettings::rotation = MomentumSplitting, which keeps L; off:
-// ConstantRate); position update exact for constant acceleration
+// WorldSettings::rotation = MomentumSplittingFourthOrder, which keeps L
+// with an O(h^4) energy error, MomentumSplitting (second order) for
+// talus-writeup; off: ConstantRate); new contacts converged to 1e-9 m/s
+// (WorldSettings::velocityTolerance; the engine's 1e-3 for talus-writeup,
+// which has no extra sweeps anyway); position update exact for constant acceleration
 // (WorldSettings::translation = ExactConstantAcceleration; symplectic Euler
 // for talus-writeup); bounces timed as the scenario's world.bounceTiming
 // says (auto: inside the step, the engine's default; at the step's
