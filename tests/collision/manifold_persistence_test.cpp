@@ -155,6 +155,37 @@ TEST(ManifoldPersistence, FullOrLargerFreshManifoldsAndEmptyHistoriesAreLeftAsTh
   EXPECT_EQ(edge.pointCount, 4);
 }
 
+// A contact with a gap is not under load: its single speculative point is
+// left alone, while the same point touching is filled (above). The cube of
+// the fixture tilted 3 mm on its near edge, then lifted 2 mm: the near edge
+// is 1 mm clear of the support (depth -1 mm), so only a speculative margin
+// reports it; a 1.5 mm margin takes that edge and not the far corners (2 mm
+// clear touching, 4 mm lifted), so the fresh manifold is the edge alone.
+// The remembered corners are 1-4 mm clear, inside the 5 mm break distance,
+// so nothing but the gap rule keeps them out.
+TEST(ManifoldPersistence, ASpeculativeSinglePointIsNotFilled) {
+  const double depth = 0.001;
+  const TiltFixture fixture(depth);
+  const NarrowPhaseSettings margin{.speculativeMargin = 0.0015};
+  const double lift = 0.002;
+  for (const bool lifted : {false, true}) {
+    const Transform moved = fixture.Tilted(std::asin(0.003), Vec3(0.0, lifted ? lift : 0.0, 0.0));
+    ContactManifold edge{};
+    ASSERT_TRUE(
+        Collide(fixture.support, fixture.xfSupport, fixture.cube, moved, margin, nullptr, nullptr, &edge));
+    ASSERT_EQ(edge.pointCount, 2) << lifted;
+    // Exact to the round-off of order-1 coordinates through a turn.
+    EXPECT_NEAR(edge.points[0].depth, lifted ? depth - lift : depth, 1e-12) << lifted;
+    edge.pointCount = 1;
+    ManifoldAnchors edgeAnchors = RecordAnchors(edge, fixture.xfSupport, moved);
+    const int added = MergePersistentPoints(fixture.manifold, fixture.anchors, fixture.xfSupport, moved,
+                                            kBreak, kPersistentFreshPoints, &edge, &edgeAnchors);
+    EXPECT_EQ(added, lifted ? 0 : 3) << lifted;
+    EXPECT_EQ(edge.pointCount, lifted ? 1 : 4) << lifted;
+    EXPECT_EQ(edgeAnchors.pointCount, edge.pointCount) << lifted;
+  }
+}
+
 TEST(ManifoldPersistence, BreakDistanceIsCappedAtOnePercentOfTheSmallerBody) {
   EXPECT_DOUBLE_EQ(PersistentBreakDistance(0.005, 2.0, 0.75), 0.005);
   EXPECT_DOUBLE_EQ(PersistentBreakDistance(0.005, 0.1, 3.0), 0.001);  // a 10 cm body: 1 mm

@@ -23,8 +23,10 @@
 // carrying the SAT depth.
 //
 // Rules (MergePersistentPoints):
-// - only a fresh manifold of at most kPersistentFreshPoints points (one) is
-//   filled, and its points are always kept;
+// - only a fresh manifold of at most kPersistentFreshPoints points (one)
+//   whose deepest point penetrates (depth > 0: the contact is under load)
+//   is filled, and its points are always kept; a speculative contact (a
+//   gap) is left as the narrow phase made it;
 // - a remembered point is dropped when it separated along n by more than
 //   the distance, drifted tangentially by more than the distance, has the
 //   feature id of a fresh point (the fresh one replaces it) or lies within
@@ -94,7 +96,8 @@ void SnapAnchorsToSurfaces(const Shape& a, const Transform& xfA, const Shape& b,
 /// not from a midpoint that would move with each step's drift. `distance`
 /// (metres, finite, > 0) is the break distance. A fresh manifold with more
 /// than `maxFreshPoints` points (the World passes kPersistentFreshPoints),
-/// kPersistentMaxPoints or more, or none, is left as it is.
+/// kPersistentMaxPoints or more, none, or none that penetrates (deepest
+/// depth <= 0), is left as it is.
 /// Returns the number of remembered points added.
 int MergePersistentPoints(const ContactManifold& previous, const ManifoldAnchors& previousAnchors,
                           const Transform& xfA, const Transform& xfB, double distance, int maxFreshPoints,
