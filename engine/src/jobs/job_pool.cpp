@@ -6,6 +6,13 @@
 //            claim chunks itself, then wait until every chunk has run.
 //   worker:  sleep until m_generation changes, copy the job under the mutex,
 //            claim chunks until none is left, leave the job.
+// A RunPhases job numbers the chunks of all its phases in one sequence; a
+// claimed chunk of phase p first waits until m_doneChunks reaches the
+// first chunk of p (every earlier chunk returned; the fetch_add that
+// counted each one releases its writes to the thread that reads the count).
+// The wait cannot deadlock: chunks are claimed in increasing order, so the
+// chunks waited on are all held by threads running or waiting on still
+// earlier ones, down to phase 0, which waits on nothing.
 // A worker that wakes late (after the job's chunks are all taken) claims
 // nothing and never touches the caller's function. Because the next job
 // waits for every worker to leave the previous one, the chunk counter is
@@ -75,20 +82,40 @@ JobPool::~JobPool() {
 }
 
 void JobPool::ParallelFor(int count, int grain, const std::function<void(int, int)>& fn) noexcept {
-  const int chunks = ChunkCount(count, grain);
+  const JobPhase phase{.count = count, .grain = grain};
+  RunPhases(std::span<const JobPhase>(&phase, 1), [&fn](int, int begin, int end) { fn(begin, end); });
+}
+
+void JobPool::RunPhases(std::span<const JobPhase> phases,
+                        const std::function<void(int, int, int)>& fn) noexcept {
+  int chunks = 0;
+  for (const JobPhase& phase : phases) chunks += ChunkCount(phase.count, phase.grain);
   if (chunks == 0) return;
-  const int g = grain < 1 ? 1 : grain;
-  const Job job{.fn = &fn, .count = count, .grain = g, .chunks = chunks};
+  Job job;
   {
     std::unique_lock lock(m_mutex);
     // No workers, a single chunk, or a call from inside a job: the same
     // chunks, in order, on this thread.
     if (m_workers.empty() || chunks == 1 || m_running) {
       lock.unlock();
-      for (int c = 0; c < chunks; ++c) RunChunk(job, c);
+      for (std::size_t p = 0; p < phases.size(); ++p) {
+        const int g = phases[p].grain < 1 ? 1 : phases[p].grain;
+        for (int begin = 0; begin < phases[p].count; begin += g) {
+          fn(static_cast<int>(p), begin, phases[p].count - begin < g ? phases[p].count : begin + g);
+        }
+      }
       return;
     }
     m_done.wait(lock, [this] { return m_busyWorkers == 0; });
+    m_phaseFirst.assign(1, 0);
+    for (const JobPhase& phase : phases) {
+      m_phaseFirst.push_back(m_phaseFirst.back() + ChunkCount(phase.count, phase.grain));
+    }
+    job = Job{.fn = &fn,
+              .phases = phases.data(),
+              .phaseFirst = m_phaseFirst.data(),
+              .phaseCount = static_cast<int>(phases.size()),
+              .chunks = chunks};
     m_job = job;
     m_nextChunk.store(0);
     m_doneChunks.store(0);
@@ -103,17 +130,38 @@ void JobPool::ParallelFor(int count, int grain, const std::function<void(int, in
   m_running = false;
 }
 
-void JobPool::RunChunk(const Job& job, int chunk) noexcept {
-  const int begin = chunk * job.grain;
-  const int end = job.count - begin < job.grain ? job.count : begin + job.grain;
-  (*job.fn)(begin, end);
+void JobPool::RunChunk(const Job& job, int phase, int chunk) noexcept {
+  const JobPhase& p = job.phases[phase];
+  const int g = p.grain < 1 ? 1 : p.grain;
+  const int begin = (chunk - job.phaseFirst[phase]) * g;
+  const int end = p.count - begin < g ? p.count : begin + g;
+  (*job.fn)(phase, begin, end);
+}
+
+void JobPool::AwaitDone(int chunks) noexcept {
+  // Spin first (the other threads are usually a few chunks from the end of
+  // the phase), then give the core away between polls: on a machine with
+  // more runnable threads than cores, the thread holding the last chunk of
+  // the phase may be the one waiting for this core.
+  for (int poll = 0; m_doneChunks.load() < chunks; ++poll) {
+    if (poll < kSpinPolls) {
+      CpuRelax();
+    } else {
+      std::this_thread::yield();
+    }
+  }
 }
 
 void JobPool::RunChunks(const Job& job) noexcept {
+  int phase = 0;
   for (;;) {
     const int chunk = m_nextChunk.fetch_add(1);
     if (chunk >= job.chunks) return;
-    RunChunk(job, chunk);
+    while (chunk >= job.phaseFirst[phase + 1]) ++phase;
+    // Chunks are claimed in order, so every chunk of the earlier phases is
+    // claimed already: waiting for them cannot wait on this thread.
+    if (job.phaseFirst[phase] > 0) AwaitDone(job.phaseFirst[phase]);
+    RunChunk(job, phase, chunk);
     if (m_doneChunks.fetch_add(1) + 1 == job.chunks) {
       // The last chunk: wake the caller (under the mutex, so the wake-up
       // cannot fall between its check and its wait).
