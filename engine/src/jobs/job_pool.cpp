@@ -53,6 +53,20 @@ int ChunkCount(int count, int grain) {
   return count / g + (count % g != 0 ? 1 : 0);
 }
 
+void RunPhasesWith(const PhaseRunner& runner, std::span<const JobPhase> phases,
+                   const std::function<void(int, int, int)>& fn) {
+  if (runner) {
+    runner(phases, fn);
+    return;
+  }
+  for (std::size_t p = 0; p < phases.size(); ++p) {
+    const int g = phases[p].grain < 1 ? 1 : phases[p].grain;
+    for (int begin = 0; begin < phases[p].count; begin += g) {
+      fn(static_cast<int>(p), begin, phases[p].count - begin < g ? phases[p].count : begin + g);
+    }
+  }
+}
+
 JobPool::JobPool(int threads) {
   assert(threads >= 1);
   const int workers = threads < 1 ? 0 : threads - 1;
@@ -98,12 +112,7 @@ void JobPool::RunPhases(std::span<const JobPhase> phases,
     // chunks, in order, on this thread.
     if (m_workers.empty() || chunks == 1 || m_running) {
       lock.unlock();
-      for (std::size_t p = 0; p < phases.size(); ++p) {
-        const int g = phases[p].grain < 1 ? 1 : phases[p].grain;
-        for (int begin = 0; begin < phases[p].count; begin += g) {
-          fn(static_cast<int>(p), begin, phases[p].count - begin < g ? phases[p].count : begin + g);
-        }
-      }
+      RunPhasesWith(nullptr, phases, fn);
       return;
     }
     m_done.wait(lock, [this] { return m_busyWorkers == 0; });

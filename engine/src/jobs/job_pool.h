@@ -57,6 +57,17 @@ struct JobPhase {
   int grain = 1;
 };
 
+/// Something that runs a chain of phases as JobPool::RunPhases promises
+/// (each phase after the earlier ones, its chunks in any order): a pool, or
+/// a test's own cut. Stages that run on threads take one of these rather
+/// than the pool, so the same code runs serially when it is empty.
+using PhaseRunner =
+    std::function<void(std::span<const JobPhase> phases, const std::function<void(int, int, int)>& fn)>;
+
+/// `runner` if set, else every chunk of every phase in order on this thread.
+void RunPhasesWith(const PhaseRunner& runner, std::span<const JobPhase> phases,
+                   const std::function<void(int phase, int begin, int end)>& fn);
+
 /// Number of chunks ParallelFor cuts `count` items into at `grain` items
 /// per chunk (grain < 1 counts as 1). Chunk c is [c grain, min(count, (c+1) grain)).
 [[nodiscard]] int ChunkCount(int count, int grain);
