@@ -149,16 +149,14 @@ void JobPool::RunChunk(const Job& job, int phase, int chunk) noexcept {
 
 void JobPool::AwaitDone(int chunks) noexcept {
   // Spin first (the other threads are usually a few chunks from the end of
-  // the phase), then give the core away between polls: on a machine with
-  // more runnable threads than cores, the thread holding the last chunk of
-  // the phase may be the one waiting for this core.
-  for (int poll = 0; m_doneChunks.load() < chunks; ++poll) {
-    if (poll < kSpinPolls) {
-      CpuRelax();
-    } else {
-      std::this_thread::yield();
-    }
+  // the phase), then sleep on the counter (a futex): on a machine with more
+  // runnable threads than cores, the thread holding the last chunk of the
+  // phase may be waiting for this core, and polling would take it.
+  for (int poll = 0; poll < kSpinPolls; ++poll) {
+    if (m_doneChunks.load() >= chunks) return;
+    CpuRelax();
   }
+  for (int seen = m_doneChunks.load(); seen < chunks; seen = m_doneChunks.load()) m_doneChunks.wait(seen);
 }
 
 void JobPool::RunChunks(const Job& job) noexcept {
@@ -171,7 +169,10 @@ void JobPool::RunChunks(const Job& job) noexcept {
     // claimed already: waiting for them cannot wait on this thread.
     if (job.phaseFirst[phase] > 0) AwaitDone(job.phaseFirst[phase]);
     RunChunk(job, phase, chunk);
-    if (m_doneChunks.fetch_add(1) + 1 == job.chunks) {
+    const int done = m_doneChunks.fetch_add(1) + 1;
+    // Wake the threads sleeping in AwaitDone (a no-op without sleepers).
+    if (job.phaseCount > 1) m_doneChunks.notify_all();
+    if (done == job.chunks) {
       // The last chunk: wake the caller (under the mutex, so the wake-up
       // cannot fall between its check and its wait).
       const std::lock_guard lock(m_mutex);
