@@ -270,7 +270,7 @@ TEST(WorldThreads, ColouredSolverSpreadsColoursWithoutChangingABit) {
   };
   WorldSettings coloured;
   coloured.contactSolver = ContactSolverKind::ColouredWide;
-  const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, coloured, 30);
+  const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, coloured, 12);
   EXPECT_GT(one.manifolds, 2 * 8 * 8);  // several chunks of 8 bundles of 4 pairs
 }
 
