@@ -7,12 +7,12 @@
 //   worker:  sleep until m_generation changes, copy the job under the mutex,
 //            claim chunks until none is left, leave the job.
 // A RunPhases job numbers the chunks of all its phases in one sequence; a
-// claimed chunk of phase p first waits until m_doneChunks reaches the
-// first chunk of p (every earlier chunk returned; the fetch_add that
-// counted each one releases its writes to the thread that reads the count).
-// The wait cannot deadlock: chunks are claimed in increasing order, so the
-// chunks waited on are all held by threads running or waiting on still
-// earlier ones, down to phase 0, which waits on nothing.
+// thread claims the next chunk (compare-exchange on m_nextChunk) only once
+// m_doneChunks has reached the first chunk of its phase (every earlier
+// chunk returned; the fetch_add that counted each one releases its writes
+// to the thread that reads the count). A waiting thread holds no chunk, so
+// the wait cannot deadlock and a descheduled waiter delays nobody: the
+// chunks waited on are all held by threads that are running them.
 // A worker that wakes late (after the job's chunks are all taken) claims
 // nothing and never touches the caller's function. Because the next job
 // waits for every worker to leave the previous one, the chunk counter is
@@ -161,13 +161,21 @@ void JobPool::AwaitDone(int chunks) noexcept {
 
 void JobPool::RunChunks(const Job& job) noexcept {
   int phase = 0;
+  int chunk = m_nextChunk.load();
   for (;;) {
-    const int chunk = m_nextChunk.fetch_add(1);
     if (chunk >= job.chunks) return;
     while (chunk >= job.phaseFirst[phase + 1]) ++phase;
-    // Chunks are claimed in order, so every chunk of the earlier phases is
-    // claimed already: waiting for them cannot wait on this thread.
-    if (job.phaseFirst[phase] > 0) AwaitDone(job.phaseFirst[phase]);
+    // Claim a chunk only once its phase is open (every chunk of the earlier
+    // phases returned), so a waiting thread holds no chunk: if the system
+    // deschedules it while it waits, the others run the phase without it.
+    // Claiming first and waiting after would leave its chunk unrun until
+    // it is scheduled again, and the next phase waiting on that.
+    if (m_doneChunks.load() < job.phaseFirst[phase]) {
+      AwaitDone(job.phaseFirst[phase]);
+      chunk = m_nextChunk.load();
+      continue;
+    }
+    if (!m_nextChunk.compare_exchange_weak(chunk, chunk + 1)) continue;  // `chunk` reloaded
     RunChunk(job, phase, chunk);
     const int done = m_doneChunks.fetch_add(1) + 1;
     // Wake the threads sleeping in AwaitDone (a no-op without sleepers).
@@ -178,6 +186,7 @@ void JobPool::RunChunks(const Job& job) noexcept {
       const std::lock_guard lock(m_mutex);
       m_done.notify_all();
     }
+    chunk = m_nextChunk.load();
   }
 }
 

@@ -25,13 +25,11 @@
 // Phases (RunPhases). A stage that is a chain of loops, each needing the
 // previous one finished (the coloured solver's colours, sweep after sweep),
 // is one job: the chunks of every phase are numbered in one sequence and
-// claimed from the same counter, and a thread that claims a chunk of phase
-// p waits until every chunk of the earlier phases has returned before it
-// runs it. The wait is on finished chunks, not on threads arriving: a
-// thread the system has descheduled holds nobody up unless it holds a
-// chunk. One hand-off per chain instead of one per loop: measured on the
-// coloured solver, a hand-off (wake, join, leave) cost more than a small
-// colour's work.
+// claimed from the same counter, and a thread claims a chunk of phase p
+// only once every chunk of the earlier phases has returned. The wait is on
+// finished chunks, not on threads arriving: a thread the system has
+// descheduled holds nobody up unless it is running a chunk. One hand-off
+// per chain instead of one per loop.
 //
 // Rules for `fn`: it must not throw (the call is noexcept; an exception
 // terminates, as it would in the serial step), it must not call ParallelFor
