@@ -87,26 +87,9 @@ struct Inertia {
   Wide m[9];
 };
 
-// The lanes' world inverse inertias, gathered from the solver bodies (zero
-// for an empty lane; SolverBodies keeps zero for a body contacts cannot
-// move). Read from there rather than streamed in every bundle: a few
-// thousand bodies' matrices stay in L2, and the sweeps are bound by the
-// bundles' memory traffic (the header was 46 lane arrays, 18 of them
-// these). The same doubles either way, so the same bits.
-Inertia LoadInertia(const SolverBodies& bodies, const int (&index)[4]) {
-  alignas(32) double t[9][4];
-  for (int lane = 0; lane < 4; ++lane) {
-    if (index[lane] < 0) {
-      for (auto& row : t) row[lane] = 0.0;
-      continue;
-    }
-    const double* m = bodies.InvInertia(index[lane]).data();  // column-major
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) t[3 * i + j][lane] = m[3 * j + i];
-    }
-  }
+Inertia LoadInertia(const WideContactSolver::Lanes (&lanes)[9]) {
   Inertia inertia;
-  for (int k = 0; k < 9; ++k) inertia.m[k] = lanes::Load(t[k]);
+  for (int k = 0; k < 9; ++k) inertia.m[k] = L(lanes[k]);
   return inertia;
 }
 
@@ -176,8 +159,8 @@ void WideContactSolver::WarmStartRange(SolverBodies& bodies, int colour, int beg
     BundleVelocities v = Load(bodies, bundle);
     const Vector n = LoadVector(bundle.normal);
     const Vector t[2] = {LoadVector(bundle.tangent[0]), LoadVector(bundle.tangent[1])};
-    const Inertia inertiaA = LoadInertia(bodies, bundle.bodyA);
-    const Inertia inertiaB = LoadInertia(bodies, bundle.bodyB);
+    const Inertia inertiaA = LoadInertia(bundle.invInertiaA);
+    const Inertia inertiaB = LoadInertia(bundle.invInertiaB);
     const Wide invMassA = L(bundle.invMassA);
     const Wide invMassB = L(bundle.invMassB);
     const bool friction = bundle.frictionBits != 0;
@@ -220,8 +203,8 @@ double WideContactSolver::SolveNormalRange(SolverBodies& bodies, int colour, int
     const int count = bundle.points;
     Jacobian j[kMaxBundlePoints];
     {
-      const Inertia inertiaA = LoadInertia(bodies, bundle.bodyA);
-      const Inertia inertiaB = LoadInertia(bodies, bundle.bodyB);
+      const Inertia inertiaA = LoadInertia(bundle.invInertiaA);
+      const Inertia inertiaB = LoadInertia(bundle.invInertiaB);
       for (int i = 0; i < count; ++i) j[i] = MakeJacobian(n, points[i], inertiaA, inertiaB);
     }
     lanes::Mask rowByRow = lanes::MaskFromBits(0xFu);
@@ -285,8 +268,8 @@ double WideContactSolver::SolveFrictionRange(SolverBodies& bodies, int colour, i
     WidePoint* points = &m_points[static_cast<std::size_t>(bundle.firstPoint)];
     BundleVelocities v = Load(bodies, bundle);
     const Vector t[2] = {LoadVector(bundle.tangent[0]), LoadVector(bundle.tangent[1])};
-    const Inertia inertiaA = LoadInertia(bodies, bundle.bodyA);
-    const Inertia inertiaB = LoadInertia(bodies, bundle.bodyB);
+    const Inertia inertiaA = LoadInertia(bundle.invInertiaA);
+    const Inertia inertiaB = LoadInertia(bundle.invInertiaB);
     const Wide mu = L(bundle.friction);
     const Wide invMassA = L(bundle.invMassA);
     const Wide invMassB = L(bundle.invMassB);

@@ -106,6 +106,14 @@ void WideContactSolver::Build(std::span<const PairRows> pairs, std::span<const N
         bundle.invMassA.v[lane] = pair.invMassA;
         bundle.invMassB.v[lane] = pair.invMassB;
         bundle.friction.v[lane] = pair.friction;
+        const Mat3& inertiaA = bodies.InvInertia(pair.bodyA);
+        const Mat3& inertiaB = bodies.InvInertia(pair.bodyB);
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) {
+            bundle.invInertiaA[3 * i + j].v[lane] = inertiaA(i, j);
+            bundle.invInertiaB[3 * i + j].v[lane] = inertiaB(i, j);
+          }
+        }
         if (pair.block >= 0) {
           bundle.blockBits |= 1u << lane;
           const Eigen::Matrix4d& k = blocks[static_cast<std::size_t>(pair.block)];

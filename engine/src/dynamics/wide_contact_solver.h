@@ -23,10 +23,9 @@
 // and the overflow pairs after all colours (ContactSolver does that).
 //
 // Layout (structure of arrays per bundle, 32-byte aligned lanes): a bundle
-// header (normals, tangents, inverse masses, friction, the block inverses,
-// body indices), then `points` wide points (arms, masses, target,
-// impulses), each a run of four-lane arrays. The inverse inertias are read
-// from the solver bodies by index.
+// header (normals, tangents, inverse masses, friction, inverse inertias,
+// the block inverses, body indices), then `points` wide points (arms,
+// masses, target, impulses), each a run of four-lane arrays.
 // Empty lanes and the points past a lane's own count are zero rows: zero
 // mass and Jacobian, so they add exactly zero and keep zero impulse.
 #pragma once
@@ -93,7 +92,7 @@ class WideContactSolver {
   /// One point of four pairs: the arms, the rows' effective masses, the
   /// normal target and the accumulated impulses. The Jacobians' angular
   /// parts r x d and their images I^-1 (r x d) are formed in the sweep
-  /// from the arms and the bodies' inverse inertias, with the scalar
+  /// from the arms and the bundle's inverse inertias, with the scalar
   /// Prepare's operations in its order (so the same bits): the sweeps are
   /// bound by memory traffic, and this is 13 lane arrays per point where
   /// the precomputed rows took 48.
@@ -105,7 +104,8 @@ class WideContactSolver {
   struct Bundle {
     Lanes normal[3], tangent[2][3];
     Lanes invMassA, invMassB, friction;
-    Lanes block[16];  ///< K+ row-major, zero in lanes without a block
+    Lanes invInertiaA[9], invInertiaB[9];  ///< world inverse inertia, row-major; zero when immovable
+    Lanes block[16];                       ///< K+ row-major, zero in lanes without a block
     int bodyA[4] = {-1, -1, -1, -1}, bodyB[4] = {-1, -1, -1, -1};  ///< solver bodies, -1 empty
     int pair[4] = {-1, -1, -1, -1};  ///< index of the pair in each lane, -1 empty
     int firstPoint = 0;
@@ -119,14 +119,13 @@ class WideContactSolver {
   // The byte budget of the hot records. A wide point is 13 four-lane arrays,
   // 416 bytes: 104 bytes per pair's point for its normal and two friction
   // rows, against 120 + 2 x 112 = 344 bytes of scalar rows. A bundle header
-  // is 28 four-lane arrays (normal, tangents, inverse masses, friction, the
-  // 4x4 block inverse: 896 bytes) plus 80 bytes of indices and flags: 244
-  // bytes per pair against the scalar PairRows' 136 plus its 128-byte block
-  // inverse. The inverse inertias (18 more arrays) are gathered from the
-  // solver bodies in the sweep instead. Growing either is a choice to make
-  // on purpose: the sweeps stream these every pass.
+  // is 46 four-lane arrays (normal, tangents, inverse masses, friction, two
+  // inverse inertias, the 4x4 block inverse: 1,472 bytes) plus 80 bytes of
+  // indices and flags: 388 bytes per pair against the scalar PairRows' 136
+  // plus its 128-byte block inverse. Growing either is a choice to make on
+  // purpose: the sweeps stream these every pass.
   static_assert(sizeof(WidePoint) == 13 * 32, "wide point: 13 lanes of 4 doubles");
-  static_assert(sizeof(Bundle) <= 28 * 32 + 96, "bundle header: 28 lane arrays plus indices and flags");
+  static_assert(sizeof(Bundle) <= 46 * 32 + 96, "bundle header: 46 lane arrays plus indices and flags");
 
  private:
   /// Where Build puts a bundle: its pairs are m_order[firstOrder ..
