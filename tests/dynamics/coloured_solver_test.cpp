@@ -167,24 +167,35 @@ void AddPyramid(ContactScene& scene) {
   }
 }
 
-// Runs the pyramid for `steps` with each colour cut into `cuts` ranges,
+// Runs the pyramid for `steps` with each phase cut into `cuts` ranges,
 // optionally run in reverse order or on threads; returns the state hash.
 std::uint64_t RunPyramid(int cuts, bool reverse, bool threads, int steps, StepStatistics* last = nullptr) {
   ContactScene scene(SettingsFor(ContactSolverKind::ColouredWide), 0.02);
   AddPyramid(scene);
   if (cuts > 0) {
-    scene.Solver().SetRangeRunner([=](int count, const std::function<void(int, int)>& body) {
-      std::vector<std::pair<int, int>> ranges;
-      for (int c = 0; c < cuts; ++c) ranges.emplace_back(count * c / cuts, count * (c + 1) / cuts);
-      if (reverse) std::reverse(ranges.begin(), ranges.end());
-      if (!threads) {
-        for (const auto& [begin, end] : ranges) body(begin, end);
-        return;
-      }
-      std::vector<std::thread> workers;
-      for (const auto& [begin, end] : ranges) workers.emplace_back([&body, begin, end] { body(begin, end); });
-      for (std::thread& worker : workers) worker.join();
-    });
+    // Each phase (Prepare's pairs, the packing, each colour's bundles) cut
+    // into `cuts` ranges, phase after phase as the contract says.
+    scene.Solver().SetPhaseRunner(
+        [=](std::span<const JobPhase> phases, const std::function<void(int, int, int)>& body) {
+          for (std::size_t p = 0; p < phases.size(); ++p) {
+            const int count = phases[p].count;
+            std::vector<std::pair<int, int>> ranges;
+            for (int c = 0; c < cuts; ++c) ranges.emplace_back(count * c / cuts, count * (c + 1) / cuts);
+            if (reverse) std::reverse(ranges.begin(), ranges.end());
+            const int phase = static_cast<int>(p);
+            if (!threads) {
+              for (const auto& [begin, end] : ranges) {
+                if (begin < end) body(phase, begin, end);
+              }
+              continue;
+            }
+            std::vector<std::thread> workers;
+            for (const auto& [begin, end] : ranges) {
+              if (begin < end) workers.emplace_back([&body, phase, begin, end] { body(phase, begin, end); });
+            }
+            for (std::thread& worker : workers) worker.join();
+          }
+        });
   }
   for (int step = 0; step < steps; ++step) scene.Step(kH);
   if (last != nullptr) *last = scene.LastStats();

@@ -123,6 +123,59 @@ TEST(JobPool, ManyShortJobsSumExactly) {
   for (int i = 0; i < 97; ++i) EXPECT_EQ(slots[static_cast<std::size_t>(i)], expected + 2000LL * i);
 }
 
+// RunPhases: a chain of loops where each phase reads what the one before
+// wrote at other items (a neighbour), so a chunk run before the earlier
+// phase finished, or without seeing its writes, changes the answer (and
+// ThreadSanitizer, which runs this suite, reports the missing ordering).
+// Phase sizes include empty phases, a single-chunk phase and uneven ones.
+TEST(JobPool, PhasesRunInOrderAndSeeTheEarlierPhasesWrites) {
+  constexpr int kItems = 203;
+  const std::vector<JobPhase> phases = {{kItems, 7},   {0, 4},      {kItems, 64}, {1, 1},      {kItems, 1},
+                                        {kItems, 300}, {kItems, 5}, {0, 1},       {kItems, 13}};
+  // Serial reference: phase p sets x_p[i] = x_{p-1}[i] + 3 x_{p-1}[(i + 1) % n]
+  // (+ p), on ints (exact); phases of fewer items touch only their items.
+  const auto run = [&](JobPool& pool) {
+    std::vector<std::vector<long long>> x(phases.size() + 1, std::vector<long long>(kItems));
+    for (int i = 0; i < kItems; ++i) x[0][static_cast<std::size_t>(i)] = i;
+    std::vector<std::atomic<int>> visits(phases.size());
+    pool.RunPhases(phases, [&](int p, int begin, int end) {
+      const auto& in = x[static_cast<std::size_t>(p)];
+      auto& out = x[static_cast<std::size_t>(p) + 1];
+      // Items this phase does not cover carry over (the copy is the
+      // chunk's own items when the phase covers all of them).
+      for (int i = begin; i < end; ++i) {
+        out[static_cast<std::size_t>(i)] =
+            in[static_cast<std::size_t>(i)] + 3 * in[static_cast<std::size_t>((i + 1) % kItems)] + p;
+      }
+      visits[static_cast<std::size_t>(p)].fetch_add(end - begin);
+    });
+    for (std::size_t p = 0; p < phases.size(); ++p) {
+      EXPECT_EQ(visits[p].load(), std::max(phases[p].count, 0)) << "phase " << p;
+    }
+    return x;
+  };
+  // Phases with fewer items than kItems leave the rest of their output at
+  // zero, in every run alike; the reference is the one-thread pool.
+  JobPool one(1);
+  const auto reference = run(one);
+  EXPECT_NE(reference.back()[0], 0);
+  for (const int threads : {2, 3, 8}) {
+    JobPool pool(threads);
+    for (int repeat = 0; repeat < 50; ++repeat) {
+      ASSERT_EQ(run(pool), reference) << threads << " threads, repeat " << repeat;
+    }
+  }
+}
+
+TEST(JobPool, PhasesWithNothingToDoCallNothing) {
+  JobPool pool(3);
+  int calls = 0;
+  pool.RunPhases({}, [&](int, int, int) { ++calls; });
+  const std::vector<JobPhase> empty = {{0, 1}, {-2, 4}};
+  pool.RunPhases(empty, [&](int, int, int) { ++calls; });
+  EXPECT_EQ(calls, 0);
+}
+
 TEST(JobPool, PoolsStartAndStopWithoutWork) {
   for (int i = 0; i < 20; ++i) {
     JobPool pool(1 + i % 8);

@@ -6,6 +6,7 @@
 #include "dynamics/contact_solver.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "dynamics/bounce_timing.h"
@@ -74,18 +75,28 @@ double ContactSolver::RowMass(const RowJacobian& j, const PairRows& pair) {
   return k > 0.0 ? 1.0 / k : 0.0;
 }
 
+// Pairs per chunk of Prepare's parallel pass: a pair's rows (with its
+// block's eigen decomposition) cost a few microseconds.
+constexpr int kPairGrain = 32;
+// Bundles per chunk of the coloured warm start (a bundle is well under a
+// microsecond of work).
+constexpr int kWarmStartBundleGrain = 16;
+
+// Two passes. The serial one decides which contacts get rows, numbers their
+// solver bodies in contact order (SolverBodies::Add: the numbering every
+// step's bits follow) and gives each pair its rows' places; the second
+// builds each pair's rows in its own places, on m_runner's threads. At one
+// thread the rows are the same bits in the same places as one pass built.
 void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Contact> contacts,
                             const WorldSettings& settings, double h, StepStatistics& stats) {
   m_bodies.Reset(bodies.size());
   m_pairs.clear();
-  m_normals.clear();
-  m_frictions.clear();
-  m_cold.clear();
-  m_blockInverses.clear();
   m_newPairs = 0;
   m_timedBounces = 0;
   m_split = settings.positionCorrection == PositionCorrection::SplitImpulses;
-  const double invH = 1.0 / h;
+  int points = 0;
+  int frictions = 0;
+  int blocks = 0;
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const Contact& contact = contacts[c];
     const BodySim& a = bodies[static_cast<std::size_t>(contact.bodyA)];
@@ -97,8 +108,8 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
     pair.contact = static_cast<int>(c);
     pair.bodyA = m_bodies.Add(bodies, contact.bodyA);
     pair.bodyB = m_bodies.Add(bodies, contact.bodyB);
-    pair.firstPoint = static_cast<int>(m_normals.size());
-    pair.firstFriction = static_cast<int>(m_frictions.size());
+    pair.firstPoint = points;
+    pair.firstFriction = frictions;
     pair.pointCount = contact.manifold.pointCount;
     pair.normal = contact.manifold.normal;
     pair.friction = contact.friction;
@@ -106,10 +117,58 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
     pair.persisted = contact.persisted && settings.warmStarting;
     pair.invMassA = m_bodies.InvMass(pair.bodyA);
     pair.invMassB = m_bodies.InvMass(pair.bodyB);
+    if (settings.blockSolver && pair.pointCount >= 2 && pair.pointCount <= 4) pair.block = blocks++;
+    points += pair.pointCount;
+    stats.contactPoints += pair.pointCount;
+    if (pair.hasFriction) {
+      frictions += 2 * pair.pointCount;
+      stats.frictionRows += 2 * pair.pointCount;
+    } else {
+      stats.frictionRowsSkipped += 2 * pair.pointCount;
+    }
+    if (!pair.persisted) ++m_newPairs;
+    m_pairs.push_back(pair);
+  }
+  // Every slot below is written by its pair before anything reads it.
+  m_normals.resize(static_cast<std::size_t>(points));
+  m_frictions.resize(static_cast<std::size_t>(frictions));
+  m_cold.resize(static_cast<std::size_t>(points));
+  m_blockInverses.resize(static_cast<std::size_t>(blocks));
+
+  std::atomic<int> timedBounces{0};
+  std::atomic<int> restitutionSkipped{0};
+  const JobPhase phase{.count = static_cast<int>(m_pairs.size()), .grain = kPairGrain};
+  RunPhasesWith(m_runner, std::span<const JobPhase>(&phase, 1), [&](int, int begin, int end) {
+    PrepareCounts counts;
+    for (int p = begin; p < end; ++p) {
+      PairRows& pair = m_pairs[static_cast<std::size_t>(p)];
+      PreparePair(bodies, contacts[static_cast<std::size_t>(pair.contact)], settings, h, pair, counts);
+    }
+    timedBounces.fetch_add(counts.timedBounces, std::memory_order_relaxed);
+    restitutionSkipped.fetch_add(counts.restitutionSkipped, std::memory_order_relaxed);
+  });
+  m_timedBounces = timedBounces.load();
+  stats.timedBounces += m_timedBounces;
+  stats.restitutionSkipped += restitutionSkipped.load();
+
+  m_useWide = settings.contactSolver == ContactSolverKind::ColouredWide;
+  if (m_useWide) {
+    m_wide.Build(m_pairs, m_normals, m_frictions, m_cold, m_blockInverses, m_bodies, m_runner);
+    stats.solverColours = m_wide.ColourCount();
+    stats.overflowPairs = static_cast<std::int64_t>(m_wide.OverflowPairs().size());
+  }
+}
+
+void ContactSolver::PreparePair(std::span<const BodySim> bodies, const Contact& contact,
+                                const WorldSettings& settings, double h, PairRows& pair,
+                                PrepareCounts& counts) {
+  const double invH = 1.0 / h;
+  const BodySim& a = bodies[static_cast<std::size_t>(contact.bodyA)];
+  const BodySim& b = bodies[static_cast<std::size_t>(contact.bodyB)];
+  {  // (the former loop body's scope, kept so its lines stay as they were)
     const Mat3& invInertiaA = m_bodies.InvInertia(pair.bodyA);
     const Mat3& invInertiaB = m_bodies.InvInertia(pair.bodyB);
     const Vec3& n = pair.normal;
-
     // Friction basis: t1 along the mean sliding velocity when there is one.
     if (pair.hasFriction) {
       Vec3 slide = Vec3::Zero();
@@ -166,8 +225,7 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
           row.target = bounce.endSpeed;
           cold.positionTarget = (bounce.endGap + cp.depth) * invH - bounce.endSpeed;
           cold.timedBounce = true;
-          ++m_timedBounces;
-          ++stats.timedBounces;
+          ++counts.timedBounces;
         } else if (settings.bounceTiming == BounceTiming::StepBoundary || bounce.tooDeep) {
           // Bounce when closing fast enough and the point touches by the end
           // of the step (a speculative point that stays apart must not bounce).
@@ -181,7 +239,7 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
           row.target = cp.depth * invH + 0.5 * acceleration * h;
         }
       } else {
-        ++stats.restitutionSkipped;
+        ++counts.restitutionSkipped;
       }
       if (settings.warmStarting) row.impulse = contact.normalImpulse[pi];
       if (pair.hasFriction) {
@@ -190,27 +248,13 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
           friction.j = MakeJacobian(pair.tangent[k], rA, rB, invInertiaA, invInertiaB);
           friction.mass = RowMass(friction.j, pair);
           if (settings.warmStarting) friction.impulse = contact.frictionImpulse[pi].dot(pair.tangent[k]);
-          m_frictions.push_back(friction);
+          m_frictions[static_cast<std::size_t>(pair.firstFriction + 2 * i + k)] = friction;
         }
       }
-      m_normals.push_back(row);
-      m_cold.push_back(cold);
+      m_normals[static_cast<std::size_t>(pair.firstPoint + i)] = row;
+      m_cold[static_cast<std::size_t>(pair.firstPoint + i)] = cold;
     }
-    if (settings.blockSolver && pair.pointCount >= 2 && pair.pointCount <= 4) PrepareBlock(pair);
-    stats.contactPoints += pair.pointCount;
-    if (pair.hasFriction) {
-      stats.frictionRows += 2 * pair.pointCount;
-    } else {
-      stats.frictionRowsSkipped += 2 * pair.pointCount;
-    }
-    if (!pair.persisted) ++m_newPairs;
-    m_pairs.push_back(pair);
-  }
-  m_useWide = settings.contactSolver == ContactSolverKind::ColouredWide;
-  if (m_useWide) {
-    m_wide.Build(m_pairs, m_normals, m_frictions, m_cold, m_blockInverses, m_bodies);
-    stats.solverColours = m_wide.ColourCount();
-    stats.overflowPairs = static_cast<std::int64_t>(m_wide.OverflowPairs().size());
+    if (pair.block >= 0) PrepareBlock(pair);
   }
 }
 
@@ -219,11 +263,21 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
 // colours' bundles, then the overflow pairs.
 void ContactSolver::WarmStart() {
   if (m_useWide) {
-    ForEachColour([this](int colour, int begin, int end) {
-      m_wide.WarmStartRange(m_bodies, colour, begin, end);
-      return 0.0;
+    // One chain of phases: each colour, then the overflow pairs as one chunk.
+    const int colours = m_wide.ColourCount();
+    std::vector<JobPhase>& phases = m_phases;
+    phases.clear();
+    for (int colour = 0; colour < colours; ++colour) {
+      phases.push_back({.count = m_wide.BundleCount(colour), .grain = kWarmStartBundleGrain});
+    }
+    phases.push_back({.count = m_wide.OverflowPairs().empty() ? 0 : 1, .grain = 1});
+    RunPhasesWith(m_runner, phases, [this, colours](int phase, int begin, int end) {
+      if (phase < colours) {
+        m_wide.WarmStartRange(m_bodies, phase, begin, end);
+        return;
+      }
+      for (const int p : m_wide.OverflowPairs()) WarmStartPair(m_pairs[static_cast<std::size_t>(p)]);
     });
-    for (const int p : m_wide.OverflowPairs()) WarmStartPair(m_pairs[static_cast<std::size_t>(p)]);
     return;
   }
   for (const PairRows& pair : m_pairs) WarmStartPair(pair);

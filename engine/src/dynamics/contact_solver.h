@@ -100,6 +100,7 @@
 #include "dynamics/contact_rows.h"
 #include "dynamics/solver_body.h"
 #include "dynamics/wide_contact_solver.h"
+#include "jobs/job_pool.h"
 #include "talus/step_statistics.h"
 #include "talus/world_settings.h"
 
@@ -107,15 +108,13 @@ namespace talus {
 
 class ContactSolver {
  public:
-  /// Runs `body(begin, end)` on disjoint ranges covering [0, count),
-  /// possibly on several threads at once, and returns when all have run.
-  /// The coloured solver hands it each colour's bundles.
-  using RangeRunner = std::function<void(int count, const std::function<void(int begin, int end)>& body)>;
-
-  /// How the coloured solver spreads a colour's bundles (threads); unset,
-  /// each colour runs as one range on the caller's thread. Results do not
-  /// depend on how the ranges are cut (tested).
-  void SetRangeRunner(RangeRunner runner) { m_runner = std::move(runner); }
+  /// How Prepare spreads its pairs and the coloured solver its colours'
+  /// bundles over threads (jobs/job_pool.h: a chain of phases, each loop
+  /// finished before the next starts); unset, every chunk runs in order on
+  /// the caller's thread. Results do not depend on how a phase is cut or
+  /// who runs it (tested): each pair writes only its own rows, and each
+  /// bundle of a colour only its own rows and bodies.
+  void SetPhaseRunner(PhaseRunner runner) { m_runner = std::move(runner); }
 
   /// Builds the rows of `contacts` for a step of `h` seconds and gathers the
   /// velocities of their bodies from `bodies` (the solver works on its own
@@ -164,6 +163,17 @@ class ContactSolver {
                                   const Mat3& invInertiaB);
   /// 1 / (J M^-1 J^T) of a row (the effective mass), kg; 0 when nothing can move.
   static double RowMass(const RowJacobian& j, const PairRows& pair);
+  /// Integer counts a pair's rows add to the step's statistics, summed per
+  /// chunk of pairs (an integer sum: the same in any order).
+  struct PrepareCounts {
+    int timedBounces = 0;
+    int restitutionSkipped = 0;
+  };
+  /// The rows of one pair whose header Prepare's serial pass filled (its
+  /// bodies, row offsets, block slot): writes only that pair's rows, so
+  /// pairs may be prepared on any thread in any order.
+  void PreparePair(std::span<const BodySim> bodies, const Contact& contact, const WorldSettings& settings,
+                   double h, PairRows& pair, PrepareCounts& counts);
   void PrepareBlock(PairRows& pair);
   template <bool kTrack>
   void SolveNormals(const PairRows& pair);
@@ -173,13 +183,11 @@ class ContactSolver {
   void SolveFriction(const PairRows& pair);
   template <bool kTrack>
   void Sweep();
-  /// One coloured sweep: each colour's normal rows, the overflow pairs';
-  /// then the friction rows likewise. Returns the tracked largest change.
-  double SweepWide(bool track);
-  /// Runs `pass(colour, begin, end)` over each colour's bundles in turn,
-  /// each colour through m_runner, and returns the largest value a range
-  /// returned (max is exact in any order, so the cut does not matter).
-  double ForEachColour(const std::function<double(int colour, int begin, int end)>& pass);
+  /// `sweeps` coloured sweeps as one chain of phases through m_runner (each
+  /// sweep: each colour's normal rows, the overflow pairs'; then the
+  /// friction rows likewise). Returns the largest tracked change (max is
+  /// exact in any order, so the cut does not matter).
+  double SweepsWide(int sweeps, bool track);
   void WarmStartPair(const PairRows& pair);
 
   SolverBodies m_bodies;
@@ -191,10 +199,11 @@ class ContactSolver {
   WideContactSolver m_wide;
   bool m_useWide = false;  ///< ColouredWide selected at the last Prepare
   bool m_split = false;    ///< SplitImpulses selected at the last Prepare
-  RangeRunner m_runner;
-  int m_newPairs = 0;            ///< pairs that did not persist
-  int m_timedBounces = 0;        ///< points with a timed bounce (PointCold::timedBounce)
-  double m_largestChange = 0.0;  ///< m/s, the largest row velocity change of this sweep
+  PhaseRunner m_runner;
+  std::vector<JobPhase> m_phases;  ///< scratch: the chain of the coloured passes
+  int m_newPairs = 0;              ///< pairs that did not persist
+  int m_timedBounces = 0;          ///< points with a timed bounce (PointCold::timedBounce)
+  double m_largestChange = 0.0;    ///< m/s, the largest row velocity change of this sweep
 };
 
 }  // namespace talus

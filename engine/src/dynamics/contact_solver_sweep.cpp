@@ -25,6 +25,11 @@ namespace talus {
 
 namespace {
 
+// Bundles (four pairs each) per chunk of a colour's pass: a bundle's rows
+// are about a microsecond, so a chunk is well above the cost of claiming
+// it, and the smaller colours still split across two threads.
+constexpr int kSweepBundleGrain = 8;
+
 // The velocities of a pair's two bodies, loaded into locals once per pass
 // over the pair's rows and stored at its end.
 struct PairVelocities {
@@ -108,8 +113,7 @@ void ContactSolver::PrepareBlock(PairRows& pair) {
     blockInverse.row(i).setZero();
     blockInverse.col(i).setZero();
   }
-  pair.block = static_cast<int>(m_blockInverses.size());
-  m_blockInverses.push_back(blockInverse);
+  m_blockInverses[static_cast<std::size_t>(pair.block)] = blockInverse;
 }
 
 template <bool kTrack>
@@ -229,7 +233,7 @@ int ContactSolver::SolveVelocities(int minIterations, int maxIterations, double 
   const auto sweep = [this](bool track) {
     m_largestChange = 0.0;
     if (m_useWide) {
-      m_largestChange = std::max(m_largestChange, SweepWide(track));
+      m_largestChange = std::max(m_largestChange, SweepsWide(1, track));
     } else if (track) {
       Sweep<true>();
     } else {
@@ -238,6 +242,11 @@ int ContactSolver::SolveVelocities(int minIterations, int maxIterations, double 
     return m_largestChange;
   };
   int sweeps = 0;
+  if (m_useWide && minIterations > 0) {
+    // The untracked sweeps need no result between them: one chain.
+    SweepsWide(minIterations, false);
+    sweeps = minIterations;
+  }
   for (; sweeps < minIterations; ++sweeps) sweep(false);
   if (m_newPairs != 0) {
     for (; sweeps < maxIterations;) {
@@ -245,58 +254,66 @@ int ContactSolver::SolveVelocities(int minIterations, int maxIterations, double 
       if (sweep(true) <= tolerance) break;
     }
   }
-  if (m_useWide) m_wide.Unpack(m_pairs, m_normals, m_frictions);
+  if (m_useWide) m_wide.Unpack(m_pairs, m_normals, m_frictions, m_runner);
   return sweeps;
 }
 
-double ContactSolver::ForEachColour(const std::function<double(int colour, int begin, int end)>& pass) {
-  double largest = 0.0;
-  for (int colour = 0; colour < m_wide.ColourCount(); ++colour) {
-    const int count = m_wide.BundleCount(colour);
-    if (!m_runner) {
-      largest = std::max(largest, pass(colour, 0, count));
-      continue;
-    }
-    std::atomic<double> shared{largest};
-    m_runner(count, [&](int begin, int end) {
-      const double mine = pass(colour, begin, end);
-      double seen = shared.load(std::memory_order_relaxed);
-      while (mine > seen && !shared.compare_exchange_weak(seen, mine, std::memory_order_relaxed)) {
+// Each sweep is 2 (colours + 1) phases: the colours' normal rows, the
+// overflow pairs' normal rows (one chunk: they run one by one, in order),
+// then the same for the friction rows. A colour's bundles are split into
+// chunks of kSweepBundleGrain; the phases of all `sweeps` sweeps are one
+// chain, so the threads meet once per phase on finished chunks instead of
+// being handed a new job per colour.
+double ContactSolver::SweepsWide(int sweeps, bool track) {
+  const int colours = m_wide.ColourCount();
+  const int perSweep = 2 * (colours + 1);
+  const int overflow = m_wide.OverflowPairs().empty() ? 0 : 1;
+  std::vector<JobPhase>& phases = m_phases;
+  phases.clear();
+  for (int s = 0; s < sweeps; ++s) {
+    for (int pass = 0; pass < 2; ++pass) {
+      for (int colour = 0; colour < colours; ++colour) {
+        phases.push_back({.count = m_wide.BundleCount(colour), .grain = kSweepBundleGrain});
       }
-    });
-    largest = shared.load(std::memory_order_relaxed);
+      phases.push_back({.count = overflow, .grain = 1});
+    }
   }
-  return largest;
-}
-
-double ContactSolver::SweepWide(bool track) {
-  double largest = ForEachColour([this, track](int colour, int begin, int end) {
-    return m_wide.SolveNormalRange(m_bodies, colour, begin, end, track);
+  std::atomic<double> largest{0.0};
+  RunPhasesWith(m_runner, phases, [&](int phase, int begin, int end) {
+    const int inSweep = phase % perSweep;
+    const bool friction = inSweep > colours;
+    const int colour = friction ? inSweep - colours - 1 : inSweep;
+    double mine = 0.0;
+    if (colour < colours) {
+      mine = friction ? m_wide.SolveFrictionRange(m_bodies, colour, begin, end, track)
+                      : m_wide.SolveNormalRange(m_bodies, colour, begin, end, track);
+    } else {
+      // The overflow pairs one by one with the scalar passes (their own
+      // tracking goes through m_largestChange; the phases before and after
+      // this one's single chunk order every other access to it).
+      m_largestChange = 0.0;
+      for (const int p : m_wide.OverflowPairs()) {
+        const PairRows& pair = m_pairs[static_cast<std::size_t>(p)];
+        if (friction && !pair.hasFriction) continue;
+        if (friction) {
+          if (track) {
+            SolveFriction<true>(pair);
+          } else {
+            SolveFriction<false>(pair);
+          }
+        } else if (track) {
+          SolveNormals<true>(pair);
+        } else {
+          SolveNormals<false>(pair);
+        }
+      }
+      mine = m_largestChange;
+    }
+    double seen = largest.load(std::memory_order_relaxed);
+    while (mine > seen && !largest.compare_exchange_weak(seen, mine, std::memory_order_relaxed)) {
+    }
   });
-  // The overflow pairs one by one, with the scalar passes (their own
-  // tracking goes through m_largestChange).
-  m_largestChange = 0.0;
-  for (const int p : m_wide.OverflowPairs()) {
-    const PairRows& pair = m_pairs[static_cast<std::size_t>(p)];
-    if (track) {
-      SolveNormals<true>(pair);
-    } else {
-      SolveNormals<false>(pair);
-    }
-  }
-  largest = std::max(largest, ForEachColour([this, track](int colour, int begin, int end) {
-                       return m_wide.SolveFrictionRange(m_bodies, colour, begin, end, track);
-                     }));
-  for (const int p : m_wide.OverflowPairs()) {
-    const PairRows& pair = m_pairs[static_cast<std::size_t>(p)];
-    if (!pair.hasFriction) continue;
-    if (track) {
-      SolveFriction<true>(pair);
-    } else {
-      SolveFriction<false>(pair);
-    }
-  }
-  return std::max(largest, m_largestChange);
+  return largest.load(std::memory_order_relaxed);
 }
 
 }  // namespace talus

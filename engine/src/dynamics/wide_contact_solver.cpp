@@ -13,6 +13,9 @@
 namespace talus {
 namespace {
 
+// Bundles per chunk of the packing (a bundle is a few hundred nanoseconds).
+constexpr int kPackBundleGrain = 16;
+
 void Put(WideContactSolver::Lanes* xyz, int lane, const Vec3& value) {
   for (int k = 0; k < 3; ++k) xyz[k].v[lane] = value[k];
 }
@@ -21,9 +24,8 @@ void Put(WideContactSolver::Lanes* xyz, int lane, const Vec3& value) {
 
 void WideContactSolver::Build(std::span<const PairRows> pairs, std::span<const NormalRow> normals,
                               std::span<const FrictionRow> frictions, std::span<const PointCold> cold,
-                              std::span<const Eigen::Matrix4d> blocks, const SolverBodies& bodies) {
-  m_bundles.clear();
-  m_points.clear();
+                              std::span<const Eigen::Matrix4d> blocks, const SolverBodies& bodies,
+                              const PhaseRunner& runner) {
   m_overflow.clear();
   m_colourStart.clear();
 
@@ -54,21 +56,42 @@ void WideContactSolver::Build(std::span<const PairRows> pairs, std::span<const N
     m_overflow.push_back(m_order[static_cast<std::size_t>(i)]);
   }
 
+  // The layout, serially: each bundle's first pair (into m_order), lanes
+  // and first wide point (a running sum of the bundles' most points).
+  m_layout.clear();
   m_colourStart.push_back(0);
+  int points = 0;
   for (int c = 0; c < kColourCount; ++c) {
     if (counts[c] == 0) continue;
     for (int first = starts[c]; first < starts[c + 1]; first += kLanes) {
       const int lanesUsed = std::min(kLanes, starts[c + 1] - first);
-      Bundle bundle;
-      bundle.firstPoint = static_cast<int>(m_points.size());
+      int most = 0;
       for (int lane = 0; lane < lanesUsed; ++lane) {
-        const PairRows& pair =
-            pairs[static_cast<std::size_t>(m_order[static_cast<std::size_t>(first + lane)])];
-        bundle.points = std::max(bundle.points, pair.pointCount);
+        most = std::max(
+            most,
+            pairs[static_cast<std::size_t>(m_order[static_cast<std::size_t>(first + lane)])].pointCount);
       }
-      m_points.resize(m_points.size() + static_cast<std::size_t>(bundle.points));
-      for (int lane = 0; lane < lanesUsed; ++lane) {
-        const int p = m_order[static_cast<std::size_t>(first + lane)];
+      m_layout.push_back({.firstOrder = first, .lanes = lanesUsed, .firstPoint = points, .points = most});
+      points += most;
+    }
+    m_colourStart.push_back(static_cast<int>(m_layout.size()));
+  }
+  // Capacity is kept; every bundle and point is overwritten whole below.
+  m_bundles.resize(m_layout.size());
+  m_points.resize(static_cast<std::size_t>(points));
+
+  // Packing, each bundle into its own header and points (any thread).
+  const JobPhase phase{.count = static_cast<int>(m_layout.size()), .grain = kPackBundleGrain};
+  RunPhasesWith(runner, std::span<const JobPhase>(&phase, 1), [&](int, int begin, int end) {
+    for (int b = begin; b < end; ++b) {
+      const BundleLayout& layout = m_layout[static_cast<std::size_t>(b)];
+      Bundle& bundle = m_bundles[static_cast<std::size_t>(b)];
+      bundle = Bundle{};
+      bundle.firstPoint = layout.firstPoint;
+      bundle.points = layout.points;
+      for (int i = 0; i < layout.points; ++i) m_points[static_cast<std::size_t>(layout.firstPoint + i)] = {};
+      for (int lane = 0; lane < layout.lanes; ++lane) {
+        const int p = m_order[static_cast<std::size_t>(layout.firstOrder + lane)];
         const PairRows& pair = pairs[static_cast<std::size_t>(p)];
         bundle.pair[lane] = p;
         bundle.bodyA[lane] = pair.bodyA;
@@ -115,15 +138,22 @@ void WideContactSolver::Build(std::span<const PairRows> pairs, std::span<const N
           }
         }
       }
-      m_bundles.push_back(bundle);
     }
-    m_colourStart.push_back(static_cast<int>(m_bundles.size()));
-  }
+  });
 }
 
 void WideContactSolver::Unpack(std::span<const PairRows> pairs, std::span<NormalRow> normals,
-                               std::span<FrictionRow> frictions) const {
-  for (const Bundle& bundle : m_bundles) {
+                               std::span<FrictionRow> frictions, const PhaseRunner& runner) const {
+  const JobPhase phase{.count = static_cast<int>(m_bundles.size()), .grain = kPackBundleGrain};
+  RunPhasesWith(runner, std::span<const JobPhase>(&phase, 1), [&](int, int begin, int end) {
+    for (int b = begin; b < end; ++b)
+      UnpackBundle(m_bundles[static_cast<std::size_t>(b)], pairs, normals, frictions);
+  });
+}
+
+void WideContactSolver::UnpackBundle(const Bundle& bundle, std::span<const PairRows> pairs,
+                                     std::span<NormalRow> normals, std::span<FrictionRow> frictions) const {
+  {
     for (int lane = 0; lane < kLanes; ++lane) {
       if (bundle.pair[lane] < 0) continue;
       const PairRows& pair = pairs[static_cast<std::size_t>(bundle.pair[lane])];

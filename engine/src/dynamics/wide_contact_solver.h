@@ -39,6 +39,7 @@
 #include "dynamics/constraint_colouring.h"
 #include "dynamics/contact_rows.h"
 #include "dynamics/solver_body.h"
+#include "jobs/job_pool.h"
 
 namespace talus {
 
@@ -52,10 +53,12 @@ class WideContactSolver {
 
   /// Colours `pairs` and packs their rows (copies; `normals`, `frictions`
   /// and `blocks` are the scalar solver's arrays the pairs index). Keeps
-  /// capacity between steps.
+  /// capacity between steps. The colouring and the layout are serial; the
+  /// packing runs bundle by bundle through `runner` (any cut, the same bits).
   void Build(std::span<const PairRows> pairs, std::span<const NormalRow> normals,
              std::span<const FrictionRow> frictions, std::span<const PointCold> cold,
-             std::span<const Eigen::Matrix4d> blocks, const SolverBodies& bodies);
+             std::span<const Eigen::Matrix4d> blocks, const SolverBodies& bodies,
+             const PhaseRunner& runner = nullptr);
 
   /// Colours in use, 0 .. ColourCount() - 1 (empty colours are dropped).
   [[nodiscard]] int ColourCount() const { return static_cast<int>(m_colourStart.size()) - 1; }
@@ -77,9 +80,10 @@ class WideContactSolver {
   /// The same for the friction rows.
   double SolveFrictionRange(SolverBodies& bodies, int colour, int begin, int end, bool track);
 
-  /// Writes the accumulated impulses back into the scalar rows.
-  void Unpack(std::span<const PairRows> pairs, std::span<NormalRow> normals,
-              std::span<FrictionRow> frictions) const;
+  /// Writes the accumulated impulses back into the scalar rows (bundle by
+  /// bundle through `runner`).
+  void Unpack(std::span<const PairRows> pairs, std::span<NormalRow> normals, std::span<FrictionRow> frictions,
+              const PhaseRunner& runner = nullptr) const;
 
   /// Four lanes of one number.
   struct alignas(32) Lanes {
@@ -124,6 +128,18 @@ class WideContactSolver {
   static_assert(sizeof(Bundle) <= 46 * 32 + 96, "bundle header: 46 lane arrays plus indices and flags");
 
  private:
+  /// Where Build puts a bundle: its pairs are m_order[firstOrder ..
+  /// firstOrder + lanes), its points m_points[firstPoint .. + points).
+  struct BundleLayout {
+    int firstOrder = 0;
+    int lanes = 0;
+    int firstPoint = 0;
+    int points = 0;
+  };
+
+  void UnpackBundle(const Bundle& bundle, std::span<const PairRows> pairs, std::span<NormalRow> normals,
+                    std::span<FrictionRow> frictions) const;
+
   std::vector<Bundle> m_bundles;
   std::vector<WidePoint> m_points;
   std::vector<int> m_colourStart;  ///< bundles of colour c: [m_colourStart[c], m_colourStart[c + 1])
@@ -133,6 +149,7 @@ class WideContactSolver {
   std::vector<int> m_colourOf;
   std::vector<std::uint32_t> m_used;
   std::vector<int> m_order;
+  std::vector<BundleLayout> m_layout;
 };
 
 }  // namespace talus

@@ -6,6 +6,13 @@
 //            claim chunks itself, then wait until every chunk has run.
 //   worker:  sleep until m_generation changes, copy the job under the mutex,
 //            claim chunks until none is left, leave the job.
+// A RunPhases job numbers the chunks of all its phases in one sequence; a
+// thread claims the next chunk (compare-exchange on m_nextChunk) only once
+// m_doneChunks has reached the first chunk of its phase (every earlier
+// chunk returned; the fetch_add that counted each one releases its writes
+// to the thread that reads the count). A waiting thread holds no chunk, so
+// the wait cannot deadlock and a descheduled waiter delays nobody: the
+// chunks waited on are all held by threads that are running them.
 // A worker that wakes late (after the job's chunks are all taken) claims
 // nothing and never touches the caller's function. Because the next job
 // waits for every worker to leave the previous one, the chunk counter is
@@ -46,6 +53,20 @@ int ChunkCount(int count, int grain) {
   return count / g + (count % g != 0 ? 1 : 0);
 }
 
+void RunPhasesWith(const PhaseRunner& runner, std::span<const JobPhase> phases,
+                   const std::function<void(int, int, int)>& fn) {
+  if (runner) {
+    runner(phases, fn);
+    return;
+  }
+  for (std::size_t p = 0; p < phases.size(); ++p) {
+    const int g = phases[p].grain < 1 ? 1 : phases[p].grain;
+    for (int begin = 0; begin < phases[p].count; begin += g) {
+      fn(static_cast<int>(p), begin, phases[p].count - begin < g ? phases[p].count : begin + g);
+    }
+  }
+}
+
 JobPool::JobPool(int threads) {
   assert(threads >= 1);
   const int workers = threads < 1 ? 0 : threads - 1;
@@ -75,20 +96,35 @@ JobPool::~JobPool() {
 }
 
 void JobPool::ParallelFor(int count, int grain, const std::function<void(int, int)>& fn) noexcept {
-  const int chunks = ChunkCount(count, grain);
+  const JobPhase phase{.count = count, .grain = grain};
+  RunPhases(std::span<const JobPhase>(&phase, 1), [&fn](int, int begin, int end) { fn(begin, end); });
+}
+
+void JobPool::RunPhases(std::span<const JobPhase> phases,
+                        const std::function<void(int, int, int)>& fn) noexcept {
+  int chunks = 0;
+  for (const JobPhase& phase : phases) chunks += ChunkCount(phase.count, phase.grain);
   if (chunks == 0) return;
-  const int g = grain < 1 ? 1 : grain;
-  const Job job{.fn = &fn, .count = count, .grain = g, .chunks = chunks};
+  Job job;
   {
     std::unique_lock lock(m_mutex);
     // No workers, a single chunk, or a call from inside a job: the same
     // chunks, in order, on this thread.
     if (m_workers.empty() || chunks == 1 || m_running) {
       lock.unlock();
-      for (int c = 0; c < chunks; ++c) RunChunk(job, c);
+      RunPhasesWith(nullptr, phases, fn);
       return;
     }
     m_done.wait(lock, [this] { return m_busyWorkers == 0; });
+    m_phaseFirst.assign(1, 0);
+    for (const JobPhase& phase : phases) {
+      m_phaseFirst.push_back(m_phaseFirst.back() + ChunkCount(phase.count, phase.grain));
+    }
+    job = Job{.fn = &fn,
+              .phases = phases.data(),
+              .phaseFirst = m_phaseFirst.data(),
+              .phaseCount = static_cast<int>(phases.size()),
+              .chunks = chunks};
     m_job = job;
     m_nextChunk.store(0);
     m_doneChunks.store(0);
@@ -103,23 +139,54 @@ void JobPool::ParallelFor(int count, int grain, const std::function<void(int, in
   m_running = false;
 }
 
-void JobPool::RunChunk(const Job& job, int chunk) noexcept {
-  const int begin = chunk * job.grain;
-  const int end = job.count - begin < job.grain ? job.count : begin + job.grain;
-  (*job.fn)(begin, end);
+void JobPool::RunChunk(const Job& job, int phase, int chunk) noexcept {
+  const JobPhase& p = job.phases[phase];
+  const int g = p.grain < 1 ? 1 : p.grain;
+  const int begin = (chunk - job.phaseFirst[phase]) * g;
+  const int end = p.count - begin < g ? p.count : begin + g;
+  (*job.fn)(phase, begin, end);
+}
+
+void JobPool::AwaitDone(int chunks) noexcept {
+  // Spin first (the other threads are usually a few chunks from the end of
+  // the phase), then sleep on the counter (a futex): on a machine with more
+  // runnable threads than cores, the thread holding the last chunk of the
+  // phase may be waiting for this core, and polling would take it.
+  for (int poll = 0; poll < kSpinPolls; ++poll) {
+    if (m_doneChunks.load() >= chunks) return;
+    CpuRelax();
+  }
+  for (int seen = m_doneChunks.load(); seen < chunks; seen = m_doneChunks.load()) m_doneChunks.wait(seen);
 }
 
 void JobPool::RunChunks(const Job& job) noexcept {
+  int phase = 0;
+  int chunk = m_nextChunk.load();
   for (;;) {
-    const int chunk = m_nextChunk.fetch_add(1);
     if (chunk >= job.chunks) return;
-    RunChunk(job, chunk);
-    if (m_doneChunks.fetch_add(1) + 1 == job.chunks) {
+    while (chunk >= job.phaseFirst[phase + 1]) ++phase;
+    // Claim a chunk only once its phase is open (every chunk of the earlier
+    // phases returned), so a waiting thread holds no chunk: if the system
+    // deschedules it while it waits, the others run the phase without it.
+    // Claiming first and waiting after would leave its chunk unrun until
+    // it is scheduled again, and the next phase waiting on that.
+    if (m_doneChunks.load() < job.phaseFirst[phase]) {
+      AwaitDone(job.phaseFirst[phase]);
+      chunk = m_nextChunk.load();
+      continue;
+    }
+    if (!m_nextChunk.compare_exchange_weak(chunk, chunk + 1)) continue;  // `chunk` reloaded
+    RunChunk(job, phase, chunk);
+    const int done = m_doneChunks.fetch_add(1) + 1;
+    // Wake the threads sleeping in AwaitDone (a no-op without sleepers).
+    if (job.phaseCount > 1) m_doneChunks.notify_all();
+    if (done == job.chunks) {
       // The last chunk: wake the caller (under the mutex, so the wake-up
       // cannot fall between its check and its wait).
       const std::lock_guard lock(m_mutex);
       m_done.notify_all();
     }
+    chunk = m_nextChunk.load();
   }
 }
 

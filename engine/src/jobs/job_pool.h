@@ -1,5 +1,5 @@
 // JobPool: the engine's threads. A fixed set of worker threads that run one
-// ParallelFor at a time, with the calling thread working alongside them.
+// ParallelFor (or one chain of them, RunPhases) at a time, with the calling thread working alongside them.
 //
 // Determinism is the design constraint, not speed: World::Step must give the
 // same bits for any thread count. So the pool never decides *what* is
@@ -22,6 +22,15 @@
 // work-stealing deque pays for nested and unbalanced task graphs the step
 // does not have (every stage is a flat loop).
 //
+// Phases (RunPhases). A stage that is a chain of loops, each needing the
+// previous one finished (the coloured solver's colours, sweep after sweep),
+// is one job: the chunks of every phase are numbered in one sequence and
+// claimed from the same counter, and a thread claims a chunk of phase p
+// only once every chunk of the earlier phases has returned. The wait is on
+// finished chunks, not on threads arriving: a thread the system has
+// descheduled holds nobody up unless it is running a chunk. One hand-off
+// per chain instead of one per loop.
+//
 // Rules for `fn`: it must not throw (the call is noexcept; an exception
 // terminates, as it would in the serial step), it must not call ParallelFor
 // on the same pool (a nested call runs its chunks serially on the calling
@@ -34,10 +43,28 @@
 #include <cstdint>
 #include <functional>
 #include <mutex>
+#include <span>
 #include <thread>
 #include <vector>
 
 namespace talus {
+
+/// One loop of a RunPhases chain: [0, count) in chunks of `grain` items.
+struct JobPhase {
+  int count = 0;
+  int grain = 1;
+};
+
+/// Something that runs a chain of phases as JobPool::RunPhases promises
+/// (each phase after the earlier ones, its chunks in any order): a pool, or
+/// a test's own cut. Stages that run on threads take one of these rather
+/// than the pool, so the same code runs serially when it is empty.
+using PhaseRunner =
+    std::function<void(std::span<const JobPhase> phases, const std::function<void(int, int, int)>& fn)>;
+
+/// `runner` if set, else every chunk of every phase in order on this thread.
+void RunPhasesWith(const PhaseRunner& runner, std::span<const JobPhase> phases,
+                   const std::function<void(int phase, int begin, int end)>& fn);
 
 /// Number of chunks ParallelFor cuts `count` items into at `grain` items
 /// per chunk (grain < 1 counts as 1). Chunk c is [c grain, min(count, (c+1) grain)).
@@ -64,22 +91,38 @@ class JobPool {
   /// calls nothing.
   void ParallelFor(int count, int grain, const std::function<void(int begin, int end)>& fn) noexcept;
 
+  /// Runs the loops `phases` one after the other: fn(p, begin, end) once for
+  /// every chunk of phase p (chunks as ParallelFor's), where every chunk of
+  /// phases 0 .. p-1 has returned before any chunk of phase p starts (and
+  /// its writes are visible to it). Chunks of one phase may run at once, in
+  /// any order, on any thread. Returns when the last phase is done. Phases
+  /// with no items are skipped.
+  void RunPhases(std::span<const JobPhase> phases,
+                 const std::function<void(int phase, int begin, int end)>& fn) noexcept;
+
  private:
-  // One ParallelFor call, copied by each worker that joins it.
+  // One RunPhases call, copied by each worker that joins it. The chunks of
+  // all phases are numbered 0 .. chunks - 1 in phase order; phase p holds
+  // [m_phaseFirst[p], m_phaseFirst[p + 1]).
   struct Job {
-    const std::function<void(int, int)>* fn = nullptr;
-    int count = 0;
-    int grain = 1;
+    const std::function<void(int, int, int)>* fn = nullptr;
+    const JobPhase* phases = nullptr;
+    const int* phaseFirst = nullptr;
+    int phaseCount = 0;
     int chunks = 0;
   };
 
   void WorkerLoop();
-  // Runs chunk `chunk` of `job`.
-  static void RunChunk(const Job& job, int chunk) noexcept;
-  // Claims and runs chunks of `job` until none is left.
+  // Runs the chunk of phase `phase` numbered `chunk` in the whole job.
+  static void RunChunk(const Job& job, int phase, int chunk) noexcept;
+  // Claims and runs chunks of `job` until none is left, each after the
+  // earlier phases are done.
   void RunChunks(const Job& job) noexcept;
+  // Waits until at least `chunks` chunks of the current job have returned.
+  void AwaitDone(int chunks) noexcept;
 
   std::vector<std::thread> m_workers;
+  std::vector<int> m_phaseFirst;  // the current job's phase starts, written under m_mutex
 
   Job m_job;                                   // the current job, guarded by m_mutex
   std::atomic<int> m_nextChunk{0};             // next chunk to claim

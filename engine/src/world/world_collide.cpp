@@ -17,6 +17,8 @@ namespace {
 // thread count (jobs/job_pool.h).
 constexpr int kProxyGrain = 256;
 constexpr int kNarrowPhaseGrain = 8;
+// A pair's gather is one or two copies of a few hundred bytes.
+constexpr int kGatherGrain = 64;
 
 Transform BodyTransform(const BodySim& sim) {
   return {.position = sim.Origin(), .rotation = sim.orientation};
@@ -150,6 +152,36 @@ void CollidePair(const WorldData& d, const BroadPhasePair& pair, PairOutcome& ou
   setContact(manifold);
 }
 
+// Copies one pair's outcome into the places the serial pass of the gather
+// gave it (contactSlot, cacheSlot): last step's contact, anchors and cache
+// for a kept pair; the new contact with last step's anchors and cache for a
+// reused one; the new contact, anchors and cache for a tested one.
+void GatherPair(WorldData& d, const PairOutcome& outcome) {
+  if (outcome.cacheSlot >= 0) {
+    d.satCaches[static_cast<std::size_t>(outcome.cacheSlot)] =
+        outcome.kind == PairOutcome::Kind::Tested
+            ? outcome.cache
+            : d.previousSatCaches[static_cast<std::size_t>(outcome.oldCache)];
+  }
+  if (outcome.contactSlot < 0) return;
+  const auto slot = static_cast<std::size_t>(outcome.contactSlot);
+  const auto old = static_cast<std::size_t>(outcome.oldContact);
+  switch (outcome.kind) {
+    case PairOutcome::Kind::Kept:
+      d.contacts[slot] = d.previousContacts[old];
+      d.contactAnchors[slot] = d.previousContactAnchors[old];
+      return;
+    case PairOutcome::Kind::Reused:
+      d.contacts[slot] = outcome.contact;
+      d.contactAnchors[slot] = d.previousContactAnchors[old];
+      return;
+    case PairOutcome::Kind::Tested:
+      d.contacts[slot] = outcome.contact;
+      d.contactAnchors[slot] = outcome.anchors;
+      return;
+  }
+}
+
 }  // namespace
 
 Result<int> UpdateBroadPhase(WorldData& d) {
@@ -181,12 +213,11 @@ Result<int> UpdateBroadPhase(WorldData& d) {
 }
 
 void FindContacts(WorldData& d, StepStatistics& stats) {
+  // The swapped-in lists are resized (not cleared) at the gather, which
+  // overwrites every element it keeps.
   d.previousContacts.swap(d.contacts);
-  d.contacts.clear();
   d.previousContactAnchors.swap(d.contactAnchors);
-  d.contactAnchors.clear();
   d.previousSatCaches.swap(d.satCaches);
-  d.satCaches.clear();
   d.broadPhase.FindPairs(d.pairs, stats.broadPhase);
   stats.spherePairs = static_cast<std::int64_t>(d.pairs.size());
   stats.staticPairsSkipped = stats.broadPhase.skippedStaticPairs;
@@ -219,42 +250,45 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
   });
 
   // 3. Gathered in pair order: the contacts stay sorted by pair key and
-  // nothing depends on which thread ran which pair.
+  // nothing depends on which thread ran which pair. First, serially, each
+  // pair's places in the new lists, the counts and the wakes; then the
+  // copies (a contact is hundreds of bytes) on every thread, each pair into
+  // its own places.
+  std::int32_t contactCount = 0;
+  std::int32_t cacheCount = 0;
   for (std::size_t p = 0; p < d.pairs.size(); ++p) {
     PairOutcome& outcome = d.pairOutcomes[p];
-    const bool hadCache = outcome.oldCache >= 0;
-    const auto oldCacheIndex = static_cast<std::size_t>(outcome.oldCache);
+    outcome.contactSlot = -1;
+    outcome.cacheSlot = -1;
     switch (outcome.kind) {
       case PairOutcome::Kind::Kept:
         ++stats.sleepingPairsSkipped;
-        if (outcome.oldContact >= 0) {
-          const auto old = static_cast<std::size_t>(outcome.oldContact);
-          d.contacts.push_back(d.previousContacts[old]);
-          d.contactAnchors.push_back(d.previousContactAnchors[old]);
-        }
-        if (hadCache) d.satCaches.push_back(d.previousSatCaches[oldCacheIndex]);
+        if (outcome.oldContact >= 0) outcome.contactSlot = contactCount++;
+        if (outcome.oldCache >= 0) outcome.cacheSlot = cacheCount++;
         continue;
       case PairOutcome::Kind::Reused:
         ++stats.manifoldsReused;
         stats.reusedContactPoints += outcome.contact.manifold.pointCount;
-        if (hadCache) d.satCaches.push_back(d.previousSatCaches[oldCacheIndex]);
+        if (outcome.oldCache >= 0) outcome.cacheSlot = cacheCount++;
         break;
       case PairOutcome::Kind::Tested:
         stats.narrowPhase += outcome.stats;
         stats.persistentPoints += outcome.persistentPoints;
-        d.satCaches.push_back(outcome.cache);
+        outcome.cacheSlot = cacheCount++;
         break;
     }
     if (!outcome.touching) continue;
-    const auto a = static_cast<std::size_t>(d.pairs[p].a);
-    const auto b = static_cast<std::size_t>(d.pairs[p].b);
-    if (outcome.wakeA) Wake(d, a);
-    if (outcome.wakeB) Wake(d, b);
-    d.contacts.push_back(outcome.contact);
-    d.contactAnchors.push_back(outcome.kind == PairOutcome::Kind::Reused
-                                   ? d.previousContactAnchors[static_cast<std::size_t>(outcome.oldContact)]
-                                   : outcome.anchors);
+    if (outcome.wakeA) Wake(d, static_cast<std::size_t>(d.pairs[p].a));
+    if (outcome.wakeB) Wake(d, static_cast<std::size_t>(d.pairs[p].b));
+    outcome.contactSlot = contactCount++;
   }
+  // Capacity is kept; every element up to the new size is overwritten.
+  d.contacts.resize(static_cast<std::size_t>(contactCount));
+  d.contactAnchors.resize(static_cast<std::size_t>(contactCount));
+  d.satCaches.resize(static_cast<std::size_t>(cacheCount));
+  d.jobs->ParallelFor(pairCount, kGatherGrain, [&d](int begin, int end) {
+    for (int p = begin; p < end; ++p) GatherPair(d, d.pairOutcomes[static_cast<std::size_t>(p)]);
+  });
   stats.manifolds = static_cast<std::int64_t>(d.contacts.size());
 }
 

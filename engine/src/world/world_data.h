@@ -77,6 +77,8 @@ struct PairOutcome {
   bool wakeB = false;                 ///< the same for body b
   std::int32_t oldContact = -1;       ///< index of last step's contact of the pair, or -1
   std::int32_t oldCache = -1;         ///< index of last step's SAT cache of the pair, or -1
+  std::int32_t contactSlot = -1;      ///< the gather's: index in this step's contacts, or -1
+  std::int32_t cacheSlot = -1;        ///< the gather's: index in this step's SAT caches, or -1
   NarrowPhaseStats stats;             ///< Tested: the narrow phase's counts for this pair
   std::int32_t persistentPoints = 0;  ///< Tested: last step's points merged back (manifold_persistence.h)
   Contact contact;

@@ -56,12 +56,6 @@ class StageClock {
   std::chrono::steady_clock::time_point m_last = std::chrono::steady_clock::now();
 };
 
-// Bundles (four contact pairs each) per ParallelFor chunk of a colour's
-// sweep: a bundle's two to four points cost about a microsecond, so a chunk
-// of 8 is well above the pool's hand-off cost without starving a second
-// thread on the smaller colours.
-constexpr int kBundleGrain = 8;
-
 void CountBodies(const WorldData& d, StepStatistics& stats) {
   stats.bodies = d.liveBodies;
   for (const BodySim& sim : d.sims) {
@@ -78,11 +72,12 @@ void CountBodies(const WorldData& d, StepStatistics& stats) {
 void PrepareContacts(WorldData& d, double h, StepStatistics& stats) {
   if (d.settings.warmStarting) stats.warmStartedPoints = CarryImpulses(d.previousContacts, d.contacts);
   if (d.jobs->ThreadCount() > 1) {
-    d.solver.SetRangeRunner([&d](int count, const std::function<void(int, int)>& body) {
-      d.jobs->ParallelFor(count, kBundleGrain, body);
-    });
+    d.solver.SetPhaseRunner(
+        [&d](std::span<const JobPhase> phases, const std::function<void(int, int, int)>& fn) {
+          d.jobs->RunPhases(phases, fn);
+        });
   } else {
-    d.solver.SetRangeRunner(nullptr);
+    d.solver.SetPhaseRunner(nullptr);
   }
   d.solver.Prepare(d.sims, d.contacts, d.settings, h, stats);
 }
