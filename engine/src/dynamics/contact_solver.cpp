@@ -165,97 +165,95 @@ void ContactSolver::PreparePair(std::span<const BodySim> bodies, const Contact& 
   const double invH = 1.0 / h;
   const BodySim& a = bodies[static_cast<std::size_t>(contact.bodyA)];
   const BodySim& b = bodies[static_cast<std::size_t>(contact.bodyB)];
-  {  // (the former loop body's scope, kept so its lines stay as they were)
-    const Mat3& invInertiaA = m_bodies.InvInertia(pair.bodyA);
-    const Mat3& invInertiaB = m_bodies.InvInertia(pair.bodyB);
-    const Vec3& n = pair.normal;
-    // Friction basis: t1 along the mean sliding velocity when there is one.
-    if (pair.hasFriction) {
-      Vec3 slide = Vec3::Zero();
-      for (int i = 0; i < pair.pointCount; ++i) {
-        const Vec3& p = contact.manifold.points[static_cast<std::size_t>(i)].position;
-        slide += RelativeVelocity(a.linearVelocity, a.angularVelocity, p - a.center, b.linearVelocity,
-                                  b.angularVelocity, p - b.center);
-      }
-      slide -= n * n.dot(slide);
-      const double speed = slide.norm() / pair.pointCount;
-      pair.tangent[0] = speed > kSlidingSpeed ? Vec3(slide.normalized()) : AnyPerpendicular(n);
-      pair.tangent[1] = n.cross(pair.tangent[0]);
-    }
-
+  const Mat3& invInertiaA = m_bodies.InvInertia(pair.bodyA);
+  const Mat3& invInertiaB = m_bodies.InvInertia(pair.bodyB);
+  const Vec3& n = pair.normal;
+  // Friction basis: t1 along the mean sliding velocity when there is one.
+  if (pair.hasFriction) {
+    Vec3 slide = Vec3::Zero();
     for (int i = 0; i < pair.pointCount; ++i) {
-      const std::size_t pi = static_cast<std::size_t>(i);
-      const ContactPoint& cp = contact.manifold.points[pi];
-      const Vec3 rA = cp.position - a.center;
-      const Vec3 rB = cp.position - b.center;
-      NormalRow row;
-      row.j = MakeJacobian(n, rA, rB, invInertiaA, invInertiaB);
-      row.mass = RowMass(row.j, pair);
-      const double correction = settings.baumgarte * invH * std::max(cp.depth - settings.slop, 0.0);
-      if (cp.depth < 0.0) {
-        // Not touching yet: the gap may close this step, no further.
-        row.target = cp.depth * invH;
-      } else if (settings.positionCorrection == PositionCorrection::Baumgarte) {
-        row.target = correction;
-      }
-      PointCold cold;
-      cold.armA = rA;
-      cold.armB = rB;
-      const bool split = settings.positionCorrection == PositionCorrection::SplitImpulses;
-      cold.positionTarget = split && cp.depth > 0.0 ? correction : 0.0;
-      if (settings.positionCorrection == PositionCorrection::NonlinearGaussSeidel) {
-        // The surface points of A and B the midpoint stands for, half the
-        // depth either side along n, kept in body axes for the position pass.
-        cold.localAnchorA = a.orientation.conjugate() * (rA - 0.5 * cp.depth * n);
-        cold.localAnchorB = b.orientation.conjugate() * (rB + 0.5 * cp.depth * n);
-      }
-      if (contact.restitution > 0.0) {
-        const double vn = n.dot(RelativeVelocity(a.linearVelocity, a.angularVelocity, rA, b.linearVelocity,
-                                                 b.angularVelocity, rB));
-        TimedBounce bounce;
-        double acceleration = 0.0;
-        if (settings.bounceTiming == BounceTiming::TimeOfImpact) {
-          const double u0 = n.dot(RelativeVelocity(StartVelocity(a), a.angularVelocity, rA, StartVelocity(b),
-                                                   b.angularVelocity, rB));
-          acceleration = (vn - u0) * invH;
-          bounce =
-              TimeBounce(-cp.depth, u0, acceleration, h, contact.restitution, settings.restitutionThreshold);
-        }
-        if (bounce.hits) {
-          row.target = bounce.endSpeed;
-          cold.positionTarget = (bounce.endGap + cp.depth) * invH - bounce.endSpeed;
-          cold.timedBounce = true;
-          ++counts.timedBounces;
-        } else if (settings.bounceTiming == BounceTiming::StepBoundary || bounce.tooDeep) {
-          // Bounce when closing fast enough and the point touches by the end
-          // of the step (a speculative point that stays apart must not bounce).
-          if (vn < -settings.restitutionThreshold && cp.depth - vn * h > 0.0) {
-            row.target = std::max(row.target, -contact.restitution * vn);
-          }
-        } else if (cp.depth < 0.0 && vn < -settings.restitutionThreshold &&
-                   settings.translation == TranslationIntegrator::ExactConstantAcceleration) {
-          // A fast approach that misses the surface this step: an untouched
-          // body closes the gap by h (vn - a h / 2), not h vn.
-          row.target = cp.depth * invH + 0.5 * acceleration * h;
-        }
-      } else {
-        ++counts.restitutionSkipped;
-      }
-      if (settings.warmStarting) row.impulse = contact.normalImpulse[pi];
-      if (pair.hasFriction) {
-        for (int k = 0; k < 2; ++k) {
-          FrictionRow friction;
-          friction.j = MakeJacobian(pair.tangent[k], rA, rB, invInertiaA, invInertiaB);
-          friction.mass = RowMass(friction.j, pair);
-          if (settings.warmStarting) friction.impulse = contact.frictionImpulse[pi].dot(pair.tangent[k]);
-          m_frictions[static_cast<std::size_t>(pair.firstFriction + 2 * i + k)] = friction;
-        }
-      }
-      m_normals[static_cast<std::size_t>(pair.firstPoint + i)] = row;
-      m_cold[static_cast<std::size_t>(pair.firstPoint + i)] = cold;
+      const Vec3& p = contact.manifold.points[static_cast<std::size_t>(i)].position;
+      slide += RelativeVelocity(a.linearVelocity, a.angularVelocity, p - a.center, b.linearVelocity,
+                                b.angularVelocity, p - b.center);
     }
-    if (pair.block >= 0) PrepareBlock(pair);
+    slide -= n * n.dot(slide);
+    const double speed = slide.norm() / pair.pointCount;
+    pair.tangent[0] = speed > kSlidingSpeed ? Vec3(slide.normalized()) : AnyPerpendicular(n);
+    pair.tangent[1] = n.cross(pair.tangent[0]);
   }
+
+  for (int i = 0; i < pair.pointCount; ++i) {
+    const std::size_t pi = static_cast<std::size_t>(i);
+    const ContactPoint& cp = contact.manifold.points[pi];
+    const Vec3 rA = cp.position - a.center;
+    const Vec3 rB = cp.position - b.center;
+    NormalRow row;
+    row.j = MakeJacobian(n, rA, rB, invInertiaA, invInertiaB);
+    row.mass = RowMass(row.j, pair);
+    const double correction = settings.baumgarte * invH * std::max(cp.depth - settings.slop, 0.0);
+    if (cp.depth < 0.0) {
+      // Not touching yet: the gap may close this step, no further.
+      row.target = cp.depth * invH;
+    } else if (settings.positionCorrection == PositionCorrection::Baumgarte) {
+      row.target = correction;
+    }
+    PointCold cold;
+    cold.armA = rA;
+    cold.armB = rB;
+    const bool split = settings.positionCorrection == PositionCorrection::SplitImpulses;
+    cold.positionTarget = split && cp.depth > 0.0 ? correction : 0.0;
+    if (settings.positionCorrection == PositionCorrection::NonlinearGaussSeidel) {
+      // The surface points of A and B the midpoint stands for, half the
+      // depth either side along n, kept in body axes for the position pass.
+      cold.localAnchorA = a.orientation.conjugate() * (rA - 0.5 * cp.depth * n);
+      cold.localAnchorB = b.orientation.conjugate() * (rB + 0.5 * cp.depth * n);
+    }
+    if (contact.restitution > 0.0) {
+      const double vn = n.dot(
+          RelativeVelocity(a.linearVelocity, a.angularVelocity, rA, b.linearVelocity, b.angularVelocity, rB));
+      TimedBounce bounce;
+      double acceleration = 0.0;
+      if (settings.bounceTiming == BounceTiming::TimeOfImpact) {
+        const double u0 = n.dot(RelativeVelocity(StartVelocity(a), a.angularVelocity, rA, StartVelocity(b),
+                                                 b.angularVelocity, rB));
+        acceleration = (vn - u0) * invH;
+        bounce =
+            TimeBounce(-cp.depth, u0, acceleration, h, contact.restitution, settings.restitutionThreshold);
+      }
+      if (bounce.hits) {
+        row.target = bounce.endSpeed;
+        cold.positionTarget = (bounce.endGap + cp.depth) * invH - bounce.endSpeed;
+        cold.timedBounce = true;
+        ++counts.timedBounces;
+      } else if (settings.bounceTiming == BounceTiming::StepBoundary || bounce.tooDeep) {
+        // Bounce when closing fast enough and the point touches by the end
+        // of the step (a speculative point that stays apart must not bounce).
+        if (vn < -settings.restitutionThreshold && cp.depth - vn * h > 0.0) {
+          row.target = std::max(row.target, -contact.restitution * vn);
+        }
+      } else if (cp.depth < 0.0 && vn < -settings.restitutionThreshold &&
+                 settings.translation == TranslationIntegrator::ExactConstantAcceleration) {
+        // A fast approach that misses the surface this step: an untouched
+        // body closes the gap by h (vn - a h / 2), not h vn.
+        row.target = cp.depth * invH + 0.5 * acceleration * h;
+      }
+    } else {
+      ++counts.restitutionSkipped;
+    }
+    if (settings.warmStarting) row.impulse = contact.normalImpulse[pi];
+    if (pair.hasFriction) {
+      for (int k = 0; k < 2; ++k) {
+        FrictionRow friction;
+        friction.j = MakeJacobian(pair.tangent[k], rA, rB, invInertiaA, invInertiaB);
+        friction.mass = RowMass(friction.j, pair);
+        if (settings.warmStarting) friction.impulse = contact.frictionImpulse[pi].dot(pair.tangent[k]);
+        m_frictions[static_cast<std::size_t>(pair.firstFriction + 2 * i + k)] = friction;
+      }
+    }
+    m_normals[static_cast<std::size_t>(pair.firstPoint + i)] = row;
+    m_cold[static_cast<std::size_t>(pair.firstPoint + i)] = cold;
+  }
+  if (pair.block >= 0) PrepareBlock(pair);
 }
 
 // Warm start: each point's accumulated impulse lambda_n n + lambda_1 t1 +
