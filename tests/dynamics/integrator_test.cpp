@@ -1,4 +1,4 @@
-// Symplectic Euler and the gyroscopic term, through the World's public API
+// Symplectic Euler, the default translation step and the gyroscopic term, through the World's public API
 // (no shapes, so no contacts): free flight follows the exact discrete
 // recurrence, torque-free spin conserves angular momentum, and with the
 // gyroscopic option the intermediate axis is unstable (Dzhanibekov).
@@ -32,7 +32,11 @@ double RotationalEnergy(const BodyState& s) {
 }
 
 TEST(Integrator, FreeFallFollowsTheSymplecticEulerRecurrence) {
-  World world = MakeWorld({.gravity = {0.0, -9.81, 0.0}, .sleeping = false});
+  // The write-up's scheme, selected explicitly (the default is exact for
+  // constant gravity; tested below).
+  World world = MakeWorld({.gravity = {0.0, -9.81, 0.0},
+                           .translation = TranslationIntegrator::SymplecticEuler,
+                           .sleeping = false});
   const double y0 = 100.0;
   const BodyId id = world.CreateBody({.type = BodyType::Dynamic, .position = {0, y0, 0}}).Value();
   for (int n = 1; n <= 240; ++n) {
@@ -49,7 +53,8 @@ TEST(Integrator, FreeFallFollowsTheSymplecticEulerRecurrence) {
 
 TEST(Integrator, ProjectileFollowsTheRecurrenceOnEveryAxis) {
   const Vec3 g(0.0, -9.81, 0.0);
-  World world = MakeWorld({.gravity = g, .sleeping = false});
+  World world =
+      MakeWorld({.gravity = g, .translation = TranslationIntegrator::SymplecticEuler, .sleeping = false});
   const Vec3 x0(1.0, 2.0, 3.0);
   const Vec3 v0(4.0, 12.0, -3.0);
   const BodyId id =
@@ -60,6 +65,49 @@ TEST(Integrator, ProjectileFollowsTheRecurrenceOnEveryAxis) {
     const double t = n * kH;
     const Vec3 expected = x0 + v0 * t + 0.5 * g * t * t + 0.5 * g * kH * t;
     EXPECT_LT((world.GetBodyState(id).Value().position - expected).norm(), 1e-11 * n);
+  }
+}
+
+// The default translation step is exact for constant gravity: with every
+// setting at its default (sleeping included: the body never stops), free
+// flight lands on x0 + v0 t + g t^2 / 2, not on the symplectic sequence
+// g h t / 2 below it.
+TEST(Integrator, DefaultFreeFlightFollowsTheParabola) {
+  World world = MakeWorld(WorldSettings{});
+  const Vec3 g = WorldSettings{}.gravity;
+  const Vec3 x0(-3.0, 50.0, 2.0);
+  const Vec3 v0(1.5, 9.0, -2.5);
+  const BodyId id =
+      world.CreateBody({.type = BodyType::Dynamic, .position = x0, .linearVelocity = v0, .mass = 3.0})
+          .Value();
+  for (int n = 1; n <= 240; ++n) {
+    ASSERT_TRUE(world.Step(kH));
+    const double t = n * kH;
+    const BodyState s = world.GetBodyState(id).Value();
+    // Round-off of coordinates below 100 m (ulp 1.4e-14) over n steps; the
+    // symplectic lag g h t / 2 is 1.4e-3 n m, 1e9 times more.
+    ASSERT_LT((s.position - (x0 + v0 * t + 0.5 * g * t * t)).norm(), 1e-12 * n) << "step " << n;
+    ASSERT_LT((s.linearVelocity - (v0 + g * t)).norm(), 1e-12 * n) << "step " << n;
+  }
+}
+
+// The same closed form, step after step, at several step sizes: the default
+// carries no O(h) error, so halving h changes nothing beyond round-off.
+TEST(Integrator, DefaultFreeFallIsIndependentOfTheStep) {
+  const double y0 = 20.0;
+  const double v0 = 4.0;
+  const double g = 9.81;
+  const double duration = 1.5;
+  for (const int steps : {15, 90, 600, 4800}) {
+    World world = MakeWorld(WorldSettings{});
+    const BodyId id =
+        world.CreateBody({.type = BodyType::Dynamic, .position = {0, y0, 0}, .linearVelocity = {0, v0, 0}})
+            .Value();
+    const double h = duration / steps;
+    for (int n = 0; n < steps; ++n) ASSERT_TRUE(world.Step(h));
+    const double y = world.GetBodyState(id).Value().position.y();
+    // Round-off of a 20 m coordinate over at most 4800 steps.
+    EXPECT_NEAR(y, y0 + v0 * duration - 0.5 * g * duration * duration, 1e-12 * steps) << steps << " steps";
   }
 }
 

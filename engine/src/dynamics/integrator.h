@@ -32,9 +32,10 @@
 //   a = 1 / (2 - 2^(1/3)), b = 1 - 2a: every sub-flow is still an exact
 //   rotation that keeps L, and the h^3 term of the local error cancels, so
 //   the energy error is O(h^4) (13 sub-rotations a step against 5).
-// * ExactConstantAcceleration (translation): a body whose velocity the
-//   contact solver left unchanged moves by h (v(n) + v(n+1)) / 2, which for
-//   a constant acceleration a is h v(n) + a h^2 / 2: the parabola, exactly.
+// * ExactConstantAcceleration (translation; the default): a body whose
+//   velocity the contact solver left unchanged moves by
+//   h (v(n) + v(n+1)) / 2, which for a constant acceleration a is
+//   h v(n) + a h^2 / 2: the parabola, exactly.
 //   A body an impulse acted on moves by h v(n+1), the solved velocity, so
 //   speculative gaps and resting contacts mean what the solver assumed.
 //
