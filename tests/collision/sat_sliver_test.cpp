@@ -71,42 +71,56 @@ std::optional<SliverPair> RandomSliverPair(std::mt19937_64& rng) {
   return pair;
 }
 
-// The brute force and the pruned SAT agree on the verdict (outside the
-// touching band of the hulls' tolerances), and whatever axis the SAT
-// reports measures, by projection, what the SAT says it does: a
-// "separated" answer is never an overlap re-measured. Both orders (sliver
-// as A and as B), since the edge axis is oriented against A.
-TEST(SatSliver, PrunedVerdictAndReportedAxisMatchBruteForceOnRandomSlivers) {
+// Runs `check(case, sliverFirst, a, b, oracle, band)` on every random
+// sliver pair that builds, in both orders (sliver as A and as B, since the
+// edge axis is oriented against A), with the brute-force least overlap
+// and the band of the hulls' fitting tolerance plus round-off. Stops at the
+// first fatal failure, as an ASSERT in one loop would. Returns the number
+// of pairs built.
+template <typename Check>
+int ForEachRandomSliverPairBothOrders(Check&& check) {
   std::mt19937_64 rng(kSeed);
   int built = 0;
-  int overlapping = 0;
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kCases && !::testing::Test::HasFatalFailure(); ++i) {
     const auto pair = RandomSliverPair(rng);
     if (!pair) continue;
     ++built;
+    const PosedHull sliver = PosedHull::Make(*pair->sliver, pair->xfSliver);
+    const PosedHull box = PosedHull::Make(*pair->box, pair->xfBox);
+    const double band = pair->sliver->Tolerance() + pair->box->Tolerance() + kRoundOff;
     for (const bool sliverFirst : {true, false}) {
-      const PosedHull sliver = PosedHull::Make(*pair->sliver, pair->xfSliver);
-      const PosedHull box = PosedHull::Make(*pair->box, pair->xfBox);
       const PosedHull& a = sliverFirst ? sliver : box;
       const PosedHull& b = sliverFirst ? box : sliver;
-      const double oracle = test::BruteMinimumOverlap(a, b);
-      // Within the hulls' fitting tolerance either verdict is right.
-      const double band = pair->sliver->Tolerance() + pair->box->Tolerance() + kRoundOff;
-      if (std::abs(oracle) < band) continue;
-      const SatResult sat = RunSat(a, b, SatMode::GaussMapPruned, 0.0, nullptr, nullptr);
-      ASSERT_EQ(sat.separated, oracle < 0.0)
-          << "case " << i << (sliverFirst ? " sliver first" : " box first") << ": oracle overlap " << oracle
-          << ", SAT separation " << sat.separation;
-      // The normal points from B towards A and measures the reported
-      // value one-sidedly (B's support along it and A's against it); the
-      // two-sided overlap may differ by a sliver's thickness, which the
-      // face preference band allows.
-      EXPECT_NEAR(test::BruteSupport(b, sat.normal) + test::BruteSupport(a, -sat.normal), -sat.separation,
-                  kRoundOff)
-          << "case " << i << ", axis type " << static_cast<int>(sat.axis.type);
-      if (!sat.separated) ++overlapping;
+      check(i, sliverFirst, a, b, test::BruteMinimumOverlap(a, b), band);
+      if (::testing::Test::HasFatalFailure()) break;
     }
   }
+  return built;
+}
+
+// The brute force and the pruned SAT agree on the verdict (outside the
+// touching band of the hulls' tolerances), and whatever axis the SAT
+// reports measures, by projection, what the SAT says it does: a
+// "separated" answer is never an overlap re-measured.
+TEST(SatSliver, PrunedVerdictAndReportedAxisMatchBruteForceOnRandomSlivers) {
+  int overlapping = 0;
+  const int built = ForEachRandomSliverPairBothOrders(
+      [&](int i, bool sliverFirst, const PosedHull& a, const PosedHull& b, double oracle, double band) {
+        // Within the hulls' fitting tolerance either verdict is right.
+        if (std::abs(oracle) < band) return;
+        const SatResult sat = RunSat(a, b, SatMode::GaussMapPruned, 0.0, nullptr, nullptr);
+        ASSERT_EQ(sat.separated, oracle < 0.0)
+            << "case " << i << (sliverFirst ? " sliver first" : " box first") << ": oracle overlap " << oracle
+            << ", SAT separation " << sat.separation;
+        // The normal points from B towards A and measures the reported
+        // value one-sidedly (B's support along it and A's against it); the
+        // two-sided overlap may differ by a sliver's thickness, which the
+        // face preference band allows.
+        EXPECT_NEAR(test::BruteSupport(b, sat.normal) + test::BruteSupport(a, -sat.normal), -sat.separation,
+                    kRoundOff)
+            << "case " << i << ", axis type " << static_cast<int>(sat.axis.type);
+        if (!sat.separated) ++overlapping;
+      });
   // The recipe must exercise both verdicts on many slivers.
   EXPECT_GT(built, 2000);
   EXPECT_GT(overlapping, 1000);
@@ -122,33 +136,21 @@ TEST(SatSliver, PrunedVerdictAndReportedAxisMatchBruteForceOnRandomSlivers) {
 // gap read too large and its axis beat every correct one (1.7e-4 m too
 // shallow in that input).
 TEST(SatSliver, FullModeOverlapMatchesBruteForceOnRandomSlivers) {
-  std::mt19937_64 rng(kSeed);
-  int built = 0;
   int overlapping = 0;
-  for (int i = 0; i < kCases; ++i) {
-    const auto pair = RandomSliverPair(rng);
-    if (!pair) continue;
-    ++built;
-    for (const bool sliverFirst : {true, false}) {
-      const PosedHull sliver = PosedHull::Make(*pair->sliver, pair->xfSliver);
-      const PosedHull box = PosedHull::Make(*pair->box, pair->xfBox);
-      const PosedHull& a = sliverFirst ? sliver : box;
-      const PosedHull& b = sliverFirst ? box : sliver;
-      const double oracle = test::BruteMinimumOverlap(a, b);
-      const double band = pair->sliver->Tolerance() + pair->box->Tolerance() + kRoundOff;
-      if (oracle < band) continue;  // separated, or touching within the hulls' tolerance
-      const SatResult sat = RunSat(a, b, SatMode::Full, 0.0, nullptr, nullptr);
-      ASSERT_FALSE(sat.separated) << "case " << i << ": oracle overlap " << oracle;
-      ++overlapping;
-      const double preference = AxisPreferenceBand(*a.hull, *b.hull);
-      EXPECT_GE(-sat.separation, oracle - kRoundOff)
-          << "case " << i << (sliverFirst ? " sliver first" : " box first") << ", axis type "
-          << static_cast<int>(sat.axis.type);
-      EXPECT_LE(-sat.separation, oracle + preference + kRoundOff)
-          << "case " << i << (sliverFirst ? " sliver first" : " box first") << ", axis type "
-          << static_cast<int>(sat.axis.type);
-    }
-  }
+  const int built = ForEachRandomSliverPairBothOrders(
+      [&](int i, bool sliverFirst, const PosedHull& a, const PosedHull& b, double oracle, double band) {
+        if (oracle < band) return;  // separated, or touching within the hulls' tolerance
+        const SatResult sat = RunSat(a, b, SatMode::Full, 0.0, nullptr, nullptr);
+        ASSERT_FALSE(sat.separated) << "case " << i << ": oracle overlap " << oracle;
+        ++overlapping;
+        const double preference = AxisPreferenceBand(*a.hull, *b.hull);
+        EXPECT_GE(-sat.separation, oracle - kRoundOff)
+            << "case " << i << (sliverFirst ? " sliver first" : " box first") << ", axis type "
+            << static_cast<int>(sat.axis.type);
+        EXPECT_LE(-sat.separation, oracle + preference + kRoundOff)
+            << "case " << i << (sliverFirst ? " sliver first" : " box first") << ", axis type "
+            << static_cast<int>(sat.axis.type);
+      });
   EXPECT_GT(built, 2000);
   EXPECT_GT(overlapping, 1000);
 }
