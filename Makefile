@@ -161,16 +161,17 @@ fuzz: fuzz-build
 	done
 
 # The CI form is bounded by input count, not by time: with libFuzzer's seed
-# fixed, -runs=N makes the same N inputs on any machine, so a run that passes
-# here passes in CI and a slow or fast CI machine cannot reach a different
-# stretch of the mutation sequence. It starts from the seeds alone (a fresh
-# corpus folder each time) for the same reason. Counts: what each target ran
-# in 30 s at seed 1 on the shared 2-core machine (docs/fuzzing.md); an idle
-# machine gets through them in less. Two more things would make the inputs
-# differ between runs, measured: libFuzzer re-reads the corpus folder every
-# second (-reload=0 turns that off), and its comparison tracing records
-# pointer values, which address-space randomisation changes from run to run
-# (setarch -R turns that off for the fuzzer, where the system allows it).
+# fixed, -runs=N makes the same N inputs from run to run on a machine that
+# lets the fuzzer run without address-space randomisation (setarch -R), so
+# a slow or fast machine cannot reach a different stretch of the mutation
+# sequence. It starts from the seeds alone (a fresh corpus folder each time)
+# for the same reason, and the corpus is not re-read while it runs
+# (-reload=0). libFuzzer's comparison tracing records pointer values, so
+# where setarch -R is refused (as on the CI machine of 2026-11-24) the
+# inputs differ from run to run: CI then fuzzes a new stretch each time,
+# and a finding there may need a few seeds here to reproduce
+# (docs/fuzzing.md). Counts: what each target ran in 30 s at seed 1 on the
+# shared 2-core machine; an idle machine gets through them in less.
 FUZZ_CI_RUNS ?= hull_builder:20000 point_file:450000 pair_sat:14000 scenario_loader:39000 shard_merge:13500
 FUZZ_NO_ASLR := $(shell setarch $$(uname -m) -R true >/dev/null 2>&1 && echo setarch $$(uname -m) -R)
 

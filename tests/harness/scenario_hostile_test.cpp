@@ -115,13 +115,52 @@ TEST(HostileScenario, MessagesQuoteShortEscapedText) {
   ASSERT_FALSE(runs);
   const std::string& shown = runs.GetError().message;
   EXPECT_LT(shown.size(), 200u) << shown.substr(0, 400);
-  EXPECT_TRUE(Has(shown, "duplicate body name \"" + huge.substr(0, 64) + "...\" (4194304 bytes)")) << shown;
+  EXPECT_TRUE(Has(shown, "duplicate body name \"" + huge.substr(0, 61) + "...\" (4194304 bytes)")) << shown;
 
   std::string m = Refusal("nul_in_name.json");
   EXPECT_EQ(m.find('\0'), std::string::npos);
   EXPECT_TRUE(Has(m, "duplicate body name \"ball\\x00\"")) << m;
   m = Refusal("bom_in_name.json");
   EXPECT_TRUE(Has(m, "duplicate body name \"ball\\uFEFF\"")) << m;
+}
+
+// Quote marks inside input used to make TidyMessage pair the wrong marks
+// and print the input whole (a fuzz finding: a 2.7 kB syntax-error token).
+// Each case hides 3000 bytes behind quote marks; the message must stay short,
+// name the place, and give the full length.
+TEST(HostileScenario, QuoteMarksInsideInputDoNotLetItIntoTheMessage) {
+  const std::string filler(3000, 'x');
+  const std::string head = R"({"name": "q", "world": {"timeStep": 0.01, "duration": {"steps": 1}}, )";
+  const std::string ball =
+      R"(", "shape": {"kind": "sphere", "radius": 0.5}, "motion": "static", "position": [0, 0, 0]})";
+  // A string token that breaks off at a control byte: nlohmann's "last read"
+  // quotes it with single marks and it holds ": '" and '"'.
+  std::string text = head + R"("description": "a: 'b' \"c\" )" + filler + "\x01\"}";
+  auto runs = ParseScenarioText(text, "token.json");
+  ASSERT_FALSE(runs);
+  std::string m = runs.GetError().message;
+  EXPECT_LT(m.size(), 300u) << m.substr(0, 400);
+  EXPECT_TRUE(Has(m, "token.json: line 1, column ") && Has(m, "last read: '\"a: \\x27b\\x27 \\\"c\\\" xxx") &&
+              Has(m, "...' (3022 bytes)"))
+      << m.substr(0, 400);
+
+  // A key holding quote marks becomes part of the JSON pointer.
+  text = head + R"("bodies": [], "\"a\"b': ')" + filler + R"(": 1})";
+  runs = ParseScenarioText(text, "key.json");
+  ASSERT_FALSE(runs);
+  m = runs.GetError().message;
+  EXPECT_LT(m.size(), 300u) << m.substr(0, 400);
+  EXPECT_TRUE(Has(m, "key.json: /\\x22a\\x22b\\x27: \\x27xxx") && Has(m, "... (3009 bytes): unknown field"))
+      << m.substr(0, 400);
+
+  // A repeated body name with a quote mark in it.
+  const std::string name = "a\\\"" + filler + "\\\"b";
+  text = head + R"("bodies": [{"name": ")" + name + ball + R"(, {"name": ")" + name + ball + "]}";
+  runs = ParseScenarioText(text, "name.json");
+  ASSERT_FALSE(runs);
+  m = runs.GetError().message;
+  EXPECT_LT(m.size(), 300u) << m.substr(0, 400);
+  EXPECT_TRUE(Has(m, "duplicate body name \"a\\x22xxx") && Has(m, "...\" (3004 bytes)")) << m.substr(0, 400);
 }
 
 TEST(HostileScenario, TwoFilesWithOneScenarioNameAreRefused) {

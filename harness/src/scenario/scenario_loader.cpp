@@ -88,8 +88,8 @@ std::string LineAndColumn(std::string_view text, size_t offset) {
 }
 
 Error FieldError(std::string_view file, const std::string& pointer, const std::string& problem) {
-  return Error{std::string(file) + ": " + (pointer.empty() ? std::string("(root)") : pointer) + ": " +
-               problem};
+  return Error{Concat(
+      {file, ": ", pointer.empty() ? std::string("(root)") : PointerForMessage(pointer), ": ", problem})};
 }
 
 // |v| without overflow or underflow for any finite v (1e300 or 1e-300
@@ -218,7 +218,7 @@ Result<ShapeSpec> MapShape(const json& shape) {
 std::optional<Error> CheckMagnitudes(const BodySpec& spec, std::string_view file,
                                      const std::string& pointer) {
   const auto refuse = [&](const std::string& field, const std::string& problem) {
-    return FieldError(file, pointer + field, Concat({"body \"", spec.name, "\": ", problem}));
+    return FieldError(file, pointer + field, Concat({"body ", Quoted(spec.name), ": ", problem}));
   };
   const auto length = [](double value) { return FormatNumber(value) + " m"; };
   double extent = 0.0;  // the body's farthest point from its frame origin
@@ -359,12 +359,12 @@ Result<TruthKind> MapStackRest(const TruthContext& c) {
       const std::string where = c.pointer + "/layers/" + std::to_string(l) + "/" + std::to_string(k);
       const std::string name = c.entry["layers"][l][k].get<std::string>();
       const int body = FindBody(c.bodyIndex, name);
-      if (body < 0) return FieldError(c.file, where, "no body named \"" + name + "\"");
+      if (body < 0) return FieldError(c.file, where, "no body named " + Quoted(name));
       if (seen.count(body) != 0) {
-        return FieldError(c.file, where, "body \"" + name + "\" is listed twice");
+        return FieldError(c.file, where, "body " + Quoted(name) + " is listed twice");
       }
       if (c.bodies[body].motion != Motion::Dynamic) {
-        return FieldError(c.file, where, "body \"" + name + "\" is static");
+        return FieldError(c.file, where, "body " + Quoted(name) + " is static");
       }
       seen.insert(body);
       layer.push_back(body);
@@ -467,7 +467,8 @@ Result<bool> MapGate(const json& entry, std::string_view file, const std::string
     const std::string where = pointer + "/ungated/" + std::to_string(i);
     for (const UngatedBackend& other : truth.ungated) {
       if (other.backend == ungated.backend) {
-        return FieldError(file, where + "/backend", "backend \"" + ungated.backend + "\" is listed twice");
+        return FieldError(file, where + "/backend",
+                          "backend " + Quoted(ungated.backend) + " is listed twice");
       }
     }
     if (ungated.reason.empty()) return FieldError(file, where + "/reason", "must say why");
@@ -506,7 +507,7 @@ std::optional<Error> RefuseStaticBodies(const TruthContext& c, const std::string
   for (size_t b = 0; b < c.bodies.size(); ++b) {
     if (c.bodies[b].motion == Motion::Static) {
       return FieldError(c.file, c.pointer + "/kind",
-                        kind + " is a free-body truth, but body \"" + c.bodies[b].name + "\" is static");
+                        kind + " is a free-body truth, but body " + Quoted(c.bodies[b].name) + " is static");
     }
   }
   return std::nullopt;
@@ -611,7 +612,7 @@ Result<Scenario> MapScenario(const json& doc, std::string_view file) {
     auto body = MapBody(doc["bodies"][i], file, pointer);
     if (!body) return body.GetError();
     if (!names.emplace(body.Value().name, static_cast<int>(i)).second) {
-      return FieldError(file, pointer + "/name", "duplicate body name \"" + body.Value().name + "\"");
+      return FieldError(file, pointer + "/name", "duplicate body name " + Quoted(body.Value().name));
     }
     scenario.bodies.push_back(std::move(body).Value());
   }
@@ -619,7 +620,7 @@ Result<Scenario> MapScenario(const json& doc, std::string_view file) {
     for (size_t i = 0; i < doc["backends"].size(); ++i) {
       const std::string name = doc["backends"][i].get<std::string>();
       if (std::find(scenario.backends.begin(), scenario.backends.end(), name) != scenario.backends.end()) {
-        return FieldError(file, "/backends/" + std::to_string(i), "duplicate backend \"" + name + "\"");
+        return FieldError(file, "/backends/" + std::to_string(i), "duplicate backend " + Quoted(name));
       }
       scenario.backends.push_back(name);
     }
@@ -635,7 +636,7 @@ Result<Scenario> MapScenario(const json& doc, std::string_view file) {
       if (entry.contains("body")) {
         const std::string name = entry["body"].get<std::string>();
         truth.body = FindBody(names, name);
-        if (truth.body < 0) return FieldError(file, pointer + "/body", "no body named \"" + name + "\"");
+        if (truth.body < 0) return FieldError(file, pointer + "/body", "no body named " + Quoted(name));
       }
       auto kind = MapTruthKind({entry, scenario.bodies, names, scenario.world, file, pointer, truth.body});
       if (!kind) return kind.GetError();
@@ -690,11 +691,11 @@ Result<std::vector<Sweep>> ReadSweeps(const json& doc, std::string_view file) {
       try {
         json::json_pointer target(text);
         if (text.rfind("/sweeps", 0) == 0 || !doc.contains(target)) {
-          return FieldError(file, where, "\"" + text + "\" does not name a field of the scenario");
+          return FieldError(file, where, Quoted(text) + " does not name a field of the scenario");
         }
         sweep.targets.push_back(target);
       } catch (const json::exception&) {
-        return FieldError(file, where, "\"" + text + "\" is not a JSON pointer");
+        return FieldError(file, where, Quoted(text) + " is not a JSON pointer");
       }
     }
     if (entry.contains("labels")) {
@@ -707,7 +708,7 @@ Result<std::vector<Sweep>> ReadSweeps(const json& doc, std::string_view file) {
       for (size_t l = 0; l < sweep.labels.size(); ++l) {
         if (!seen.insert(sweep.labels[l]).second) {
           return FieldError(file, "/sweeps/" + std::to_string(i) + "/labels/" + std::to_string(l),
-                            "duplicate label \"" + sweep.labels[l] + "\"");
+                            "duplicate label " + Quoted(sweep.labels[l]));
         }
       }
     }
@@ -760,6 +761,50 @@ std::optional<std::size_t> GridSize(const std::vector<Sweep>& sweeps, std::size_
   return runs;
 }
 
+// nlohmann's syntax error reads "<reason>; last read: '<token>'" and then,
+// when it knows one, "; expected <kind of token>". The reason and the kind
+// are its own fixed words; the token is the input as read, of any length and
+// holding any quote marks, which left TidyMessage pairing the wrong marks and
+// printing kilobytes of input (a fuzz finding, tests/data/fuzz/scenario_loader).
+// The token is quoted again here with its own marks escaped.
+std::string RequoteLastRead(const std::string& what) {
+  static constexpr std::string_view kLastRead = "; last read: '";
+  // lexer::token_type_name, every kind nlohmann may name as expected.
+  static constexpr std::string_view kTokenKinds[] = {"<uninitialized>",
+                                                     "true literal",
+                                                     "false literal",
+                                                     "null literal",
+                                                     "string literal",
+                                                     "number literal",
+                                                     "'['",
+                                                     "'{'",
+                                                     "']'",
+                                                     "'}'",
+                                                     "':'",
+                                                     "','",
+                                                     "<parse error>",
+                                                     "end of input",
+                                                     "'[', '{', or a literal",
+                                                     "unknown token"};
+  const size_t start = what.find(kLastRead);
+  if (start == std::string::npos) return what;
+  std::string_view token = std::string_view(what).substr(start + kLastRead.size());
+  std::string expected;
+  for (const std::string_view kind : kTokenKinds) {
+    const std::string tail = Concat({"'; expected ", kind});
+    if (token.ends_with(tail)) {
+      expected = tail.substr(1);
+      token.remove_suffix(tail.size());
+      break;
+    }
+  }
+  if (expected.empty()) {
+    if (!token.ends_with('\'')) return what;
+    token.remove_suffix(1);
+  }
+  return Concat({std::string_view(what).substr(0, start), "; last read: ", Quoted(token, '\''), expected});
+}
+
 Result<std::vector<Run>> ParseScenarioDocument(std::string_view text, std::string_view fileName) {
   json doc;
   try {
@@ -770,7 +815,7 @@ Result<std::vector<Run>> ParseScenarioDocument(std::string_view text, std::strin
     std::string what = error.what();
     const size_t colon = what.find(": ");
     if (colon != std::string::npos) what = what.substr(colon + 2);
-    return Error{std::string(fileName) + ": " + LineAndColumn(text, offset) + ": " + what};
+    return Error{Concat({fileName, ": ", LineAndColumn(text, offset), ": ", RequoteLastRead(what)})};
   } catch (const json::exception& error) {
     // A number too large for a double (e.g. 1e999) has no position.
     std::string what = error.what();
@@ -836,7 +881,7 @@ Result<std::vector<Run>> ParseScenarioDocument(std::string_view text, std::strin
     if (!runIds.insert(run.id).second) {
       return FieldError(
           fileName, "/sweeps",
-          Concat({"two runs are both named \"", run.id, "\" (a sweep repeats a value or label)"}));
+          Concat({"two runs are both named ", Quoted(run.id), " (a sweep repeats a value or label)"}));
     }
     runs.push_back(std::move(run));
 
@@ -900,8 +945,8 @@ Result<std::vector<Run>> LoadScenarios(const std::vector<std::filesystem::path>&
       const std::string& name = loaded.Value().front().scenario.name;
       const auto [it, added] = fileOfScenario.emplace(name, file.string());
       if (!added) {
-        return Error{Concat({file.string(), ": scenario name \"", name, "\" is already used by ", it->second,
-                             " (run ids and results are keyed by it)"})};
+        return Error{Concat({file.string(), ": scenario name ", Quoted(name), " is already used by ",
+                             it->second, " (run ids and results are keyed by it)"})};
       }
     }
     for (Run& run : loaded.Value()) runs.push_back(std::move(run));

@@ -41,6 +41,13 @@ std::string EscapeHtml(std::string_view text) {
 
 namespace {
 
+// `byte` written \xNN.
+void AppendHexByte(std::string& out, unsigned char byte) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  out.append("\\x").push_back(kHex[byte >> 4]);
+  out.push_back(kHex[byte & 0xF]);
+}
+
 // Control bytes and the byte-order mark written visibly.
 std::string Escape(std::string_view text) {
   static constexpr std::string_view kBom = "\xEF\xBB\xBF";
@@ -51,9 +58,7 @@ std::string Escape(std::string_view text) {
       out.append("\\uFEFF");
       i += kBom.size() - 1;
     } else if (byte < 0x20 || byte == 0x7F) {
-      static constexpr char kHex[] = "0123456789ABCDEF";
-      out.append("\\x").push_back(kHex[byte >> 4]);
-      out.push_back(kHex[byte & 0xF]);
+      AppendHexByte(out, byte);
     } else {
       out.push_back(static_cast<char>(byte));
     }
@@ -66,6 +71,20 @@ std::string_view Prefix(std::string_view text, std::size_t limit) {
   std::size_t end = std::min(limit, text.size());
   while (end > 0 && end < text.size() && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80) --end;
   return text.substr(0, end);
+}
+
+// `text` with each byte of `marks` written \xNN.
+std::string EscapeMarks(std::string_view text, std::string_view marks) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    if (marks.find(c) == std::string_view::npos) {
+      out.push_back(c);
+    } else {
+      AppendHexByte(out, static_cast<unsigned char>(c));
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -87,7 +106,12 @@ std::string TidyMessage(std::string_view message, std::size_t maxQuoted) {
     const std::string_view inside = message.substr(open + 1, close - open - 1);
     out.append(Escape(message.substr(at, open + 1 - at)));
     if (inside.size() > maxQuoted) {
-      out.append(Escape(Prefix(inside, maxQuoted))).append("...").push_back(message[open]);
+      // The cut span with its "..." is no longer than maxQuoted, so a message
+      // tidied twice reads as one tidied once (Quoted relies on that).
+      constexpr std::size_t kCut = 3;
+      out.append(Escape(Prefix(inside, maxQuoted > kCut ? maxQuoted - kCut : 0)))
+          .append("...")
+          .push_back(message[open]);
       out.append(Concat({" (", std::to_string(inside.size()), " bytes)"}));
     } else {
       out.append(Escape(inside)).push_back(message[open]);
@@ -96,6 +120,26 @@ std::string TidyMessage(std::string_view message, std::size_t maxQuoted) {
   }
   out.append(Escape(message.substr(std::min(at, message.size()))));
   return out;
+}
+
+std::string Quoted(std::string_view text, char mark) {
+  const std::string_view quote(&mark, 1);
+  std::string inside = EscapeMarks(text, quote);
+  if (inside.size() <= kMaxQuotedBytes) return Concat({quote, inside, quote});
+  // Escapes lengthen the text, so the prefix shrinks until it and "..." fit
+  // in kMaxQuotedBytes, which TidyMessage then leaves as it is.
+  constexpr std::string_view kCut = "...";
+  for (std::size_t keep = kMaxQuotedBytes - kCut.size();; --keep) {
+    inside = EscapeMarks(Prefix(text, keep), quote);
+    if (inside.size() + kCut.size() <= kMaxQuotedBytes) break;
+  }
+  return Concat({quote, inside, kCut, quote, " (", std::to_string(text.size()), " bytes)"});
+}
+
+std::string PointerForMessage(std::string_view pointer, std::size_t maxBytes) {
+  if (pointer.size() <= maxBytes) return EscapeMarks(pointer, "\"'");
+  return Concat(
+      {EscapeMarks(Prefix(pointer, maxBytes), "\"'"), "... (", std::to_string(pointer.size()), " bytes)"});
 }
 
 Result<std::string> ReadTextFile(const std::filesystem::path& path, std::string_view what) {

@@ -331,8 +331,6 @@ std::string ListText(const std::vector<double>& values) {
   return text;
 }
 
-std::string Quote(std::string_view text) { return Concat({"\"", text, "\""}); }
-
 std::string ListText(const std::vector<int>& values) {
   std::string text;
   for (int v : values) text.append(text.empty() ? "" : ",").append(std::to_string(v));
@@ -350,7 +348,7 @@ std::string ListText(const std::vector<std::string>& values) {
 std::string PartitionMismatch(const ShardFile& shard, const std::string& name, const ShardFile& first,
                               const std::string& firstName) {
   const auto differ = [&](const std::string& what, const std::string& mine, const std::string& theirs) {
-    return Concat({name, " has ", what, " ", Quote(mine), " but ", firstName, " has ", Quote(theirs)});
+    return Concat({name, " has ", what, " ", Quoted(mine), " but ", firstName, " has ", Quoted(theirs)});
   };
   const ShardIdentity& a = shard.identity;
   const ShardIdentity& b = first.identity;
@@ -372,12 +370,12 @@ std::string PartitionMismatch(const ShardFile& shard, const std::string& name, c
   }
   for (const std::string& scenario : a.scenarios) {
     if (std::find(b.scenarios.begin(), b.scenarios.end(), scenario) == b.scenarios.end()) {
-      return Concat({name, " ran scenario ", Quote(scenario), ", which ", firstName, " did not"});
+      return Concat({name, " ran scenario ", Quoted(scenario), ", which ", firstName, " did not"});
     }
   }
   for (const std::string& scenario : b.scenarios) {
     if (std::find(a.scenarios.begin(), a.scenarios.end(), scenario) == a.scenarios.end()) {
-      return Concat({firstName, " ran scenario ", Quote(scenario), ", which ", name, " did not"});
+      return Concat({firstName, " ran scenario ", Quoted(scenario), ", which ", name, " did not"});
     }
   }
   if (a.runsDigest != b.runsDigest || shard.runCount != first.runCount) {
