@@ -37,13 +37,54 @@ std::string InstanceId(const RunResult& result) {
 
 std::string Number(double value) {
   if (std::isnan(value)) return "-";
-  if (std::isinf(value)) return "inf";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
   return FormatNumber(value, 3);
 }
 
 nlohmann::ordered_json JsonNumber(double value) {
   if (!std::isfinite(value)) return nullptr;
   return value;
+}
+
+nlohmann::ordered_json FamilyVerdictJson(const FamilyVerdict& verdict) {
+  nlohmann::ordered_json out;
+  out["outcome"] = FamilyOutcomeName(verdict.outcome);
+  out["matchedCost"] = verdict.matchedCost;
+  out["budgets"] = verdict.budgets;
+  out["members"] = nlohmann::ordered_json::array();
+  for (const FamilyPoints& family : verdict.families)
+    out["members"].push_back({{"family", family.family}, {"backends", family.backends}});
+  out["peers"] = nlohmann::ordered_json::array();
+  for (const FamilyMargin& peer : verdict.peers) {
+    out["peers"].push_back({{"family", peer.family},
+                            {"atOrBelow", peer.atOrBelow},
+                            {"worstBudget", peer.budget},
+                            {"talusError", JsonNumber(peer.talusError)},
+                            {"peerError", JsonNumber(peer.peerError)},
+                            {"margin", JsonNumber(peer.margin)}});
+  }
+  return out;
+}
+
+// How many instances the family verdict judged (Talus and a peer both have
+// results) and in how many Talus's family was at or below every peer.
+struct FamilyCount {
+  int atOrBelow = 0;
+  int judged = 0;
+  int notJudged = 0;
+};
+FamilyCount CountFamilyVerdicts(const std::vector<SweepGroup>& groups) {
+  FamilyCount count;
+  for (const SweepGroup& group : groups) {
+    const FamilyOutcome outcome = group.families.outcome;
+    if (outcome == FamilyOutcome::kNoTalus || outcome == FamilyOutcome::kNoPeer) {
+      ++count.notJudged;
+      continue;
+    }
+    ++count.judged;
+    if (outcome == FamilyOutcome::kAtOrBelow) ++count.atOrBelow;
+  }
+  return count;
 }
 
 }  // namespace
@@ -93,19 +134,18 @@ double FrontErrorAt(const std::vector<CostErrorPoint>& points, double budget) {
   return best;
 }
 
-FrontComparison CompareFronts(const std::vector<std::vector<CostErrorPoint>>& fronts) {
-  FrontComparison comparison;
-  comparison.wins.assign(fronts.size(), 0);
-  comparison.errorAtMatched.assign(fronts.size(), kInfinity);
-  if (fronts.empty()) return comparison;
+std::vector<double> ComparedBudgets(const std::vector<std::vector<CostErrorPoint>>& fronts,
+                                    double& matchedCost) {
+  matchedCost = 0.0;
+  if (fronts.empty()) return {};
   double matched = -kInfinity;
   for (const auto& front : fronts) {
-    if (front.empty()) return comparison;
+    if (front.empty()) return {};
     double cheapest = kInfinity;
     for (const CostErrorPoint& point : front) cheapest = std::min(cheapest, point.cost);
     matched = std::max(matched, cheapest);
   }
-  comparison.matchedCost = matched;
+  matchedCost = matched;
   std::vector<double> budgets;
   for (const auto& front : fronts) {
     for (const CostErrorPoint& point : front) {
@@ -114,6 +154,16 @@ FrontComparison CompareFronts(const std::vector<std::vector<CostErrorPoint>>& fr
   }
   std::sort(budgets.begin(), budgets.end());
   budgets.erase(std::unique(budgets.begin(), budgets.end()), budgets.end());
+  return budgets;
+}
+
+FrontComparison CompareFronts(const std::vector<std::vector<CostErrorPoint>>& fronts) {
+  FrontComparison comparison;
+  comparison.wins.assign(fronts.size(), 0);
+  comparison.errorAtMatched.assign(fronts.size(), kInfinity);
+  const std::vector<double> budgets = ComparedBudgets(fronts, comparison.matchedCost);
+  if (budgets.empty()) return comparison;
+  const double matched = comparison.matchedCost;
   comparison.budgets = static_cast<int>(budgets.size());
   for (std::size_t f = 0; f < fronts.size(); ++f)
     comparison.errorAtMatched[f] = FrontErrorAt(fronts[f], matched);
@@ -145,6 +195,93 @@ FrontComparison CompareFronts(const std::vector<std::vector<CostErrorPoint>>& fr
   return comparison;
 }
 
+std::string EngineFamily(const RunResult& result) {
+  for (const Setting& setting : result.settings) {
+    if (setting.key != "engine") continue;
+    const std::size_t start = setting.value.find_first_not_of(' ');
+    if (start == std::string::npos) break;
+    const std::size_t end = setting.value.find(' ', start);
+    return setting.value.substr(start, end == std::string::npos ? std::string::npos : end - start);
+  }
+  return result.backend;
+}
+
+std::string_view FamilyOutcomeName(FamilyOutcome outcome) {
+  switch (outcome) {
+    case FamilyOutcome::kAtOrBelow:
+      return "at or below every peer";
+    case FamilyOutcome::kAbove:
+      return "above a peer";
+    case FamilyOutcome::kNoTalus:
+      return "no Talus result";
+    case FamilyOutcome::kNoPeer:
+      return "no peer result";
+  }
+  return "?";
+}
+
+FamilyVerdict CompareFamilies(std::vector<FamilyPoints> families, std::string_view talus) {
+  FamilyVerdict verdict;
+  verdict.families = std::move(families);
+  std::vector<std::vector<CostErrorPoint>> fronts;
+  int talusIndex = -1;
+  for (std::size_t f = 0; f < verdict.families.size(); ++f) {
+    const FamilyPoints& family = verdict.families[f];
+    // A family without points (every run failed or had no truth) has no
+    // front and is not a peer that anything could be compared with.
+    if (family.points.empty()) continue;
+    if (family.family == talus) talusIndex = static_cast<int>(fronts.size());
+    std::vector<CostErrorPoint> front;
+    for (int i : ParetoFront(family.points)) front.push_back(family.points[i]);
+    if (front.empty()) {
+      // Every error infinite (never measured): the family still ran, so its
+      // cheapest run stands for it, infinite at every budget, rather than
+      // leaving no front and no budget to compare at.
+      front.push_back(*std::min_element(
+          family.points.begin(), family.points.end(),
+          [](const CostErrorPoint& a, const CostErrorPoint& b) { return a.cost < b.cost; }));
+    }
+    fronts.push_back(std::move(front));
+  }
+  if (talusIndex < 0) return verdict;  // kNoTalus
+  if (fronts.size() < 2) {
+    verdict.outcome = FamilyOutcome::kNoPeer;
+    return verdict;
+  }
+  const std::vector<double> budgets = ComparedBudgets(fronts, verdict.matchedCost);
+  verdict.budgets = static_cast<int>(budgets.size());
+  verdict.outcome = FamilyOutcome::kAtOrBelow;
+  int front = 0;
+  for (const FamilyPoints& family : verdict.families) {
+    if (family.points.empty()) continue;
+    const int index = front++;
+    if (index == talusIndex) continue;
+    FamilyMargin margin;
+    margin.family = family.family;
+    margin.atOrBelow = true;
+    margin.margin = -kInfinity;
+    bool first = true;
+    for (double budget : budgets) {
+      const double mine = FrontErrorAt(fronts[talusIndex], budget);
+      const double theirs = FrontErrorAt(fronts[index], budget);
+      // Exact comparison: equal errors (inf against inf included) are a tie,
+      // which the criterion counts as at or below.
+      const double difference = mine == theirs ? 0.0 : mine - theirs;
+      if (mine > theirs) margin.atOrBelow = false;
+      if (first || difference > margin.margin) {
+        first = false;
+        margin.margin = difference;
+        margin.budget = budget;
+        margin.talusError = mine;
+        margin.peerError = theirs;
+      }
+    }
+    if (!margin.atOrBelow) verdict.outcome = FamilyOutcome::kAbove;
+    verdict.peers.push_back(std::move(margin));
+  }
+  return verdict;
+}
+
 std::vector<SweepGroup> AnalyseSweep(const ResultsFile& file, const std::vector<std::string>& singleSetting) {
   std::vector<SweepGroup> groups;
   std::map<std::string, std::size_t> groupIndex;
@@ -169,7 +306,7 @@ std::vector<SweepGroup> AnalyseSweep(const ResultsFile& file, const std::vector<
     }
     if (curve == nullptr) {
       if (single && backendSeen) continue;
-      group.curves.push_back({result.backend, result.iterations, {}, {}, {}});
+      group.curves.push_back({result.backend, result.iterations, {}, {}, {}, EngineFamily(result)});
       curve = &group.curves.back();
     }
     curve->timeSteps.push_back(result.timeStep);
@@ -208,6 +345,21 @@ std::vector<SweepGroup> AnalyseSweep(const ResultsFile& file, const std::vector<
       fronts.push_back(std::move(front));
     }
     group.comparison = CompareFronts(fronts);
+    // Families in the order their first backend appears; each holds the
+    // union of its variants' points.
+    std::vector<FamilyPoints> families;
+    for (const SweepCurve& curve : group.curves) {
+      auto family = std::find_if(families.begin(), families.end(),
+                                 [&](const FamilyPoints& f) { return f.family == curve.family; });
+      if (family == families.end()) {
+        families.push_back({curve.family, {}, {}});
+        family = families.end() - 1;
+      }
+      if (family->backends.empty() || family->backends.back() != curve.backend)
+        family->backends.push_back(curve.backend);
+      family->points.insert(family->points.end(), curve.points.begin(), curve.points.end());
+    }
+    group.families = CompareFamilies(std::move(families));
   }
   return groups;
 }
@@ -228,6 +380,7 @@ std::string SweepToJson(const std::vector<SweepGroup>& groups) {
     g["matchedCost"] = c.matchedCost;
     g["errorAtMatched"] = nlohmann::ordered_json::array();
     for (double e : c.errorAtMatched) g["errorAtMatched"].push_back(JsonNumber(e));
+    g["families"] = FamilyVerdictJson(group.families);
     g["curves"] = nlohmann::ordered_json::array();
     for (const SweepCurve& curve : group.curves) {
       nlohmann::ordered_json points = nlohmann::ordered_json::array();
@@ -237,11 +390,18 @@ std::string SweepToJson(const std::vector<SweepGroup>& groups) {
                           {"error", JsonNumber(curve.points[k].error)},
                           {"front", static_cast<bool>(curve.onFront[k])}});
       }
-      g["curves"].push_back(
-          {{"backend", curve.backend}, {"iterations", curve.iterations}, {"points", points}});
+      g["curves"].push_back({{"backend", curve.backend},
+                             {"family", curve.family},
+                             {"iterations", curve.iterations},
+                             {"points", points}});
     }
     out["groups"].push_back(g);
   }
+  const FamilyCount count = CountFamilyVerdicts(groups);
+  out["familyVerdict"] = {{"talusFamily", kTalusFamily},
+                          {"atOrBelowEveryPeer", count.atOrBelow},
+                          {"judged", count.judged},
+                          {"notJudged", count.notJudged}};
   return out.dump(2) + "\n";
 }
 
@@ -265,6 +425,37 @@ std::string SweepMarkdown(const std::vector<SweepGroup>& groups) {
     out << "| " << group.id << " | " << (c.winner >= 0 ? group.backends[c.winner] : std::string("none (tie)"))
         << " | " << Number(c.matchedCost) << " | " << errors << " | " << wins << " of " << c.budgets
         << " |\n";
+  }
+  const FamilyCount count = CountFamilyVerdicts(groups);
+  out << "\n### Talus's engine family against every peer family\n\n"
+      << "A family is every variant of one engine (talus, talus-split...; bullet, bullet-f32...); its "
+         "front is the Pareto front of all its variants' points. Talus is at or below a peer family when "
+         "at every budget from the matched cost up Talus's best error <= the peer's, compared exactly "
+         "(no noise floor; ties count). Worst budget: where Talus's error exceeds the peer's most "
+         "(margin = Talus - peer; <= 0 everywhere means at or below).\n\n"
+      << "Talus at or below every peer family: " << count.atOrBelow << " of " << count.judged << " instances";
+  if (count.notJudged > 0) out << " (" << count.notJudged << " more without both Talus and a peer result)";
+  out << ".\n\n| scenario | verdict | budgets | peer family: worst budget s, Talus error, peer error, margin "
+         "|\n"
+      << "|---|---|---|---|\n";
+  for (const SweepGroup& group : groups) {
+    const FamilyVerdict& v = group.families;
+    std::string peers;
+    for (const FamilyMargin& peer : v.peers) {
+      peers.append(peers.empty() ? "" : "; ")
+          .append(peer.family)
+          .append(peer.atOrBelow ? "" : " (above)")
+          .append(": ")
+          .append(Number(peer.budget))
+          .append(", ")
+          .append(Number(peer.talusError))
+          .append(", ")
+          .append(Number(peer.peerError))
+          .append(", ")
+          .append(Number(peer.margin));
+    }
+    out << "| " << group.id << " | " << FamilyOutcomeName(v.outcome) << " | " << v.budgets << " | "
+        << (peers.empty() ? "-" : peers) << " |\n";
   }
   out << "\n### Pareto fronts (time step s, iterations: cost s, error)\n\n| scenario | backend | front |\n"
       << "|---|---|---|\n";

@@ -7,7 +7,9 @@
 // (RunErrorScalar). Points group into curves, one per (scenario instance,
 // backend, iterations); each backend's Pareto front over all its settings
 // is marked, and per scenario instance the backend most accurate at equal
-// cost is named (CompareFronts, definition in docs/testbed-sweeps.md).
+// cost is named (CompareFronts, definition in docs/testbed-sweeps.md), and
+// Talus's engine family is judged against every peer family (CompareFamilies:
+// issue 15's "at or below every peer").
 // Everything is a pure function of the results, in their order, so equal
 // results give equal text.
 //
@@ -71,6 +73,64 @@ struct FrontComparison {
 };
 FrontComparison CompareFronts(const std::vector<std::vector<CostErrorPoint>>& fronts);
 
+/// The budgets CompareFronts compares: the cost of every front point at or
+/// above the matched cost (the largest of the fronts' cheapest costs),
+/// increasing, each once. Empty, with `matchedCost` 0, when there is no
+/// front or one is empty.
+std::vector<double> ComparedBudgets(const std::vector<std::vector<CostErrorPoint>>& fronts,
+                                    double& matchedCost);
+
+/// Engine families: a backend's family is the engine it drives, the first
+/// word of its "engine" setting ("Talus (double)" -> "Talus", "Bullet 324
+/// (single precision...)" -> "Bullet"), so every variant of one engine
+/// (talus, talus-split...; bullet, bullet-f32...) is one family. A result
+/// without that setting is a family of its own, named by its backend.
+inline constexpr std::string_view kTalusFamily = "Talus";
+std::string EngineFamily(const RunResult& result);
+
+/// One engine family's points in one scenario instance: the union of its
+/// variants' points (every setting of every variant).
+struct FamilyPoints {
+  std::string family;                 ///< e.g. "Bullet"
+  std::vector<std::string> backends;  ///< its variants that have points, in the results' order
+  std::vector<CostErrorPoint> points;
+};
+
+/// Talus's family against one peer family at the compared budgets.
+struct FamilyMargin {
+  std::string family;       ///< the peer family
+  bool atOrBelow = false;   ///< Talus's best error <= the peer's at every budget
+  double budget = 0.0;      ///< s: the budget where Talus's error exceeds the peer's most (the first such)
+  double talusError = 0.0;  ///< Talus family's FrontErrorAt(budget)
+  double peerError = 0.0;   ///< the peer family's FrontErrorAt(budget)
+  double margin = 0.0;      ///< talusError - peerError (0 when equal, +inf when only the peer is finite)
+};
+
+/// The issue-15 criterion for one scenario instance.
+enum class FamilyOutcome {
+  kAtOrBelow,  ///< Talus's family front at or below every peer family's at every budget
+  kAbove,      ///< some peer family is strictly better at some budget
+  kNoTalus,    ///< no Talus result with a truth: nothing to judge
+  kNoPeer,     ///< Talus alone: nothing to compare with
+};
+std::string_view FamilyOutcomeName(FamilyOutcome outcome);
+
+struct FamilyVerdict {
+  FamilyOutcome outcome = FamilyOutcome::kNoTalus;
+  std::vector<FamilyPoints> families;  ///< every family present, in the results' order
+  double matchedCost = 0.0;            ///< s: ComparedBudgets over the families' fronts
+  int budgets = 0;
+  std::vector<FamilyMargin> peers;  ///< one per peer family, in `families` order
+};
+
+/// Compares the family named `talus` with every other family: each
+/// family's front is the Pareto front of its points; the budgets are
+/// ComparedBudgets over those fronts; at each budget the errors are
+/// compared exactly (no noise floor), ties counting as at or below. A
+/// family whose every error is infinite stands at its cheapest cost with
+/// an infinite error; a family without points is skipped.
+FamilyVerdict CompareFamilies(std::vector<FamilyPoints> families, std::string_view talus = kTalusFamily);
+
 /// One curve: a backend at one iteration count across the time steps.
 struct SweepCurve {
   std::string backend;
@@ -78,6 +138,7 @@ struct SweepCurve {
   std::vector<double> timeSteps;       ///< seconds, as run
   std::vector<CostErrorPoint> points;  ///< same order as timeSteps
   std::vector<bool> onFront;           ///< on its backend's Pareto front
+  std::string family;                  ///< its engine family (EngineFamily)
 };
 
 /// One scenario instance (its run id without the stepping values).
@@ -86,6 +147,7 @@ struct SweepGroup {
   std::vector<SweepCurve> curves;     ///< backend-major in the results' backend order, then iterations
   std::vector<std::string> backends;  ///< compared, in the results' order
   FrontComparison comparison;         ///< over `backends`
+  FamilyVerdict families;             ///< Talus's engine family against every peer family
 };
 
 /// The backends a sweep analysis treats as having no iteration setting:
@@ -99,7 +161,9 @@ std::vector<SweepGroup> AnalyseSweep(const ResultsFile& file, const std::vector<
 
 /// The analysis as JSON (2-space indented, infinities as null) and as a
 /// Markdown section (per group: the winner, wins, error at the matched
-/// cost, each backend's front).
+/// cost, each backend's front; then the family verdict per group, its
+/// worst budget against each peer family, and the count of instances where
+/// Talus's family is at or below every peer family).
 std::string SweepToJson(const std::vector<SweepGroup>& groups);
 std::string SweepMarkdown(const std::vector<SweepGroup>& groups);
 
