@@ -258,7 +258,6 @@ FamilyVerdict CompareFamilies(std::vector<FamilyPoints> families, std::string_vi
     if (index == talusIndex) continue;
     FamilyMargin margin;
     margin.family = family.family;
-    margin.atOrBelow = true;
     margin.margin = -kInfinity;
     bool first = true;
     for (double budget : budgets) {
@@ -267,7 +266,6 @@ FamilyVerdict CompareFamilies(std::vector<FamilyPoints> families, std::string_vi
       // Exact comparison: equal errors (inf against inf included) are a tie,
       // which the criterion counts as at or below.
       const double difference = mine == theirs ? 0.0 : mine - theirs;
-      if (mine > theirs) margin.atOrBelow = false;
       if (first || difference > margin.margin) {
         first = false;
         margin.margin = difference;
@@ -276,6 +274,9 @@ FamilyVerdict CompareFamilies(std::vector<FamilyPoints> families, std::string_vi
         margin.peerError = theirs;
       }
     }
+    // The largest difference decides: above at some budget exactly when it
+    // is positive (no budgets: -inf, nothing to be above at).
+    margin.atOrBelow = margin.margin <= 0.0;
     if (!margin.atOrBelow) verdict.outcome = FamilyOutcome::kAbove;
     verdict.peers.push_back(std::move(margin));
   }
