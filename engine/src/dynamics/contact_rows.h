@@ -45,6 +45,22 @@ struct PointCold {
   Vec3 armB = Vec3::Zero();          ///< rB = p - cB
 };
 
+/// FrictionSolve::JointBlock's per-step data of a pair with a normal block
+/// (dynamics/contact_solver.h): three friction impulse patterns as
+/// generalised rows (slip along t1, along t2, spin about n), the points'
+/// places in the contact plane, and the pieces of the block's solve operator.
+struct JointBlockRows {
+  RowJacobian pattern[3];  ///< sums of r x P over the points, and their images
+  /// Row i: point i's offset from the patterns' centre of pressure along
+  /// t1 and t2, metres (where the accepted friction is shared out).
+  Eigen::Matrix<double, 4, 2> plane = Eigen::Matrix<double, 4, 2>::Zero();
+  /// B Knp: the normal block's pseudo-inverse times the normal-pattern coupling.
+  Eigen::Matrix<double, 4, 3> blockTimesCoupling = Eigen::Matrix<double, 4, 3>::Zero();
+  Eigen::Matrix3d schurInverse = Eigen::Matrix3d::Zero();  ///< (Kpp - Kpn B Knp)^-1
+  bool spin = false;    ///< the spin pattern is used (some lever, some body can turn)
+  bool usable = false;  ///< the Schur complement was positive definite
+};
+
 struct PairRows {
   int bodyA = -1, bodyB = -1;  ///< solver-body indices
   int firstPoint = 0, pointCount = 0;

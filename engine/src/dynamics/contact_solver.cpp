@@ -94,6 +94,7 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
   m_newPairs = 0;
   m_timedBounces = 0;
   m_split = settings.positionCorrection == PositionCorrection::SplitImpulses;
+  m_jointBlock = settings.frictionSolve == FrictionSolve::JointBlock;
   int points = 0;
   int frictions = 0;
   int blocks = 0;
@@ -134,6 +135,8 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
   m_frictions.resize(static_cast<std::size_t>(frictions));
   m_cold.resize(static_cast<std::size_t>(points));
   m_blockInverses.resize(static_cast<std::size_t>(blocks));
+  m_jointState.assign(m_jointBlock ? static_cast<std::size_t>(blocks) : 0, kJointUntried);
+  m_jointBlocks.resize(m_jointBlock ? static_cast<std::size_t>(blocks) : 0);
 
   std::atomic<int> timedBounces{0};
   std::atomic<int> restitutionSkipped{0};
@@ -254,6 +257,7 @@ void ContactSolver::PreparePair(std::span<const BodySim> bodies, const Contact& 
     m_cold[static_cast<std::size_t>(pair.firstPoint + i)] = cold;
   }
   if (pair.block >= 0) PrepareBlock(pair);
+  if (UsesJointBlock(pair)) PrepareJointBlock(pair);
 }
 
 // Warm start: each point's accumulated impulse lambda_n n + lambda_1 t1 +

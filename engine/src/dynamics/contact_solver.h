@@ -50,6 +50,26 @@
 //   Accumulated impulse clamped to [-mu lambda_n, mu lambda_n] with the
 //   point's current lambda_n, re-read every time after the normal row moved.
 //
+// Joint block (FrictionSolve::JointBlock, an option; face contacts of 3-4
+//   points with a normal block). With weights
+//   w_i = lambda_n,i / sum lambda_n, three friction impulse patterns over the
+//   pair's points: P1_i = w_i t1, P2_i = w_i t2 (a force through the centre
+//   of pressure c) and P3_i = lambda_n,i (n x (p_i - c)) / S,
+//   S = sum lambda_n,i |n x (p_i - c)|^2 (a unit torque about n through c,
+//   no net force). Each is a generalised row
+//   J_p = [F_p, sum rA_i x P_p,i, -F_p, -sum rB_i x P_p,i]. The pair's normal
+//   rows and the three patterns are solved as one system K x = r (targets
+//   for the normals, zero slip and spin for the patterns), through the
+//   Schur complement of the normal block's pseudo-inverse. The friction's
+//   new total force and moment about n are then shared among the points in
+//   proportion to the new normal impulses (for points in the contact plane
+//   that moves nothing), and the block is accepted when every normal
+//   impulse stays >= 0 and every point's friction inside
+//   [-mu lambda_n, mu lambda_n] per tangent; the pair's friction rows are
+//   then skipped in that sweep. Otherwise (sliding, lifting) the normal
+//   block and the per-point friction rows run as usual, and the block is
+//   not tried again that step.
+//
 // Position correction (WorldSettings::positionCorrection). Baumgarte (the
 //   write-up's) is the bias in the velocity target above. Split impulses
 //   move it to pseudo-velocities: the same normal row on (pv, pw) with
@@ -181,6 +201,23 @@ class ContactSolver {
   bool SolveNormalBlock(const PairRows& pair);
   template <bool kTrack>
   void SolveFriction(const PairRows& pair);
+  /// Whether FrictionSolve::JointBlock applies to `pair`: selected, a
+  /// normal block, friction, and at least three points (a face). Edge
+  /// contacts (two points) keep the per-point rows: measured, the block on
+  /// them changed how boxes tip over an edge (box_toss at 1/120 s, 5
+  /// sweeps, settled on another face, 36 cm from its converged run;
+  /// tall_box_tipping's tip further from its truth), for no accuracy gained
+  /// anywhere in the sweep (docs/dynamics.md).
+  [[nodiscard]] bool UsesJointBlock(const PairRows& pair) const {
+    return m_jointBlock && pair.block >= 0 && pair.hasFriction && pair.pointCount >= 3;
+  }
+  /// FrictionSolve::JointBlock's per-step patterns and solve operator of a
+  /// pair with a normal block and friction (after PrepareBlock).
+  void PrepareJointBlock(PairRows& pair);
+  /// FrictionSolve::JointBlock on a pair with a normal block and friction:
+  /// true when accepted (normals and friction written and applied).
+  template <bool kTrack>
+  bool SolveJointBlock(const PairRows& pair);
   template <bool kTrack>
   void Sweep();
   /// `sweeps` coloured sweeps as one chain of phases through m_runner (each
@@ -196,9 +233,21 @@ class ContactSolver {
   std::vector<FrictionRow> m_frictions;  ///< two per point (t1, t2) of the pairs with friction
   std::vector<PointCold> m_cold;         ///< one per point
   std::vector<Eigen::Matrix4d> m_blockInverses;
+  std::vector<JointBlockRows> m_jointBlocks;  ///< per block, FrictionSolve::JointBlock only
+  /// Per block, FrictionSolve::JointBlock's last outcome this step. Refused
+  /// (the pair slides or lifts): later sweeps of the step do not try again,
+  /// a sliding pair stays sliding within a step. Accepted in this sweep's
+  /// normal pass: the pair's friction rows are skipped in its friction
+  /// pass, because the three patterns span every friction impulse that
+  /// moves the bodies when the points are coplanar (a net force in the
+  /// plane and a torque about n), so the rows could only redistribute
+  /// impulse among the points.
+  enum JointState : unsigned char { kJointUntried, kJointRefused, kJointAccepted };
+  std::vector<JointState> m_jointState;
   WideContactSolver m_wide;
-  bool m_useWide = false;  ///< ColouredWide selected at the last Prepare
-  bool m_split = false;    ///< SplitImpulses selected at the last Prepare
+  bool m_useWide = false;     ///< ColouredWide selected at the last Prepare
+  bool m_split = false;       ///< SplitImpulses selected at the last Prepare
+  bool m_jointBlock = false;  ///< FrictionSolve::JointBlock selected at the last Prepare
   PhaseRunner m_runner;
   std::vector<JobPhase> m_phases;  ///< scratch: the chain of the coloured passes
   int m_newPairs = 0;              ///< pairs that did not persist

@@ -20,6 +20,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "dynamics/contact_solver.h"
+#include "dynamics/pair_velocities.h"
 
 namespace talus {
 
@@ -29,53 +30,6 @@ namespace {
 // are about a microsecond, so a chunk is well above the cost of claiming
 // it, and the smaller colours still split across two threads.
 constexpr int kSweepBundleGrain = 8;
-
-// The velocities of a pair's two bodies, loaded into locals once per pass
-// over the pair's rows and stored at its end.
-struct PairVelocities {
-  Vec3 vA, wA, vB, wB;
-
-  static PairVelocities Load(const SolverVelocity& a, const SolverVelocity& b) {
-    return {a.v, a.w, b.v, b.w};
-  }
-  void Store(SolverVelocity& a, SolverVelocity& b) const {
-    a.v = vA;
-    a.w = wA;
-    b.v = vB;
-    b.w = wB;
-  }
-  /// Cdot of the row along `d` with Jacobian terms `j`.
-  template <typename Jacobian>
-  [[nodiscard]] double Along(const Vec3& d, const Jacobian& j) const {
-    return d.dot(vA - vB) + j.angularA.dot(wA) - j.angularB.dot(wB);
-  }
-  /// Adds the impulse `delta` along `d`: +d on A, -d on B.
-  template <typename Jacobian>
-  void Apply(double delta, const Vec3& d, const Jacobian& j, double invMassA, double invMassB) {
-    const Vec3 impulse = delta * d;
-    vA += invMassA * impulse;
-    wA += delta * j.imageA;
-    vB -= invMassB * impulse;
-    wB -= delta * j.imageB;
-  }
-};
-
-// The largest velocity change |impulse| / mass (m/s) the rows of one pass
-// over a pair made, counted only for a new pair (the extra sweeps' stop
-// test), and merged into the solver's sweep maximum once at the end of the
-// pass. A local the compiler keeps in a register: when every row updated
-// the member through an out-of-line call, the call spilled the pass's
-// velocities and the member was reloaded after every row store, and the
-// tracked sweeps (most of hull_pile's) ran slower for it. max is exact and
-// NaN-blind in any grouping, so the maximum is the same bits.
-struct ChangeTracker {
-  explicit ChangeTracker(const PairRows& pair) : active(!pair.persisted) {}
-  void Note(double impulse, double mass) {
-    if (active && mass > 0.0) largest = std::max(largest, std::abs(impulse) / mass);
-  }
-  bool active;
-  double largest = 0.0;
-};
 
 }  // namespace
 
@@ -151,6 +105,7 @@ bool ContactSolver::SolveNormalBlock(const PairRows& pair) {
 // The normal rows of one pair: accumulated impulse clamped to [0, inf).
 template <bool kTrack>
 void ContactSolver::SolveNormals(const PairRows& pair) {
+  if (UsesJointBlock(pair) && SolveJointBlock<kTrack>(pair)) return;
   if (pair.block >= 0 && SolveNormalBlock<kTrack>(pair)) return;
   SolverVelocity& a = m_bodies.Velocity(pair.bodyA);
   SolverVelocity& b = m_bodies.Velocity(pair.bodyB);
@@ -175,6 +130,10 @@ void ContactSolver::SolveNormals(const PairRows& pair) {
 // current normal impulse.
 template <bool kTrack>
 void ContactSolver::SolveFriction(const PairRows& pair) {
+  if (m_jointBlock && pair.block >= 0 &&
+      m_jointState[static_cast<std::size_t>(pair.block)] == kJointAccepted) {
+    return;  // the joint block solved this pair's friction in this sweep
+  }
   SolverVelocity& a = m_bodies.Velocity(pair.bodyA);
   SolverVelocity& b = m_bodies.Velocity(pair.bodyB);
   PairVelocities v = PairVelocities::Load(a, b);

@@ -125,6 +125,15 @@ std::string ValidateSettings(const WorldSettings& s) {
     return "WorldSettings.contactSolver = " + std::to_string(static_cast<int>(s.contactSolver)) +
            " is not a ContactSolverKind";
   }
+  if (s.frictionSolve != FrictionSolve::PerPoint && s.frictionSolve != FrictionSolve::JointBlock) {
+    return "WorldSettings.frictionSolve = " + std::to_string(static_cast<int>(s.frictionSolve)) +
+           " is not a FrictionSolve";
+  }
+  if (s.frictionSolve == FrictionSolve::JointBlock &&
+      s.contactSolver != ContactSolverKind::SequentialImpulses) {
+    return "WorldSettings.frictionSolve = JointBlock needs contactSolver = SequentialImpulses "
+           "(the coloured wide solver has no joint block)";
+  }
   if (s.translation != TranslationIntegrator::SymplecticEuler &&
       s.translation != TranslationIntegrator::ExactConstantAcceleration) {
     return "WorldSettings.translation = " + std::to_string(static_cast<int>(s.translation)) +

@@ -1,0 +1,409 @@
+// FrictionSolve::JointBlock through the World: a sticking pair's normals and
+// friction solved as one block. Analytic answers first (the discrete Coulomb
+// stop distance, a box held on a slope, a box sliding down one), then the
+// property that matters for trusting it (it converges to what the per-point
+// rows converge to), then refusals and determinism.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <vector>
+
+#include "contact_scene.h"
+#include "talus/world.h"
+
+namespace talus {
+namespace {
+
+constexpr double kG = 9.81;
+
+WorldSettings Settings(FrictionSolve friction, int iterations) {
+  WorldSettings settings;
+  settings.sleeping = false;
+  settings.velocityIterations = iterations;
+  settings.positionIterations = iterations;
+  // New contacts converged (the testbed's setting): the first step's
+  // residual would otherwise sit in the answers at 1e-3 h.
+  settings.velocityTolerance = 1e-9;
+  settings.frictionSolve = friction;
+  return settings;
+}
+
+Shape Box(const Vec3& half) { return Shape::CreateBox(half).Value(); }
+
+struct Stop {
+  double distance = 0.0;   ///< m along x when the box first stops
+  double lateral = 0.0;    ///< m, |z| then
+  double restSpeed = 0.0;  ///< m/s, |v| + |w| ten steps after the stop
+};
+
+// A 0.5 m cube launched along +x on the ground, stepped until it first
+// stops (|vx| < 1e-6 m/s), then ten steps more.
+Stop SlideAndStop(const WorldSettings& settings, double v0, double mu, double h) {
+  World world = World::Create(settings).Value();
+  EXPECT_TRUE(world.CreateBody(
+      {.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({20, 0.5, 20}), .friction = mu}));
+  const BodyId box = world
+                         .CreateBody({.type = BodyType::Dynamic,
+                                      .position = {0, 0.25, 0},
+                                      .linearVelocity = {v0, 0, 0},
+                                      .shape = Box(Vec3::Constant(0.25)),
+                                      .density = 500.0,
+                                      .friction = mu})
+                         .Value();
+  Stop stop;
+  for (int n = 0; n < 1000; ++n) {
+    EXPECT_TRUE(world.Step(h));
+    const BodyState s = world.GetBodyState(box).Value();
+    if (std::abs(s.linearVelocity.x()) < 1e-6) {
+      stop.distance = s.position.x();
+      stop.lateral = std::abs(s.position.z());
+      break;
+    }
+  }
+  for (int n = 0; n < 10; ++n) EXPECT_TRUE(world.Step(h));
+  const BodyState s = world.GetBodyState(box).Value();
+  stop.restSpeed = s.linearVelocity.norm() + s.angularVelocity.norm();
+  return stop;
+}
+
+// The discrete Coulomb stop: each step friction removes mu g h of speed and
+// a body contact impulses act on moves by h v(n+1), so the box stops after
+// K = floor(v0 / (mu g h)) moving steps at x = h sum_{k=1..K} (v0 - k mu g h)
+// (the exact sum the testbed's sliding_stop truth compares with).
+double DiscreteStopDistance(double v0, double mu, double h) {
+  const double loss = mu * kG * h;
+  const int steps = static_cast<int>(std::floor(v0 / loss));
+  double x = 0.0;
+  for (int k = 1; k <= steps; ++k) x += h * (v0 - k * loss);
+  return x;
+}
+
+TEST(JointBlock, BoxStoppingAtThirtyHertzWithFiveSweepsStopsAtTheDiscreteCoulombDistance) {
+  const double h = 1.0 / 30.0;
+  const double expected = DiscreteStopDistance(3.0, 0.5, h);
+  const Stop joint = SlideAndStop(Settings(FrictionSolve::JointBlock, 5), 3.0, 0.5, h);
+  // 1e-9 m: the scale of the testbed's input perturbation; the round-off of
+  // eighteen steps' sums is 1e-15 m. At rest means no velocity above
+  // round-off: the block leaves a sticking pair exactly solved.
+  EXPECT_NEAR(joint.distance, expected, 1e-9);
+  EXPECT_LT(joint.lateral, 1e-9);
+  EXPECT_LT(joint.restSpeed, 1e-9);
+  // The scene tells the two apart: row by row, each friction impulse tilts
+  // the cube and the normals undo it, so five sweeps leave the stopping
+  // step unconverged (measured 2.6e-5 m off, then rocking at 1e-3 m/s).
+  const Stop perPoint = SlideAndStop(Settings(FrictionSolve::PerPoint, 5), 3.0, 0.5, h);
+  EXPECT_GT(std::abs(perPoint.distance - expected), 1e-6);
+}
+
+// At 1/120 s the answer is not exact yet, for a reason outside the solver:
+// the cube slows below the manifold reuse distance (0.16 mm a step against
+// 0.5 mm), the reused points are the midpoints of surface points that slid
+// apart, so they lag the cube by half the slide and turn it slightly; the
+// cube then stands on three points and the stopping block is refused
+// (measured mu 0.3, v0 1: 3.2e-6 m off; exact with reuse off). Refusing
+// reuse to sliding pairs fixes it but cost the 1000-hull pile 65% more
+// narrow phase, so it is left for the reuse rebuild (docs/dynamics.md).
+TEST(JointBlock, StopDistanceIsExactOverFrictionSpeedAndStep) {
+  for (const double mu : {0.3, 0.5, 0.8}) {
+    for (const double v0 : {1.0, 3.0}) {
+      for (const double h : {1.0 / 30.0, 1.0 / 60.0}) {
+        const Stop stop = SlideAndStop(Settings(FrictionSolve::JointBlock, 5), v0, mu, h);
+        // As above; mu 0.8 stops a 1 m/s box in 4 steps at 30 Hz.
+        EXPECT_NEAR(stop.distance, DiscreteStopDistance(v0, mu, h), 1e-9)
+            << "mu " << mu << " v0 " << v0 << " h " << h;
+        EXPECT_LT(stop.restSpeed, 1e-9) << "mu " << mu << " v0 " << v0 << " h " << h;
+      }
+    }
+  }
+}
+
+// A cube released at rest on a static slope of `angle` (rad) with friction
+// mu; returns its displacement along the slope after `steps` steps of h.
+double SlopeDisplacement(const WorldSettings& settings, double angle, double mu, double h, int steps) {
+  World world = World::Create(settings).Value();
+  const Quat tilt(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
+  EXPECT_TRUE(world.CreateBody({.type = BodyType::Static,
+                                .position = tilt * Vec3(0, -0.5, 0),
+                                .orientation = tilt,
+                                .shape = Box({20, 0.5, 20}),
+                                .friction = mu}));
+  const Vec3 start = tilt * Vec3(0, 0.25, 0);
+  const BodyId box = world
+                         .CreateBody({.type = BodyType::Dynamic,
+                                      .position = start,
+                                      .orientation = tilt,
+                                      .shape = Box(Vec3::Constant(0.25)),
+                                      .density = 500.0,
+                                      .friction = mu})
+                         .Value();
+  for (int n = 0; n < steps; ++n) EXPECT_TRUE(world.Step(h));
+  const Vec3 moved = world.GetBodyState(box).Value().position - start;
+  return moved.dot(tilt * Vec3(-1, 0, 0));  // down the slope (it rises along +x)
+}
+
+TEST(JointBlock, BoxOnASlopeBelowTheFrictionAngleStaysPut) {
+  // tan(20 deg) = 0.36 < mu = 0.5: static friction holds. 1e-9 m in 2 s:
+  // the block is accepted every sweep, so nothing creeps beyond round-off.
+  const double angle = 20.0 * std::numbers::pi / 180.0;
+  EXPECT_LT(std::abs(SlopeDisplacement(Settings(FrictionSolve::JointBlock, 5), angle, 0.5, 1.0 / 60.0, 120)),
+            1e-9);
+}
+
+TEST(JointBlock, BoxOnASlopeAboveTheFrictionAngleSlidesAtGTimesSinMinusMuCos) {
+  // tan(30 deg) = 0.58 > mu = 0.3: the block must be refused every step
+  // (the friction it asks for exceeds mu N) and the box slides with
+  // a = g (sin - mu cos); moving by h v(n+1), it covers a h^2 n (n + 1) / 2
+  // in n steps. 1e-9 relative: round-off of the sums.
+  const double angle = 30.0 * std::numbers::pi / 180.0;
+  const double h = 1.0 / 60.0;
+  const int steps = 60;
+  const double a = kG * (std::sin(angle) - 0.3 * std::cos(angle));
+  const double expected = a * h * h * steps * (steps + 1) / 2.0;
+  const double moved = SlopeDisplacement(Settings(FrictionSolve::JointBlock, 5), angle, 0.3, h, steps);
+  EXPECT_NEAR(moved, expected, 1e-9 * expected);
+}
+
+// Converged, the joint block and the per-point rows must agree on how the
+// bodies move (they may share friction among the points differently; that
+// moves nothing). Cubes launched with random slide and spin, on the ground
+// and on a wide dynamic slab on the ground (so that both bodies of a pair
+// turn), 200 sweeps each way, final poses compared.
+TEST(JointBlock, ConvergesToWhereThePerPointRowsConverge) {
+  unsigned state = 12345u;
+  const auto uniform = [&state](double lo, double hi) {
+    state = state * 1664525u + 1013904223u;
+    return lo + (hi - lo) * (state >> 8) / double(1u << 24);
+  };
+  for (int trial = 0; trial < 8; ++trial) {
+    const bool onSlab = trial % 2 == 1;
+    const Vec3 velocity(uniform(-2, 2), 0, uniform(-2, 2));
+    const Vec3 spin(0, uniform(-6, 6), 0);
+    const double mu = uniform(0.2, 0.9);
+    Vec3 final[2];
+    Vec3 slabFinal[2];
+    for (int variant = 0; variant < 2; ++variant) {
+      WorldSettings settings =
+          Settings(variant == 0 ? FrictionSolve::PerPoint : FrictionSolve::JointBlock, 200);
+      World world = World::Create(settings).Value();
+      EXPECT_TRUE(world.CreateBody(
+          {.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({20, 0.5, 20}), .friction = mu}));
+      BodyId slab{};
+      double base = 0.0;
+      if (onSlab) {
+        slab = world
+                   .CreateBody({.type = BodyType::Dynamic,
+                                .position = {0, 0.1, 0},
+                                .shape = Box({3, 0.1, 3}),
+                                .density = 200.0,
+                                .friction = mu})
+                   .Value();
+        base = 0.2;
+      }
+      const BodyId box = world
+                             .CreateBody({.type = BodyType::Dynamic,
+                                          .position = {0, base + 0.25, 0},
+                                          .linearVelocity = velocity,
+                                          .angularVelocity = spin,
+                                          .shape = Box(Vec3::Constant(0.25)),
+                                          .density = 500.0,
+                                          .friction = mu})
+                             .Value();
+      for (int n = 0; n < 120; ++n) EXPECT_TRUE(world.Step(1.0 / 60.0));
+      final[variant] = world.GetBodyState(box).Value().position;
+      slabFinal[variant] = onSlab ? world.GetBodyState(slab).Value().position : Vec3::Zero();
+    }
+    // 1e-6 m: 200 sweeps converge both to 1e-9 m/s or better per step; the
+    // stopping step's residual is what is left (measured below 1e-8 m).
+    EXPECT_LT((final[0] - final[1]).norm(), 1e-6) << "trial " << trial;
+    EXPECT_LT((slabFinal[0] - slabFinal[1]).norm(), 1e-6) << "trial " << trial;
+  }
+}
+
+// A cube leaving the ground: the block would hold it down with a pulling
+// normal impulse, so it must be refused, and the cube flies the parabola
+// (no impulse touches it, so it moves exactly under gravity).
+TEST(JointBlock, ACubeLeavingTheGroundIsNotHeldDown) {
+  const double h = 1.0 / 60.0;
+  World world = World::Create(Settings(FrictionSolve::JointBlock, 10)).Value();
+  EXPECT_TRUE(world.CreateBody(
+      {.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({20, 0.5, 20}), .friction = 0.8}));
+  const BodyId box = world
+                         .CreateBody({.type = BodyType::Dynamic,
+                                      .position = {0, 0.25, 0},
+                                      .linearVelocity = {0.5, 1.0, 0},
+                                      .angularVelocity = {0, 2.0, 0},
+                                      .shape = Box(Vec3::Constant(0.25)),
+                                      .density = 500.0,
+                                      .friction = 0.8})
+                         .Value();
+  for (int n = 1; n <= 10; ++n) {
+    EXPECT_TRUE(world.Step(h));
+    const double t = n * h;
+    const BodyState s = world.GetBodyState(box).Value();
+    // 1e-12 m: free flight is exact for constant gravity (round-off only).
+    EXPECT_NEAR(s.position.y(), 0.25 + 1.0 * t - 0.5 * kG * t * t, 1e-12) << "step " << n;
+    EXPECT_NEAR(s.position.x(), 0.5 * t, 1e-12) << "step " << n;
+  }
+}
+
+// A cube spinning slowly on the ground: one step's friction torque can stop
+// it (the four corners' pyramid bounds give 33 rad/s^2 for mu 0.5; 0.3 rad/s
+// needs 18 at 60 Hz), so the stopping step is a sticking block, and one
+// sweep must stop it to round-off, spin pattern and all. Both creation
+// orders, so the cube is body A of its pair in one and body B in the other.
+// Row by row, one sweep leaves it turning.
+TEST(JointBlock, ASlowSpinStopsInOneSweep) {
+  for (const bool cubeFirst : {false, true}) {
+    for (const FrictionSolve friction : {FrictionSolve::JointBlock, FrictionSolve::PerPoint}) {
+      WorldSettings settings = Settings(friction, 1);
+      settings.maxVelocityIterations = 1;  // one sweep, no extra sweeps for the new pair
+      World world = World::Create(settings).Value();
+      const auto ground = [&world] {
+        EXPECT_TRUE(world.CreateBody({.type = BodyType::Static,
+                                      .position = {0, -0.5, 0},
+                                      .shape = Box({20, 0.5, 20}),
+                                      .friction = 0.5}));
+      };
+      if (!cubeFirst) ground();
+      const BodyId box = world
+                             .CreateBody({.type = BodyType::Dynamic,
+                                          .position = {0, 0.25, 0},
+                                          .angularVelocity = {0, 0.3, 0},
+                                          .shape = Box(Vec3::Constant(0.25)),
+                                          .density = 500.0,
+                                          .friction = 0.5})
+                             .Value();
+      if (cubeFirst) ground();
+      EXPECT_TRUE(world.Step(1.0 / 60.0));
+      const BodyState s = world.GetBodyState(box).Value();
+      const double motion = s.angularVelocity.norm() + s.linearVelocity.norm();
+      if (friction == FrictionSolve::JointBlock) {
+        EXPECT_LT(motion, 1e-12) << "cube first " << cubeFirst;  // round-off of one solve
+      } else {
+        EXPECT_GT(motion, 1e-6) << "cube first " << cubeFirst;  // the scene tells them apart
+      }
+    }
+  }
+}
+
+// The impulses the solver stores (next step's warm start) must be the ones
+// that moved the body: by the impulse-momentum theorem, the sum of a step's
+// contact impulses is m dv - m g h and their moment about the centre of
+// mass is I dw. A cube sliding slowly and spinning on a plane, stopped by
+// one sticking block in one sweep, on both sides of the pair. (Four times
+// faster it could not stick: the friction's pitch loads one corner with
+// 1.5 N s of the 10, which cannot carry its share, and the block is
+// rightly refused.)
+TEST(JointBlock, StoredImpulsesAreTheOnesThatMovedTheBody) {
+  for (const bool planeFirst : {true, false}) {
+    WorldSettings settings = Settings(FrictionSolve::JointBlock, 1);
+    settings.maxVelocityIterations = 1;
+    settings.gravity = Vec3(0, -kG, 0);
+    testing::ContactScene scene(settings);
+    const double mass = 62.5;
+    int box = -1;
+    if (planeFirst) scene.AddPlane({.friction = 0.5});
+    box = scene.AddBox({0, 0.25, 0}, Vec3::Constant(0.25), mass, Quat::Identity(), 0.5);
+    if (!planeFirst) scene.AddPlane({.friction = 0.5});
+    scene.Body(box).linearVelocity = Vec3(0.01, 0, -0.0075);
+    scene.Body(box).angularVelocity = Vec3(0, 0.1, 0);
+    const Vec3 v0 = scene.Body(box).linearVelocity;
+    const Vec3 w0 = scene.Body(box).angularVelocity;
+    const Vec3 c0 = scene.Body(box).center;
+    const Mat3 inertia = scene.Body(box).invInertiaWorld.inverse();
+    const double h = 1.0 / 60.0;
+    scene.Step(h);
+    const BodySim& after = scene.Body(box);
+    Vec3 force = Vec3::Zero();
+    Vec3 moment = Vec3::Zero();
+    int points = 0;
+    for (const Contact& contact : scene.Contacts()) {
+      const double sign = contact.bodyA == box ? 1.0 : (contact.bodyB == box ? -1.0 : 0.0);
+      for (int i = 0; i < contact.manifold.pointCount; ++i) {
+        const std::size_t si = static_cast<std::size_t>(i);
+        const Vec3 impulse =
+            sign * (contact.normalImpulse[si] * contact.manifold.normal + contact.frictionImpulse[si]);
+        force += impulse;
+        moment += (contact.manifold.points[si].position - c0).cross(impulse);
+        ++points;
+      }
+    }
+    ASSERT_EQ(points, 4) << "plane first " << planeFirst;
+    // Stopped by the block (1e-12: round-off of one solve) ...
+    EXPECT_LT(after.linearVelocity.norm() + after.angularVelocity.norm(), 1e-12)
+        << "plane first " << planeFirst;
+    // ... and the stored impulses account for it (1e-9 of the weight's
+    // impulse m g h = 10 N s, and of I w0 = 0.2 N m s: round-off).
+    const Vec3 expectedForce = mass * (after.linearVelocity - v0) - mass * h * settings.gravity;
+    EXPECT_LT((force - expectedForce).norm(), 1e-9 * mass * kG * h) << "plane first " << planeFirst;
+    const Vec3 expectedMoment = inertia * (after.angularVelocity - w0);
+    EXPECT_LT((moment - expectedMoment).norm(), 1e-9 * (inertia * w0).norm()) << "plane first " << planeFirst;
+  }
+}
+
+TEST(JointBlock, IsRefusedWithTheColouredSolverAndOutOfRange) {
+  WorldSettings coloured = Settings(FrictionSolve::JointBlock, 10);
+  coloured.contactSolver = ContactSolverKind::ColouredWide;
+  const auto refused = World::Create(coloured);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.GetError().message.find("frictionSolve"), std::string::npos)
+      << refused.GetError().message;
+  EXPECT_NE(refused.GetError().message.find("SequentialImpulses"), std::string::npos)
+      << refused.GetError().message;
+
+  WorldSettings unknown = Settings(FrictionSolve::PerPoint, 10);
+  unknown.frictionSolve = static_cast<FrictionSolve>(7);
+  const auto bad = World::Create(unknown);
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.GetError().message.find("WorldSettings.frictionSolve = 7"), std::string::npos)
+      << bad.GetError().message;
+}
+
+// Sixteen cubes sliding and spinning into each other and to rest: the same
+// bits at 1, 2 and 3 threads (Prepare builds the blocks on the pool).
+TEST(JointBlock, BitIdenticalForAnyThreadCount) {
+  std::vector<std::vector<double>> runs;
+  for (const int threads : {1, 2, 3}) {
+    WorldSettings settings = Settings(FrictionSolve::JointBlock, 10);
+    settings.threads = threads;
+    World world = World::Create(settings).Value();
+    EXPECT_TRUE(world.CreateBody(
+        {.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({20, 0.5, 20}), .friction = 0.6}));
+    std::vector<BodyId> boxes;
+    for (int i = 0; i < 16; ++i) {
+      const double x = (i % 4) * 0.7;
+      const double z = (i / 4) * 0.7;
+      boxes.push_back(world
+                          .CreateBody({.type = BodyType::Dynamic,
+                                       .position = {x, 0.25 + 0.6 * (i % 2), z},
+                                       .linearVelocity = {1.5 - x, 0, 1.0 - z},
+                                       .angularVelocity = {0, 0.5 * (i % 3), 0},
+                                       .shape = Box(Vec3::Constant(0.25)),
+                                       .density = 500.0,
+                                       .friction = 0.6})
+                          .Value());
+    }
+    for (int n = 0; n < 120; ++n) EXPECT_TRUE(world.Step(1.0 / 60.0));
+    std::vector<double> state;
+    for (const BodyId id : boxes) {
+      const BodyState s = world.GetBodyState(id).Value();
+      for (int k = 0; k < 3; ++k) {
+        state.push_back(s.position[k]);
+        state.push_back(s.linearVelocity[k]);
+        state.push_back(s.angularVelocity[k]);
+      }
+      state.push_back(s.orientation.w());
+    }
+    runs.push_back(state);
+  }
+  for (std::size_t r = 1; r < runs.size(); ++r) {
+    ASSERT_EQ(runs[r].size(), runs[0].size());
+    EXPECT_EQ(std::memcmp(runs[r].data(), runs[0].data(), runs[0].size() * sizeof(double)), 0)
+        << "threads run " << r;
+  }
+}
+
+}  // namespace
+}  // namespace talus
