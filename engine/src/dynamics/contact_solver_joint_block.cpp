@@ -1,5 +1,5 @@
-// FrictionSolve::JointBlock: a pair's normal rows and its friction solved as
-// one block (the derivation is in dynamics/contact_solver.h).
+// FrictionSolve::JointBlock: a face contact's normal rows and its friction
+// solved as one block (the derivation is in dynamics/contact_solver.h).
 //
 // Why. Row by row, a friction impulse at a box's base turns the box (the
 // base is below its centre of mass), the normal rows then undo the turn,
@@ -7,8 +7,8 @@
 // per sweep, and after 5 sweeps at 30 Hz it stops 2.6e-5 m off and rocks.
 // Solved together, normals and friction leave the pair at rest in one
 // sweep when it sticks. When it slides (or a point lifts) the block is
-// refused and the rows run one by one as before; sliding is already exact
-// row by row (every point sits on its bound).
+// refused and the rows run one by one as before; a slide is already near
+// exact row by row (every point sits on its bound).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -26,7 +26,8 @@ namespace {
 // pressure gives no usable torque about the normal (one point, or points
 // that coincide): the spin pattern is dropped, and the per-point rows alone
 // decide the spin. A nanometre is far below any manifold's spread and far
-// above the round-off of a centre of pressure at 1e4 m from the origin.
+// above the round-off of the arms (measured from the centres of mass, so
+// independent of where in the world the pair is).
 constexpr double kLeastLever = 1e-9;
 
 // The angular part of K = J M^-1 J^T between two rows or patterns.
