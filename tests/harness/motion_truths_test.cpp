@@ -37,6 +37,36 @@ TEST(MotionTruths, StopTimeMatchesSteppingTheClampedIntegrator) {
   EXPECT_DOUBLE_EQ(SlidingStopTime(3.0, 0.5, 9.81), 6.0 / 9.81);
 }
 
+// The time the speed first falls below a threshold, against stepping the
+// clamped integrator, at steps where the threshold is crossed several steps
+// before the stop (1 cm/s at 1/960 s is 3 steps for mu 0.3).
+TEST(MotionTruths, SlowTimeMatchesSteppingTheClampedIntegrator) {
+  const double g = 9.81;
+  for (const double h : {1.0 / 60.0, 1.0 / 480.0, 1.0 / 960.0}) {
+    for (const double mu : {0.3, 0.5, 0.8}) {
+      for (const double v0 : {0.005, 1.0, 3.0}) {
+        for (const double speed : {0.01, 0.1}) {
+          double v = v0;
+          int steps = 0;
+          while (!(v < speed)) {
+            v = std::max(0.0, v - mu * g * h);
+            ++steps;
+          }
+          // Exact step count; 1e-12 s of round-off in n h.
+          EXPECT_NEAR(SlidingSlowTimeSymplecticEuler(v0, mu, g, h, speed), steps * h, 1e-12)
+              << h << " " << mu << " " << v0 << " " << speed;
+          // The continuous crossing lies within the last step before it.
+          const double t = SlidingSlowTime(v0, mu, g, speed);
+          EXPECT_GE(steps * h, t - 1e-12);
+          EXPECT_LT(steps * h, t + h);
+        }
+      }
+    }
+  }
+  EXPECT_DOUBLE_EQ(SlidingSlowTime(3.0, 0.5, 9.81, 0.0), SlidingStopTime(3.0, 0.5, 9.81));
+  EXPECT_DOUBLE_EQ(SlidingSlowTime(0.005, 0.5, 9.81, 0.01), 0.0);
+}
+
 TEST(MotionTruths, StackRestHeightsAreHalfLayersAboveTheFloor) {
   EXPECT_DOUBLE_EQ(StackRestHeight(0.0, 0.5, 0), 0.25);
   EXPECT_DOUBLE_EQ(StackRestHeight(0.0, 0.5, 9), 4.75);

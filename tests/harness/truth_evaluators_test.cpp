@@ -252,6 +252,34 @@ TEST(TruthEvaluators, TruthsOutsideTheGateAreJudgedButNotChecked) {
   }
 }
 
+// The exact clamped slide at steps fine enough that the 1 cm/s stop
+// threshold is crossed steps before the speed reaches zero: the stop time
+// must still match (it failed at 1.2 tolerances at 1/480 s when the truth
+// was the step the speed reached zero).
+TEST(TruthEvaluators, SlidingStopTimeMatchesAtFineSteps) {
+  for (const double h : {1.0 / 60.0, 1.0 / 480.0, 1.0 / 960.0}) {
+    harness::Run run = LoadRun("sliding/box_slide.json", 0);  // mu 0.3, v0 1
+    run.timeStep = h;
+    run.steps = static_cast<int>(std::lround(1.0 / h));
+    const Truth& truth = run.scenario.truths[0];
+    const auto& kind = std::get<SlidingStopTruth>(truth.kind);
+    Trajectory trajectory = Begin(run);
+    std::vector<BodyReading> states = StartStates(run);
+    double v = kind.v0, x = 0.0;
+    for (int step = 1; step <= run.steps; ++step) {
+      v = std::max(0.0, v - kind.mu * kind.g * h);
+      x += v * h;
+      states[1].centerOfMass = run.scenario.bodies[1].position + x * kind.direction;
+      states[1].linearVelocity = v * kind.direction;
+      trajectory.samples.push_back(MakeSample(run, step, states));
+    }
+    const auto metrics = EvaluateTruth(run, truth, trajectory);
+    EXPECT_TRUE(AllPass(metrics)) << h;
+    EXPECT_NEAR(Find(metrics, "sliding_stop.time").error, 0.0, 1e-12) << h;
+    EXPECT_NEAR(Find(metrics, "sliding_stop.distance").error, 0.0, 1e-12) << h;
+  }
+}
+
 TEST(TruthEvaluators, SlidingStopMeasuresStopTimeAndLateralDeviation) {
   const harness::Run run = LoadRun("sliding/box_slide_directions.json", 1);  // 30 degrees
   const Truth& truth = run.scenario.truths[0];

@@ -48,6 +48,19 @@ double SlidingStopTimeSymplecticEuler(double v0, double mu, double g, double h) 
   return std::ceil(v0 / (mu * g * h)) * h;
 }
 
+double SlidingSlowTime(double v0, double mu, double g, double speed) {
+  assert(mu > 0.0 && g > 0.0 && speed >= 0.0);
+  return std::max(v0 - speed, 0.0) / (mu * g);
+}
+
+double SlidingSlowTimeSymplecticEuler(double v0, double mu, double g, double h, double speed) {
+  assert(mu > 0.0 && g > 0.0 && h > 0.0 && v0 >= 0.0 && speed > 0.0);
+  if (v0 < speed) return 0.0;
+  // The first k with v0 - k mu g h < speed (the clamp at zero only matters
+  // once the speed is already below any positive threshold).
+  return (std::floor((v0 - speed) / (mu * g * h)) + 1.0) * h;
+}
+
 double StackRestHeight(double floor, double layerHeight, int layer) {
   assert(layer >= 0);
   return floor + (layer + 0.5) * layerHeight;
