@@ -191,7 +191,10 @@ TEST(PerturbedCopies, AreBitIdenticalWithOneThreadAndTwo) {
     for (const RunResult& r : folded.Value()) {
       EXPECT_EQ(r.perturbed.copies, 2);
       EXPECT_EQ(r.perturbed.runSeconds.size(), 3u);
-      EXPECT_GE(r.perturbed.errorSpread, 0.0);
+      // The copies change the outcome, not only the input: box_slide's
+      // stop distance at h = 1/30 s moves by about 2e-7 tolerances (talus)
+      // and 7e-8 (ode-step) under 1e-9 m, measured.
+      EXPECT_GT(r.perturbed.errorSpread, 0.0) << r.backend;
       EXPECT_EQ(r.runId, runs[0].id);  // the unperturbed run's result is kept
     }
     text[jobs - 1] = ResultsToJson({options.backends, true, folded.Value()});
