@@ -190,7 +190,9 @@ fuzz-ci: fuzz-build
 # the scaling series of the large scenes, each run into its own subfolder
 # and added with the report's --sweep, --stress and --scenes. Each step
 # prints its progress on stderr; the page is written even when a step
-# failed (without that step's section), and the target then fails.
+# failed (without that step's section), and the target then fails. The
+# sweep runs with its default noise floor (2 perturbed copies per point),
+# three times the runs of a sweep without one (docs/testbed-sweeps.md).
 report-full: build
 	@mkdir -p $(FULL_DIR); status=0; extras=; \
 	  $(TESTBED) run scenarios --jobs $(JOBS) --replay $(REPLAY) --out $(FULL_DIR) >/dev/null || status=$$?; \

@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (options.perturb) {
-    if (auto problem = talus::harness::BenchPerturbationProblem(*options.perturb)) {
+    if (auto problem = talus::harness::PositionPerturbationProblem(*options.perturb)) {
       std::cerr << "talus-scenes: --perturb: " << *problem << '\n';
       return 2;
     }

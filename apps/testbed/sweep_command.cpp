@@ -14,6 +14,7 @@
 #include "talus/harness/scenario/scenario_limits.h"
 #include "talus/harness/scenario/scenario_loader.h"
 #include "talus/harness/support/atomic_file.h"
+#include "talus/harness/sweep/perturbed_copies.h"
 #include "talus/harness/sweep/sweep.h"
 #include "talus/reference/all_backends.h"
 #include "testbed_commands.h"
@@ -31,11 +32,21 @@ struct SweepOptions {
   std::string shard;
   std::string out = "reports/sweep";
   int jobs = 0;
+  int perturbCopies = harness::kDefaultPerturbCopies;
+  double perturbation = harness::kDefaultSweepPerturbation;
   bool deterministic = false;
   bool quiet = false;
 };
 
 int Sweep(const SweepOptions& options) {
+  // Checked before anything runs; the amount only matters with copies.
+  std::optional<std::string> problem = harness::PerturbCopiesProblem(options.perturbCopies);
+  if (!problem && options.perturbCopies > 0)
+    problem = harness::SweepPerturbationProblem(options.perturbation);
+  if (problem) {
+    std::cerr << "talus-testbed: sweep: " << *problem << "\n";
+    return kExitBadInput;
+  }
   harness::Shard shard;
   if (!options.shard.empty()) {
     auto parsed = harness::ParseShard(options.shard);
@@ -68,8 +79,15 @@ int Sweep(const SweepOptions& options) {
   part.runCount = static_cast<int>(all.size());
   part.runIndices = harness::ShardRuns(part.runCount, shard);
   part.identity = harness::MakeShardIdentity(all, options.timeSteps, options.iterations);
+  part.identity.perturbCopies = options.perturbCopies;
+  part.identity.perturbation = options.perturbCopies > 0 ? options.perturbation : 0.0;
   std::vector<harness::Run> runs;
   for (int r : part.runIndices) runs.push_back(all[static_cast<std::size_t>(r)]);
+  auto withCopies = harness::WithPerturbedCopies(runs, options.perturbCopies, options.perturbation);
+  if (!withCopies) {
+    std::cerr << "talus-testbed: " << withCopies.GetError().message << "\n";
+    return kExitBadInput;
+  }
 
   harness::RunnerOptions runner;
   runner.backends = options.backends.empty() ? DefaultBackends() : options.backends;
@@ -79,7 +97,7 @@ int Sweep(const SweepOptions& options) {
   runner.plotPoints = 2;  // a sweep's report shows costs and errors, not time series
   if (!options.quiet) runner.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   runner.notice = [](const std::string& line) { std::cout << "talus-testbed: " << line << "\n"; };
-  auto results = harness::RunAll(reference::AllBackends(), runs, runner);
+  auto results = harness::RunAll(reference::AllBackends(), withCopies.Value(), runner);
   if (!results) {
     std::cerr << "talus-testbed: " << results.GetError().message << "\n";
     return kExitBadInput;
@@ -91,7 +109,13 @@ int Sweep(const SweepOptions& options) {
   }
   part.results.backends = runner.backends;
   part.results.deterministic = options.deterministic;
-  part.results.results = std::move(results).Value();
+  auto folded = harness::FoldPerturbedCopies(std::move(results).Value(), part.resultCounts,
+                                             options.perturbCopies, options.perturbation);
+  if (!folded) {
+    std::cerr << "talus-testbed: " << folded.GetError().message << "\n";
+    return kExitBadInput;
+  }
+  part.results.results = std::move(folded).Value();
   const fs::path out(options.out);
   if (!options.shard.empty()) {
     const fs::path path =
@@ -141,6 +165,16 @@ void AddSweepCommand(CLI::App& app, CommandAction& chosen) {
   command->add_option("-o,--out", options->out, "output folder")->capture_default_str();
   command->add_option("-j,--jobs", options->jobs, "threads (0 = every core)")
       ->check(CLI::Range(0, harness::kMaxJobs));
+  command
+      ->add_option(
+          "--perturb-copies", options->perturbCopies,
+          "perturbed copies per sweep point (initial positions moved by round-off): the error's noise "
+          "floor and the median cost; 0 = none, the exact comparison")
+      ->capture_default_str();
+  command
+      ->add_option("--perturb", options->perturbation,
+                   "m: each dynamic body's initial coordinates move by at most this in a copy")
+      ->capture_default_str();
   command->add_flag("--deterministic", options->deterministic, "zero wall times (costs become 0)");
   command->add_flag("-q,--quiet", options->quiet, "no progress on stderr");
   command->callback([options, &chosen] { chosen = [options] { return Sweep(*options); }; });

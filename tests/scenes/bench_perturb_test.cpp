@@ -110,8 +110,8 @@ TEST(PerturbDynamicPositions, BadAmountsAreErrorsNamingTheValue) {
     ASSERT_FALSE(result.Ok()) << amount;
     EXPECT_NE(result.GetError().message.find("perturbation"), std::string::npos) << result.GetError().message;
   }
-  EXPECT_FALSE(BenchPerturbationProblem(kMaxBenchPerturbation).has_value());
-  EXPECT_FALSE(BenchPerturbationProblem(0.0).has_value());
+  EXPECT_FALSE(PositionPerturbationProblem(kMaxPositionPerturbation).has_value());
+  EXPECT_FALSE(PositionPerturbationProblem(0.0).has_value());
 }
 
 TEST(BenchRepeats, CountOutsideOneToTheMaximumIsRefused) {

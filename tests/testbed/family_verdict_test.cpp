@@ -192,7 +192,7 @@ TEST(AnalyseSweep, CountsOnlyInstancesWithTalusAndAPeer) {
                           "and a peer result)."),
             std::string::npos)
       << markdown;
-  EXPECT_NE(markdown.find("| slide | above a peer | 1 | ODE (above): 1, 0.5, 0.25, 0.25 |"),
+  EXPECT_NE(markdown.find("| slide | above a peer | 1 | ODE (above): 1, 0.5, 0.25, 0.25, 0 |"),
             std::string::npos)
       << markdown;
 }

@@ -109,6 +109,14 @@ TEST_F(ShardPartition, OtherSettingsAreRefusedNamingTheSetting) {
   timed.results.deterministic = false;
   EXPECT_EQ(MergeError({first, timed}),
             "merge: shard 1/2 has --deterministic \"off\" but shard 0/2 has \"on\"");
+  // The noise floor's settings go through the file and must agree.
+  ShardFile copies = second;
+  copies.identity.perturbCopies = 2;
+  copies.identity.perturbation = 1e-9;
+  auto reread = ShardFromJson(ShardToJson(copies));
+  ASSERT_TRUE(reread) << reread.GetError().message;
+  EXPECT_EQ(MergeError({first, reread.Value()}),
+            "merge: shard 1/2 has perturbed copies (count, m) \"2, 1e-09\" but shard 0/2 has \"0, 0\"");
   ShardFile count = MakeShard(runs, 1, 3);
   EXPECT_EQ(MergeError({first, count}), "merge: shard 1/3 is one of 3 shards but shard 0/2 one of 2");
 }

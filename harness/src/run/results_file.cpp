@@ -65,6 +65,15 @@ Json ResultToJson(const RunResult& r) {
   j["metrics"] = Json::array();
   for (const MetricResult& m : r.metrics) j["metrics"].push_back(MetricToJson(m));
   j["wallSecondsPerStep"] = {{"median", r.wallSecondsPerStepMedian}, {"mean", r.wallSecondsPerStepMean}};
+  // Only sweep points run with perturbed copies carry this, so files of
+  // other runs (and sweeps with --perturb-copies 0) are unchanged. An
+  // infinite spread (some copies unmeasured) is written as null.
+  if (r.perturbed.copies > 0) {
+    j["perturbed"] = {{"copies", r.perturbed.copies},
+                      {"amount", r.perturbed.amount},
+                      {"errorSpread", Number(r.perturbed.errorSpread)},
+                      {"runSeconds", r.perturbed.runSeconds}};
+  }
   Json series;
   series["time"] = r.series.time;
   series["heights"] = r.series.heights;
@@ -196,6 +205,21 @@ RunResult ResultFromJson(const Json& j, const std::string& where) {
   const Json& wall = Field(j, "wallSecondsPerStep", where);
   r.wallSecondsPerStepMedian = GetNumber(wall, "median", Place(where, "wallSecondsPerStep"));
   r.wallSecondsPerStepMean = GetNumber(wall, "mean", Place(where, "wallSecondsPerStep"));
+  if (j.contains("perturbed")) {
+    // Files written before the noise floor have none: spread 0, exact.
+    const Json& perturbed = Field(j, "perturbed", where);
+    const std::string place = Place(where, "perturbed");
+    r.perturbed.copies = GetInt(perturbed, "copies", place);
+    r.perturbed.amount = GetNumber(perturbed, "amount", place);
+    const double spread = GetNumber(perturbed, "errorSpread", place);
+    r.perturbed.errorSpread = std::isnan(spread) ? std::numeric_limits<double>::infinity() : spread;
+    r.perturbed.runSeconds = GetNumbers(perturbed, "runSeconds", place);
+    if (r.perturbed.copies < 1 ||
+        r.perturbed.runSeconds.size() != static_cast<std::size_t>(r.perturbed.copies) + 1 ||
+        !(r.perturbed.errorSpread >= 0.0)) {
+      throw ParseFailure{Concat({place, ": need copies >= 1, copies + 1 runSeconds and errorSpread >= 0"})};
+    }
+  }
   const Json& series = Field(j, "series", where);
   const std::string at = Place(where, "series");
   r.series.time = GetNumbers(series, "time", at);

@@ -6,18 +6,8 @@
 #include <sstream>
 
 #include "talus/harness/support/number_text.h"
-#include "talus/harness/support/split_mix64.h"
 
 namespace talus::harness {
-
-std::optional<std::string> BenchPerturbationProblem(double amount) {
-  // Written so that NaN fails the test too.
-  if (!(amount >= 0.0 && amount <= kMaxBenchPerturbation)) {
-    return "perturbation " + FormatNumber(amount) + " m: must be a number in [0, " +
-           FormatNumber(kMaxBenchPerturbation) + "] m";
-  }
-  return std::nullopt;
-}
 
 std::optional<std::string> BenchRepeatsProblem(int repeats) {
   if (repeats < 1 || repeats > kMaxBenchRepeats) {
@@ -25,23 +15,6 @@ std::optional<std::string> BenchRepeatsProblem(int repeats) {
            "]";
   }
   return std::nullopt;
-}
-
-std::uint64_t RepeatSeed(std::uint64_t seed, int repeat) {
-  return seed + static_cast<std::uint64_t>(repeat);  // modulo 2^64 by definition
-}
-
-Result<Scenario> PerturbDynamicPositions(Scenario scene, double amount, std::uint64_t seed) {
-  if (auto problem = BenchPerturbationProblem(amount)) return Error{*problem};
-  if (amount == 0.0) return scene;  // bit for bit: not even -0.0 is added
-  SplitMix64 stream(seed);
-  for (BodySpec& body : scene.bodies) {
-    if (body.motion != Motion::Dynamic) continue;
-    for (int axis = 0; axis < 3; ++axis) {
-      body.position[axis] += amount * (2.0 * stream.NextUniform() - 1.0);
-    }
-  }
-  return scene;
 }
 
 std::optional<double> BenchVerdictFigure(const BenchReport& report) {

@@ -41,6 +41,12 @@ std::string Number(double value) {
   return FormatNumber(value, 3);
 }
 
+// An error with its noise floor when it has one: "0.5 (spread 0.02)", the
+// error moved by 0.02 between the point's perturbed copies (max - min).
+std::string ErrorText(double error, double spread) {
+  return spread > 0.0 ? Concat({Number(error), " (spread ", Number(spread), ")"}) : Number(error);
+}
+
 nlohmann::ordered_json JsonNumber(double value) {
   if (!std::isfinite(value)) return nullptr;
   return value;
@@ -61,7 +67,8 @@ nlohmann::ordered_json FamilyVerdictJson(const FamilyVerdict& verdict) {
                             {"worstBudget", peer.budget},
                             {"talusError", JsonNumber(peer.talusError)},
                             {"peerError", JsonNumber(peer.peerError)},
-                            {"margin", JsonNumber(peer.margin)}});
+                            {"margin", JsonNumber(peer.margin)},
+                            {"floor", JsonNumber(peer.floor)}});
   }
   return out;
 }
@@ -126,13 +133,28 @@ std::vector<int> ParetoFront(const std::vector<CostErrorPoint>& points) {
   return front;
 }
 
-double FrontErrorAt(const std::vector<CostErrorPoint>& points, double budget) {
-  double best = kInfinity;
+const CostErrorPoint* FrontPointAt(const std::vector<CostErrorPoint>& points, double budget) {
+  const CostErrorPoint* best = nullptr;
   for (const CostErrorPoint& point : points) {
-    if (point.cost <= budget) best = std::min(best, point.error);
+    if (point.cost <= budget && (best == nullptr || point.error < best->error)) best = &point;
   }
   return best;
 }
+
+double FrontErrorAt(const std::vector<CostErrorPoint>& points, double budget) {
+  const CostErrorPoint* point = FrontPointAt(points, budget);
+  return point != nullptr ? point->error : kInfinity;
+}
+
+double NoiseFloor(const CostErrorPoint* a, const CostErrorPoint* b) {
+  // The larger spread, not their sum: a difference one of the two points
+  // already showed between round-off copies of itself is no evidence, and
+  // the larger of the two is the smallest floor that says so. The sum
+  // (both moving apart at once) would be a worst case never observed.
+  return std::max(a != nullptr ? a->spread : 0.0, b != nullptr ? b->spread : 0.0);
+}
+
+bool ErrorsTie(double a, double b, double floor) { return a == b || std::abs(a - b) <= floor; }
 
 std::vector<double> ComparedBudgets(const std::vector<std::vector<CostErrorPoint>>& fronts,
                                     double& matchedCost) {
@@ -161,27 +183,38 @@ FrontComparison CompareFronts(const std::vector<std::vector<CostErrorPoint>>& fr
   FrontComparison comparison;
   comparison.wins.assign(fronts.size(), 0);
   comparison.errorAtMatched.assign(fronts.size(), kInfinity);
+  comparison.spreadAtMatched.assign(fronts.size(), 0.0);
   const std::vector<double> budgets = ComparedBudgets(fronts, comparison.matchedCost);
   if (budgets.empty()) return comparison;
   const double matched = comparison.matchedCost;
   comparison.budgets = static_cast<int>(budgets.size());
-  for (std::size_t f = 0; f < fronts.size(); ++f)
-    comparison.errorAtMatched[f] = FrontErrorAt(fronts[f], matched);
+  for (std::size_t f = 0; f < fronts.size(); ++f) {
+    const CostErrorPoint* point = FrontPointAt(fronts[f], matched);
+    comparison.errorAtMatched[f] = point != nullptr ? point->error : kInfinity;
+    comparison.spreadAtMatched[f] = point != nullptr ? point->spread : 0.0;
+  }
+  std::vector<const CostErrorPoint*> at(fronts.size());
   for (double budget : budgets) {
+    // The smallest error wins the budget unless another front's value ties
+    // with it under the two points' noise floor.
     int best = -1;
     double bestError = kInfinity;
-    bool tie = false;
     for (std::size_t f = 0; f < fronts.size(); ++f) {
-      const double error = FrontErrorAt(fronts[f], budget);
-      if (error < bestError) {
+      at[f] = FrontPointAt(fronts[f], budget);
+      const double error = at[f] != nullptr ? at[f]->error : kInfinity;
+      if (best < 0 || error < bestError) {
         best = static_cast<int>(f);
         bestError = error;
-        tie = false;
-      } else if (error == bestError) {
-        tie = true;
       }
     }
-    if (best >= 0 && !tie) ++comparison.wins[best];
+    bool tie = false;
+    for (std::size_t f = 0; f < fronts.size(); ++f) {
+      if (static_cast<int>(f) == best) continue;
+      const double error = at[f] != nullptr ? at[f]->error : kInfinity;
+      tie = tie || ErrorsTie(error, bestError, NoiseFloor(at[f], at[best]));
+    }
+    // An infinite error never wins (nothing was measured).
+    if (best >= 0 && !tie && bestError < kInfinity) ++comparison.wins[best];
   }
   int mostWins = 0;
   for (std::size_t f = 0; f < fronts.size(); ++f) {
@@ -259,24 +292,32 @@ FamilyVerdict CompareFamilies(std::vector<FamilyPoints> families, std::string_vi
     FamilyMargin margin;
     margin.family = family.family;
     margin.margin = -kInfinity;
+    double worstExcess = -kInfinity;
     bool first = true;
     for (double budget : budgets) {
-      const double mine = FrontErrorAt(fronts[talusIndex], budget);
-      const double theirs = FrontErrorAt(fronts[index], budget);
-      // Exact comparison: equal errors (inf against inf included) are a tie,
-      // which the criterion counts as at or below.
+      const CostErrorPoint* talusPoint = FrontPointAt(fronts[talusIndex], budget);
+      const CostErrorPoint* peerPoint = FrontPointAt(fronts[index], budget);
+      const double mine = talusPoint != nullptr ? talusPoint->error : kInfinity;
+      const double theirs = peerPoint != nullptr ? peerPoint->error : kInfinity;
+      // Equal errors (inf against inf included) are a tie, which the
+      // criterion counts as at or below; so is a difference within the
+      // noise floor (excess <= 0). Floor 0: the exact comparison.
       const double difference = mine == theirs ? 0.0 : mine - theirs;
-      if (first || difference > margin.margin) {
+      const double floor = NoiseFloor(talusPoint, peerPoint);
+      const double excess = std::isnan(difference - floor) ? 0.0 : difference - floor;  // inf - inf: a tie
+      if (first || excess > worstExcess) {
         first = false;
+        worstExcess = excess;
         margin.margin = difference;
+        margin.floor = floor;
         margin.budget = budget;
         margin.talusError = mine;
         margin.peerError = theirs;
       }
     }
-    // The largest difference decides: above at some budget exactly when it
-    // is positive (no budgets: -inf, nothing to be above at).
-    margin.atOrBelow = margin.margin <= 0.0;
+    // The largest excess over the floor decides: above at some budget
+    // exactly when it is positive (no budgets: -inf, nothing to be above at).
+    margin.atOrBelow = worstExcess <= 0.0;
     if (!margin.atOrBelow) verdict.outcome = FamilyOutcome::kAbove;
     verdict.peers.push_back(std::move(margin));
   }
@@ -311,7 +352,7 @@ std::vector<SweepGroup> AnalyseSweep(const ResultsFile& file, const std::vector<
       curve = &group.curves.back();
     }
     curve->timeSteps.push_back(result.timeStep);
-    curve->points.push_back({RunCost(result), error});
+    curve->points.push_back({RunCost(result), error, result.perturbed.errorSpread});
   }
   for (SweepGroup& group : groups) {
     // Backend-major in the file's backend order (stable: iterations stay in
@@ -381,6 +422,8 @@ std::string SweepToJson(const std::vector<SweepGroup>& groups) {
     g["matchedCost"] = c.matchedCost;
     g["errorAtMatched"] = nlohmann::ordered_json::array();
     for (double e : c.errorAtMatched) g["errorAtMatched"].push_back(JsonNumber(e));
+    g["spreadAtMatched"] = nlohmann::ordered_json::array();
+    for (double e : c.spreadAtMatched) g["spreadAtMatched"].push_back(JsonNumber(e));
     g["families"] = FamilyVerdictJson(group.families);
     g["curves"] = nlohmann::ordered_json::array();
     for (const SweepCurve& curve : group.curves) {
@@ -389,6 +432,7 @@ std::string SweepToJson(const std::vector<SweepGroup>& groups) {
         points.push_back({{"timeStep", curve.timeSteps[k]},
                           {"cost", curve.points[k].cost},
                           {"error", JsonNumber(curve.points[k].error)},
+                          {"spread", JsonNumber(curve.points[k].spread)},
                           {"front", static_cast<bool>(curve.onFront[k])}});
       }
       g["curves"].push_back({{"backend", curve.backend},
@@ -412,7 +456,9 @@ std::string SweepMarkdown(const std::vector<SweepGroup>& groups) {
       << "Error: the largest |error| / tolerance over a run's metrics with a tolerance (1 = at the "
          "tolerance, inf = "
          "not measured). Cost: wall seconds of the run. Most accurate at equal cost: most wins over the "
-         "budgets at or above the matched cost (docs/testbed-sweeps.md).\n\n"
+         "budgets at or above the matched cost (docs/testbed-sweeps.md). Spread: the noise floor, max - min "
+         "of a point's error over its run and its perturbed copies (initial positions moved by round-off); "
+         "two errors closer than the larger spread tie.\n\n"
       << "| scenario | most accurate at equal cost | matched cost (s) | error at matched cost | wins |\n"
       << "|---|---|---|---|---|\n";
   for (const SweepGroup& group : groups) {
@@ -420,7 +466,10 @@ std::string SweepMarkdown(const std::vector<SweepGroup>& groups) {
     std::string errors;
     std::string wins;
     for (std::size_t b = 0; b < group.backends.size(); ++b) {
-      errors.append(b ? ", " : "").append(group.backends[b]).append(" ").append(Number(c.errorAtMatched[b]));
+      errors.append(b ? ", " : "")
+          .append(group.backends[b])
+          .append(" ")
+          .append(ErrorText(c.errorAtMatched[b], c.spreadAtMatched[b]));
       wins.append(b ? ", " : "").append(group.backends[b]).append(" ").append(std::to_string(c.wins[b]));
     }
     out << "| " << group.id << " | " << (c.winner >= 0 ? group.backends[c.winner] : std::string("none (tie)"))
@@ -431,12 +480,15 @@ std::string SweepMarkdown(const std::vector<SweepGroup>& groups) {
   out << "\n### Talus's engine family against every peer family\n\n"
       << "A family is every variant of one engine (talus, talus-split...; bullet, bullet-f32...); its "
          "front is the Pareto front of all its variants' points. Talus is at or below a peer family when "
-         "at every budget from the matched cost up Talus's best error <= the peer's, compared exactly "
-         "(no noise floor; ties count). Worst budget: where Talus's error exceeds the peer's most "
-         "(margin = Talus - peer; <= 0 everywhere means at or below).\n\n"
+         "at every budget from the matched cost up Talus's best error <= the peer's or ties with it: a "
+         "margin "
+         "(Talus - peer) no larger than the floor (the larger spread of the two points compared; 0 without "
+         "perturbed copies, then the comparison is exact) is a tie. Worst budget: where margin - floor is "
+         "largest (<= 0 everywhere means at or below).\n\n"
       << "Talus at or below every peer family: " << count.atOrBelow << " of " << count.judged << " instances";
   if (count.notJudged > 0) out << " (" << count.notJudged << " more without both Talus and a peer result)";
-  out << ".\n\n| scenario | verdict | budgets | peer family: worst budget s, Talus error, peer error, margin "
+  out << ".\n\n| scenario | verdict | budgets | peer family: worst budget s, Talus error, peer error, "
+         "margin, floor "
          "|\n"
       << "|---|---|---|---|\n";
   for (const SweepGroup& group : groups) {
@@ -453,7 +505,9 @@ std::string SweepMarkdown(const std::vector<SweepGroup>& groups) {
           .append(", ")
           .append(Number(peer.peerError))
           .append(", ")
-          .append(Number(peer.margin));
+          .append(Number(peer.margin))
+          .append(", ")
+          .append(Number(peer.floor));
     }
     out << "| " << group.id << " | " << FamilyOutcomeName(v.outcome) << " | " << v.budgets << " | "
         << (peers.empty() ? "-" : peers) << " |\n";
@@ -467,10 +521,10 @@ std::string SweepMarkdown(const std::vector<SweepGroup>& groups) {
         if (curve.backend != backend) continue;
         for (std::size_t k = 0; k < curve.points.size(); ++k) {
           if (!curve.onFront[k]) continue;
-          front.emplace_back(
-              curve.points[k].cost,
-              Concat({"h ", Number(curve.timeSteps[k]), ", it ", std::to_string(curve.iterations), ": ",
-                      Number(curve.points[k].cost), ", ", Number(curve.points[k].error)}));
+          front.emplace_back(curve.points[k].cost,
+                             Concat({"h ", Number(curve.timeSteps[k]), ", it ",
+                                     std::to_string(curve.iterations), ": ", Number(curve.points[k].cost),
+                                     ", ", ErrorText(curve.points[k].error, curve.points[k].spread)}));
         }
       }
       std::stable_sort(front.begin(), front.end(),
@@ -560,6 +614,12 @@ std::string PartitionMismatch(const ShardFile& shard, const std::string& name, c
     return differ("--deterministic", shard.results.deterministic ? "on" : "off",
                   first.results.deterministic ? "on" : "off");
   }
+  if (a.perturbCopies != b.perturbCopies || a.perturbation != b.perturbation) {
+    return differ(
+        "perturbed copies (count, m)",
+        Concat({std::to_string(a.perturbCopies), ", ", ListText(std::vector<double>{a.perturbation})}),
+        Concat({std::to_string(b.perturbCopies), ", ", ListText(std::vector<double>{b.perturbation})}));
+  }
   for (const std::string& scenario : a.scenarios) {
     if (std::find(b.scenarios.begin(), b.scenarios.end(), scenario) == b.scenarios.end()) {
       return Concat({name, " ran scenario ", Quoted(scenario), ", which ", firstName, " did not"});
@@ -620,6 +680,8 @@ std::string ShardToJson(const ShardFile& shard) {
   out["iterations"] = shard.identity.iterations;
   out["scenarios"] = shard.identity.scenarios;
   out["runsDigest"] = shard.identity.runsDigest;
+  out["perturbCopies"] = shard.identity.perturbCopies;
+  out["perturbation"] = shard.identity.perturbation;
   out["runCount"] = shard.runCount;
   out["runIndices"] = shard.runIndices;
   if (!shard.resultCounts.empty()) out["resultCounts"] = shard.resultCounts;
@@ -654,6 +716,15 @@ Result<ShardFile> ShardFromJson(std::string_view text) {
   }
   shard.identity.build = in["build"].get<std::string>();
   shard.identity.runsDigest = in["runsDigest"].get<std::string>();
+  // Shard files written before the noise floor ran no copies.
+  if (in.contains("perturbCopies") || in.contains("perturbation")) {
+    if (!in.contains("perturbCopies") || !in["perturbCopies"].is_number_integer() ||
+        !in.contains("perturbation") || !in["perturbation"].is_number()) {
+      return Error{"shard file: \"perturbCopies\" (integer) and \"perturbation\" (number) go together"};
+    }
+    shard.identity.perturbCopies = in["perturbCopies"].get<int>();
+    shard.identity.perturbation = in["perturbation"].get<double>();
+  }
   if (!ReadArray(in, "timeSteps", shard.identity.timeSteps) ||
       !ReadArray(in, "iterations", shard.identity.iterations) ||
       !ReadArray(in, "scenarios", shard.identity.scenarios)) {

@@ -34,6 +34,15 @@ struct PlotSeries {
   std::vector<double> energy;                ///< J: kinetic + potential of the dynamic bodies
 };
 
+/// A sweep point's perturbed copies (sweep/perturbed_copies.h), folded
+/// into the unperturbed run's result; copies == 0 for every other result.
+struct PerturbedRuns {
+  int copies = 0;                  ///< perturbed copies run besides the unperturbed run
+  double amount = 0.0;             ///< m: each coordinate moved by at most this
+  double errorSpread = 0.0;        ///< max - min of the error scalar over the run and its copies
+  std::vector<double> runSeconds;  ///< per run (unperturbed first): median s per step x steps
+};
+
 /// Everything one (run, backend) job produced.
 struct RunResult {
   std::string scenario;                 ///< scenario name
@@ -50,8 +59,11 @@ struct RunResult {
   std::vector<MetricResult> metrics;      ///< truths first (file order), then drift, penetration, contacts
   double wallSecondsPerStepMedian = 0.0;  ///< seconds; 0 in deterministic mode
   double wallSecondsPerStepMean = 0.0;    ///< seconds; 0 in deterministic mode
-  PlotSeries series;                      ///< for the HTML report
-  Replay replay;  ///< for the 3D replay; empty unless selected (RunnerOptions::replay)
+  /// With perturbed copies, wallSecondsPerStepMedian is the median over the
+  /// run and its copies (the mean stays the unperturbed run's).
+  PerturbedRuns perturbed;
+  PlotSeries series;  ///< for the HTML report
+  Replay replay;      ///< for the 3D replay; empty unless selected (RunnerOptions::replay)
 };
 
 struct RunnerOptions {

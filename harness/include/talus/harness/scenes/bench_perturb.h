@@ -3,13 +3,12 @@
 //
 // A scene's verdict (pyramid: drift <= 5 mm; hull_pile: nothing escapes)
 // is only worth judging code by if it does not hang on the last bits of the
-// initial state. PerturbDynamicPositions moves every dynamic body's initial
-// position by an independent uniform offset in [-amount, +amount) per axis,
-// drawn from SplitMix64 (support/split_mix64.h) so that the same seed gives
-// the same scene bit for bit on every platform; repeat r of a series is
-// seeded with RepeatSeed(seed, r). SummarizeRepeats reduces a series of runs
-// to the spread of the scene's figure and says whether the verdict held the
-// same way in every repeat (docs/bench-scenes.md, "Perturbed repeats").
+// initial state. The perturbation itself (PerturbDynamicPositions,
+// RepeatSeed) is scenario/position_perturbation.h's, shared with the
+// sweep's noise floor; repeat r of a series is seeded with RepeatSeed(seed,
+// r). SummarizeRepeats reduces a series of runs to the spread of the
+// scene's figure and says whether the verdict held the same way in every
+// repeat (docs/bench-scenes.md, "Perturbed repeats").
 #pragma once
 
 #include <cstdint>
@@ -17,17 +16,12 @@
 #include <string>
 #include <vector>
 
+#include "talus/harness/scenario/position_perturbation.h"
 #include "talus/harness/scenario/scenario.h"
 #include "talus/harness/scenes/bench_run.h"
 #include "talus/result.h"
 
 namespace talus::harness {
-
-/// Largest perturbation accepted, metres. The probe is for round-off-sized
-/// changes; above 1 mm the cubes of a pyramid layer (which touch exactly)
-/// would start up to 2 mm inside each other, and the run would measure a
-/// different scene rather than the same one's sensitivity.
-inline constexpr double kMaxBenchPerturbation = 1e-3;
 
 /// Largest number of repeats of one (scene, engine) pair: a bound on a
 /// mistyped count (pyramid 15 takes about 15 s a run on one core).
@@ -37,26 +31,9 @@ inline constexpr int kMaxBenchRepeats = 1000;
 /// metres. Stricter than the 5 cm "stands" line of SCENES.md.
 inline constexpr double kPyramidDriftGoal = 0.005;
 
-/// Why `amount` is not a usable perturbation (NaN, infinite, negative or
-/// above kMaxBenchPerturbation), naming the value, or nothing when it is.
-std::optional<std::string> BenchPerturbationProblem(double amount);
-
 /// Why `repeats` is not a usable repeat count (outside 1..kMaxBenchRepeats),
 /// or nothing when it is.
 std::optional<std::string> BenchRepeatsProblem(int repeats);
-
-/// The seed of repeat `repeat` (0-based) of a series seeded with `seed`:
-/// seed + repeat, modulo 2^64. SplitMix64 streams from neighbouring seeds
-/// share no values in any practical length (each is a bijective mix of a
-/// counter advanced by the golden-ratio gamma).
-std::uint64_t RepeatSeed(std::uint64_t seed, int repeat);
-
-/// `scene` with every dynamic body's position moved by
-/// amount * (2 u - 1) on x, then y, then z, u = SplitMix64(seed).NextUniform()
-/// drawn in body order (static and kinematic bodies draw nothing and stay
-/// put). An amount of 0 returns the scene unchanged, bit for bit. A bad
-/// amount (BenchPerturbationProblem) is an Error and nothing is changed.
-Result<Scenario> PerturbDynamicPositions(Scenario scene, double amount, std::uint64_t seed);
 
 /// The scene's verdict for one run: pyramid, drift_m <= kPyramidDriftGoal
 /// (a NaN drift fails); hull_pile, no body escaped. Nothing for a skipped

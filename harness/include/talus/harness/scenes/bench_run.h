@@ -69,7 +69,7 @@ struct BenchStage {
 /// is reproduced alone by `--repeats 1 --perturb-seed <seed>`).
 struct BenchPerturbation {
   int repeat = 0;          ///< 0-based index in its series
-  double amount = 0.0;     ///< metres, in [0, kMaxBenchPerturbation]
+  double amount = 0.0;     ///< metres, in [0, kMaxPositionPerturbation]
   std::uint64_t seed = 0;  ///< RepeatSeed(series seed, repeat)
 };
 

@@ -44,8 +44,10 @@ double RunCost(const RunResult& result);
 
 /// One point of a run-time-against-error plot.
 struct CostErrorPoint {
-  double cost = 0.0;   ///< seconds
-  double error = 0.0;  ///< error scalar, >= 0, may be +infinity
+  double cost = 0.0;   ///< seconds (with perturbed copies: the median over the runs)
+  double error = 0.0;  ///< error scalar, >= 0, may be +infinity (the unperturbed run's)
+  double spread =
+      0.0;  ///< the error's noise floor: max - min over the run and its perturbed copies; 0 without
 };
 
 /// Indices of the Pareto-optimal points (no other point has cost <= and
@@ -58,18 +60,35 @@ std::vector<int> ParetoFront(const std::vector<CostErrorPoint>& points);
 /// the points with cost <= budget, +infinity when none is that cheap.
 double FrontErrorAt(const std::vector<CostErrorPoint>& points, double budget);
 
+/// The point FrontErrorAt reads: the first of smallest error among those
+/// with cost <= budget; nullptr when none is that cheap.
+const CostErrorPoint* FrontPointAt(const std::vector<CostErrorPoint>& points, double budget);
+
+/// The noise floor of comparing two front values (FrontPointAt of each,
+/// nullptr for none): the larger of the two points' spreads. A difference
+/// of errors no larger than it is a tie: one of the two points already
+/// moved that much between round-off-perturbed copies of itself.
+double NoiseFloor(const CostErrorPoint* a, const CostErrorPoint* b);
+
+/// Whether errors `a` and `b` are tied under `floor`: equal (inf with inf
+/// included) or |a - b| <= floor. With floor 0 this is exact equality.
+bool ErrorsTie(double a, double b, double floor);
+
 /// Which of several fronts (one per backend) is most accurate at equal
 /// cost. The compared budgets are the costs of every front point that are
 /// >= the matched cost (the largest of the fronts' cheapest costs, the
 /// least budget at which every backend has a result); at each budget the
-/// backend with the smallest FrontErrorAt wins (ties: none). The winner is
-/// the backend with the most wins, -1 when there is no budget or a tie.
+/// backend with the smallest FrontErrorAt wins, unless another backend's
+/// error ties with it under their NoiseFloor (then nobody wins that
+/// budget). The winner is the backend with the most wins, -1 when there is
+/// no budget or a tie.
 struct FrontComparison {
-  int winner = -1;                     ///< index into the fronts, -1 for none
-  std::vector<int> wins;               ///< per front: budgets won
-  int budgets = 0;                     ///< budgets compared
-  double matchedCost = 0.0;            ///< seconds: the smallest compared budget
-  std::vector<double> errorAtMatched;  ///< per front: FrontErrorAt(matchedCost)
+  int winner = -1;                      ///< index into the fronts, -1 for none
+  std::vector<int> wins;                ///< per front: budgets won
+  int budgets = 0;                      ///< budgets compared
+  double matchedCost = 0.0;             ///< seconds: the smallest compared budget
+  std::vector<double> errorAtMatched;   ///< per front: FrontErrorAt(matchedCost)
+  std::vector<double> spreadAtMatched;  ///< per front: that point's spread (0 when none)
 };
 FrontComparison CompareFronts(const std::vector<std::vector<CostErrorPoint>>& fronts);
 
@@ -99,11 +118,12 @@ struct FamilyPoints {
 /// Talus's family against one peer family at the compared budgets.
 struct FamilyMargin {
   std::string family;       ///< the peer family
-  bool atOrBelow = false;   ///< Talus's best error <= the peer's at every budget
-  double budget = 0.0;      ///< s: the budget where Talus's error exceeds the peer's most (the first such)
+  bool atOrBelow = false;   ///< at every budget Talus's best error <= the peer's or ties with it (ErrorsTie)
+  double budget = 0.0;      ///< s: the budget where margin - floor is largest (the first such)
   double talusError = 0.0;  ///< Talus family's FrontErrorAt(budget)
   double peerError = 0.0;   ///< the peer family's FrontErrorAt(budget)
   double margin = 0.0;      ///< talusError - peerError (0 when equal, +inf when only the peer is finite)
+  double floor = 0.0;       ///< NoiseFloor of the two points compared at `budget`
 };
 
 /// The issue-15 criterion for one scenario instance.
@@ -126,7 +146,8 @@ struct FamilyVerdict {
 /// Compares the family named `talus` with every other family: each
 /// family's front is the Pareto front of its points; the budgets are
 /// ComparedBudgets over those fronts; at each budget the errors are
-/// compared exactly (no noise floor), ties counting as at or below. A
+/// compared under the two points' NoiseFloor (exactly when both spreads are
+/// 0), ties counting as at or below. A
 /// family whose every error is infinite stands at its cheapest cost with
 /// an infinite error; a family without points is skipped.
 FamilyVerdict CompareFamilies(std::vector<FamilyPoints> families, std::string_view talus = kTalusFamily);
@@ -198,6 +219,10 @@ struct ShardIdentity {
   /// stepping and its scenario as ScenarioToJson writes it), so two
   /// partitions agree only when every scenario file read the same.
   std::string runsDigest;
+  /// The noise floor's settings (perturbed_copies.h): copies per point and
+  /// metres (0 without copies); shard files without them are of 0 copies.
+  int perturbCopies = 0;
+  double perturbation = 0.0;
 };
 
 /// The identity of a sweep over `runs` (the unsharded, expanded list) with
@@ -224,7 +249,7 @@ Result<ShardFile> ShardFromJson(std::string_view text);
 /// exactly once; else an Error naming the shard and what is wrong: a shard
 /// missing or given twice, or shards from different partitions (another
 /// shard count, build, time steps, iterations, backends, deterministic
-/// mode, scenario set or scenario contents).
+/// mode, perturbed copies, scenario set or scenario contents).
 Result<ResultsFile> MergeShards(const std::vector<ShardFile>& shards);
 
 }  // namespace talus::harness

@@ -1,0 +1,121 @@
+// The sweep's perturbed copies and their fold (see
+// talus/harness/sweep/perturbed_copies.h).
+#include "talus/harness/sweep/perturbed_copies.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "support/text_util.h"
+#include "talus/harness/scenario/position_perturbation.h"
+#include "talus/harness/support/number_text.h"
+#include "talus/harness/sweep/sweep.h"
+
+namespace talus::harness {
+namespace {
+
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+}  // namespace
+
+std::optional<std::string> PerturbCopiesProblem(int copies) {
+  if (copies < 0 || copies > kMaxPerturbCopies) {
+    return Concat({"--perturb-copies ", std::to_string(copies), ": must be an integer in [0, ",
+                   std::to_string(kMaxPerturbCopies), "] (each copy is one more whole sweep)"});
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> SweepPerturbationProblem(double amount) {
+  // Written so that NaN fails the test too; 0 would make copies that are
+  // the unperturbed run again, a spread of 0 that proves nothing.
+  if (!(amount > 0.0 && amount <= kMaxPositionPerturbation)) {
+    return Concat({"--perturb ", std::isnan(amount) ? std::string("NaN") : FormatNumber(amount),
+                   ": must be a number of metres in (0, ", FormatNumber(kMaxPositionPerturbation), "]"});
+  }
+  return std::nullopt;
+}
+
+Result<std::vector<Run>> WithPerturbedCopies(const std::vector<Run>& runs, int copies, double amount) {
+  if (auto problem = PerturbCopiesProblem(copies)) return Error{*problem};
+  if (copies == 0) return runs;
+  if (auto problem = SweepPerturbationProblem(amount)) return Error{*problem};
+  std::vector<Run> all;
+  all.reserve(runs.size() * static_cast<std::size_t>(copies + 1));
+  for (const Run& run : runs) {
+    all.push_back(run);
+    for (int k = 1; k <= copies; ++k) {
+      auto scene = PerturbDynamicPositions(run.scenario, amount, RepeatSeed(kSweepPerturbSeed, k - 1));
+      if (!scene) return scene.GetError();
+      Run copy = run;
+      copy.scenario = std::move(scene).Value();
+      copy.id = Concat({run.id, " perturbed copy ", std::to_string(k)});
+      all.push_back(std::move(copy));
+    }
+  }
+  return all;
+}
+
+double ErrorSpread(const std::vector<double>& errors) {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  int infinite = 0;
+  double low = kInfinity;
+  double high = -kInfinity;
+  for (double error : errors) {
+    if (!std::isfinite(error)) {
+      ++infinite;  // a failed run (NaN) is an error never measured
+      continue;
+    }
+    low = std::min(low, error);
+    high = std::max(high, error);
+  }
+  if (infinite == static_cast<int>(errors.size())) return 0.0;
+  if (infinite > 0) return kInfinity;
+  return high - low;
+}
+
+Result<std::vector<RunResult>> FoldPerturbedCopies(std::vector<RunResult> results,
+                                                   const std::vector<int>& resultCounts, int copies,
+                                                   double amount) {
+  if (auto problem = PerturbCopiesProblem(copies)) return Error{*problem};
+  if (copies == 0) return results;
+  std::vector<RunResult> folded;
+  std::size_t next = 0;
+  const auto runs = static_cast<std::size_t>(copies + 1);
+  for (int count : resultCounts) {
+    const auto backends = static_cast<std::size_t>(std::max(count, 0));
+    if (next + runs * backends > results.size()) {
+      return Error{"perturbed copies: fewer results than the runs and their copies"};
+    }
+    for (std::size_t b = 0; b < backends; ++b) {
+      RunResult kept = std::move(results[next + b]);
+      std::vector<double> errors;
+      std::vector<double> perStep;
+      PerturbedRuns& perturbed = kept.perturbed;
+      perturbed.copies = copies;
+      perturbed.amount = amount;
+      for (std::size_t c = 0; c < runs; ++c) {
+        const RunResult& run = c == 0 ? kept : results[next + c * backends + b];
+        if (run.backend != kept.backend) {
+          return Error{Concat({"perturbed copies: ", kept.runId, ": copy ", std::to_string(c), " ran on ",
+                               run.backend, ", not ", kept.backend})};
+        }
+        errors.push_back(RunErrorScalar(run));
+        perStep.push_back(run.wallSecondsPerStepMedian);
+        perturbed.runSeconds.push_back(RunCost(run));
+      }
+      perturbed.errorSpread = ErrorSpread(errors);
+      kept.wallSecondsPerStepMedian = Median(perStep);
+      folded.push_back(std::move(kept));
+    }
+    next += runs * backends;
+  }
+  if (next != results.size()) return Error{"perturbed copies: more results than the runs and their copies"};
+  return folded;
+}
+
+}  // namespace talus::harness
