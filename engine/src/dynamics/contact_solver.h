@@ -213,7 +213,7 @@ class ContactSolver {
   }
   /// FrictionSolve::JointBlock's per-step patterns and solve operator of a
   /// pair with a normal block and friction (after PrepareBlock).
-  void PrepareJointBlock(PairRows& pair);
+  void PrepareJointBlock(const PairRows& pair);
   /// FrictionSolve::JointBlock on a pair with a normal block and friction:
   /// true when accepted (normals and friction written and applied).
   template <bool kTrack>

@@ -44,7 +44,7 @@ double AngularCoupling(const P& p, const Q& q) {
 // what share, and the acceptance test reads the current normal impulses),
 // and the solve operator, so that a sweep costs seven dot products, two
 // small products and the updates.
-void ContactSolver::PrepareJointBlock(PairRows& pair) {
+void ContactSolver::PrepareJointBlock(const PairRows& pair) {
   JointBlockRows& joint = m_jointBlocks[static_cast<std::size_t>(pair.block)];
   joint = JointBlockRows{};
   const int count = pair.pointCount;

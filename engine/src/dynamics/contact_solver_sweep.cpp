@@ -130,8 +130,7 @@ void ContactSolver::SolveNormals(const PairRows& pair) {
 // current normal impulse.
 template <bool kTrack>
 void ContactSolver::SolveFriction(const PairRows& pair) {
-  if (m_jointBlock && pair.block >= 0 &&
-      m_jointState[static_cast<std::size_t>(pair.block)] == kJointAccepted) {
+  if (UsesJointBlock(pair) && m_jointState[static_cast<std::size_t>(pair.block)] == kJointAccepted) {
     return;  // the joint block solved this pair's friction in this sweep
   }
   SolverVelocity& a = m_bodies.Velocity(pair.bodyA);
