@@ -32,6 +32,25 @@ WorldSettings Settings(FrictionSolve friction, int iterations) {
 
 Shape Box(const Vec3& half) { return Shape::CreateBox(half).Value(); }
 
+// The static ground the scenes stand on, its top face at y = 0.
+void AddGround(World& world, double mu) {
+  EXPECT_TRUE(world.CreateBody(
+      {.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({20, 0.5, 20}), .friction = mu}));
+}
+
+// A 0.5 m cube of 500 kg/m^3 (62.5 kg) at `position`, moving.
+BodyId AddCube(World& world, const Vec3& position, const Vec3& velocity, const Vec3& spin, double mu) {
+  return world
+      .CreateBody({.type = BodyType::Dynamic,
+                   .position = position,
+                   .linearVelocity = velocity,
+                   .angularVelocity = spin,
+                   .shape = Box(Vec3::Constant(0.25)),
+                   .density = 500.0,
+                   .friction = mu})
+      .Value();
+}
+
 struct Stop {
   double distance = 0.0;   ///< m along x when the box first stops
   double lateral = 0.0;    ///< m, |z| then
@@ -42,16 +61,8 @@ struct Stop {
 // stops (|vx| < 1e-6 m/s), then ten steps more.
 Stop SlideAndStop(const WorldSettings& settings, double v0, double mu, double h) {
   World world = World::Create(settings).Value();
-  EXPECT_TRUE(world.CreateBody(
-      {.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({20, 0.5, 20}), .friction = mu}));
-  const BodyId box = world
-                         .CreateBody({.type = BodyType::Dynamic,
-                                      .position = {0, 0.25, 0},
-                                      .linearVelocity = {v0, 0, 0},
-                                      .shape = Box(Vec3::Constant(0.25)),
-                                      .density = 500.0,
-                                      .friction = mu})
-                         .Value();
+  AddGround(world, mu);
+  const BodyId box = AddCube(world, {0, 0.25, 0}, {v0, 0, 0}, Vec3::Zero(), mu);
   Stop stop;
   for (int n = 0; n < 1000; ++n) {
     EXPECT_TRUE(world.Step(h));
@@ -187,8 +198,7 @@ TEST(JointBlock, ConvergesToWhereThePerPointRowsConverge) {
       WorldSettings settings =
           Settings(variant == 0 ? FrictionSolve::PerPoint : FrictionSolve::JointBlock, 200);
       World world = World::Create(settings).Value();
-      EXPECT_TRUE(world.CreateBody(
-          {.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({20, 0.5, 20}), .friction = mu}));
+      AddGround(world, mu);
       BodyId slab{};
       double base = 0.0;
       if (onSlab) {
@@ -201,15 +211,7 @@ TEST(JointBlock, ConvergesToWhereThePerPointRowsConverge) {
                    .Value();
         base = 0.2;
       }
-      const BodyId box = world
-                             .CreateBody({.type = BodyType::Dynamic,
-                                          .position = {0, base + 0.25, 0},
-                                          .linearVelocity = velocity,
-                                          .angularVelocity = spin,
-                                          .shape = Box(Vec3::Constant(0.25)),
-                                          .density = 500.0,
-                                          .friction = mu})
-                             .Value();
+      const BodyId box = AddCube(world, {0, base + 0.25, 0}, velocity, spin, mu);
       for (int n = 0; n < 120; ++n) EXPECT_TRUE(world.Step(1.0 / 60.0));
       final[variant] = world.GetBodyState(box).Value().position;
       slabFinal[variant] = onSlab ? world.GetBodyState(slab).Value().position : Vec3::Zero();
@@ -227,17 +229,8 @@ TEST(JointBlock, ConvergesToWhereThePerPointRowsConverge) {
 TEST(JointBlock, ACubeLeavingTheGroundIsNotHeldDown) {
   const double h = 1.0 / 60.0;
   World world = World::Create(Settings(FrictionSolve::JointBlock, 10)).Value();
-  EXPECT_TRUE(world.CreateBody(
-      {.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({20, 0.5, 20}), .friction = 0.8}));
-  const BodyId box = world
-                         .CreateBody({.type = BodyType::Dynamic,
-                                      .position = {0, 0.25, 0},
-                                      .linearVelocity = {0.5, 1.0, 0},
-                                      .angularVelocity = {0, 2.0, 0},
-                                      .shape = Box(Vec3::Constant(0.25)),
-                                      .density = 500.0,
-                                      .friction = 0.8})
-                         .Value();
+  AddGround(world, 0.8);
+  const BodyId box = AddCube(world, {0, 0.25, 0}, {0.5, 1.0, 0}, {0, 2.0, 0}, 0.8);
   for (int n = 1; n <= 10; ++n) {
     EXPECT_TRUE(world.Step(h));
     const double t = n * h;
@@ -260,22 +253,9 @@ TEST(JointBlock, ASlowSpinStopsInOneSweep) {
       WorldSettings settings = Settings(friction, 1);
       settings.maxVelocityIterations = 1;  // one sweep, no extra sweeps for the new pair
       World world = World::Create(settings).Value();
-      const auto ground = [&world] {
-        EXPECT_TRUE(world.CreateBody({.type = BodyType::Static,
-                                      .position = {0, -0.5, 0},
-                                      .shape = Box({20, 0.5, 20}),
-                                      .friction = 0.5}));
-      };
-      if (!cubeFirst) ground();
-      const BodyId box = world
-                             .CreateBody({.type = BodyType::Dynamic,
-                                          .position = {0, 0.25, 0},
-                                          .angularVelocity = {0, 0.3, 0},
-                                          .shape = Box(Vec3::Constant(0.25)),
-                                          .density = 500.0,
-                                          .friction = 0.5})
-                             .Value();
-      if (cubeFirst) ground();
+      if (!cubeFirst) AddGround(world, 0.5);
+      const BodyId box = AddCube(world, {0, 0.25, 0}, Vec3::Zero(), {0, 0.3, 0}, 0.5);
+      if (cubeFirst) AddGround(world, 0.5);
       EXPECT_TRUE(world.Step(1.0 / 60.0));
       const BodyState s = world.GetBodyState(box).Value();
       const double motion = s.angularVelocity.norm() + s.linearVelocity.norm();
@@ -369,21 +349,13 @@ TEST(JointBlock, BitIdenticalForAnyThreadCount) {
     WorldSettings settings = Settings(FrictionSolve::JointBlock, 10);
     settings.threads = threads;
     World world = World::Create(settings).Value();
-    EXPECT_TRUE(world.CreateBody(
-        {.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({20, 0.5, 20}), .friction = 0.6}));
+    AddGround(world, 0.6);
     std::vector<BodyId> boxes;
     for (int i = 0; i < 16; ++i) {
       const double x = (i % 4) * 0.7;
       const double z = (i / 4) * 0.7;
-      boxes.push_back(world
-                          .CreateBody({.type = BodyType::Dynamic,
-                                       .position = {x, 0.25 + 0.6 * (i % 2), z},
-                                       .linearVelocity = {1.5 - x, 0, 1.0 - z},
-                                       .angularVelocity = {0, 0.5 * (i % 3), 0},
-                                       .shape = Box(Vec3::Constant(0.25)),
-                                       .density = 500.0,
-                                       .friction = 0.6})
-                          .Value());
+      boxes.push_back(
+          AddCube(world, {x, 0.25 + 0.6 * (i % 2), z}, {1.5 - x, 0, 1.0 - z}, {0, 0.5 * (i % 3), 0}, 0.6));
     }
     for (int n = 0; n < 120; ++n) EXPECT_TRUE(world.Step(1.0 / 60.0));
     std::vector<double> state;
