@@ -12,6 +12,7 @@
 
 #include "talus/harness/run/results_file.h"
 #include "talus/harness/sweep/sweep.h"
+#include "testbed/one_metric_run.h"
 
 namespace talus::harness {
 namespace {
@@ -29,21 +30,8 @@ struct FileBuilder {
   void Add(const std::string& backend, const std::string& engine, double h, double seconds, double error) {
     if (std::find(file.backends.begin(), file.backends.end(), backend) == file.backends.end())
       file.backends.push_back(backend);
-    RunResult r;
-    r.scenario = "slide";
-    r.runId = "slide[h=..]";
-    r.backend = backend;
-    r.sweepValues = {{"h", "x"}};
-    r.timeStep = h;
-    r.steps = 10;
-    r.wallSecondsPerStepMedian = seconds / 10.0;
+    RunResult r = testing::OneMetricRun(backend, "x", h, seconds, error);
     if (!engine.empty()) r.settings = {{"engine", engine}, {"variant", backend}};
-    MetricResult metric = MakeMetric("m", "m");
-    metric.error = error;
-    metric.truth = 1.0;
-    metric.tolerance = {1.0, 0.0};
-    metric.checked = true;
-    r.metrics = {metric};
     file.results.push_back(r);
   }
 };

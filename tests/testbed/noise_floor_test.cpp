@@ -21,6 +21,7 @@
 #include "talus/harness/sweep/perturbed_copies.h"
 #include "talus/harness/sweep/sweep.h"
 #include "talus/reference/all_backends.h"
+#include "testbed/one_metric_run.h"
 
 namespace talus::harness {
 namespace {
@@ -218,21 +219,8 @@ TEST(PerturbedCopies, ResultsThatDoNotMatchTheCountsAreRefused) {
 // ---- The file format ----
 
 RunResult PointResult(double error, double seconds) {
-  RunResult r;
-  r.scenario = "slide";
-  r.runId = "slide[h=0.01]";
-  r.backend = "talus";
-  r.sweepValues = {{"h", "0.01"}};
-  r.timeStep = 0.01;
-  r.steps = 10;
-  r.wallSecondsPerStepMedian = seconds / 10.0;
+  RunResult r = testing::OneMetricRun("talus", "0.01", 0.01, seconds, error);
   r.settings = {{"engine", "Talus (double)"}};
-  MetricResult metric = MakeMetric("m", "m");
-  metric.error = error;
-  metric.truth = 1.0;
-  metric.tolerance = {1.0, 0.0};
-  metric.checked = true;
-  r.metrics = {metric};
   return r;
 }
 

@@ -1,0 +1,33 @@
+// A hand-made run of one sweep instance whose error scalar is exactly
+// `error`: one checked metric of truth 1 with an absolute tolerance of 1,
+// and wall time `seconds` over 10 steps. The sweep analysis tests build
+// their fronts from these, so every answer can be read off the numbers.
+#pragma once
+
+#include <string>
+
+#include "talus/harness/run/runner.h"
+#include "talus/harness/truth/truth_check.h"
+
+namespace talus::harness::testing {
+
+inline RunResult OneMetricRun(const std::string& backend, const std::string& hLabel, double h, double seconds,
+                              double error) {
+  RunResult run;
+  run.scenario = "slide";
+  run.runId = "slide[h=" + hLabel + "]";
+  run.backend = backend;
+  run.sweepValues = {{"h", hLabel}};
+  run.timeStep = h;
+  run.steps = 10;
+  run.wallSecondsPerStepMedian = seconds / 10.0;
+  MetricResult metric = MakeMetric("m", "m");
+  metric.error = error;
+  metric.truth = 1.0;
+  metric.tolerance = {1.0, 0.0};
+  metric.checked = true;
+  run.metrics = {metric};
+  return run;
+}
+
+}  // namespace talus::harness::testing
