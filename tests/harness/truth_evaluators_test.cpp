@@ -255,7 +255,11 @@ TEST(TruthEvaluators, TruthsOutsideTheGateAreJudgedButNotChecked) {
 // The exact clamped slide at steps fine enough that the 1 cm/s stop
 // threshold is crossed steps before the speed reaches zero: the stop time
 // must still match (it failed at 1.2 tolerances at 1/480 s when the truth
-// was the step the speed reached zero).
+// was the step the speed reached zero). And the gate still catches a broken
+// engine: friction 3% too weak slides 3% too far (fails the 1% distance at
+// every step) and 3% too long (0.010 s), which fails the time where one
+// sample interval is small (1/480 s: 1% of 0.34 s plus 2.1 ms = 5.5 ms) but
+// not at 1/60 s, where the sample interval alone is 17 ms, 5% of the slide.
 TEST(TruthEvaluators, SlidingStopTimeMatchesAtFineSteps) {
   for (const double h : {1.0 / 60.0, 1.0 / 480.0, 1.0 / 960.0}) {
     harness::Run run = LoadRun("sliding/box_slide.json", 0);  // mu 0.3, v0 1
@@ -263,20 +267,27 @@ TEST(TruthEvaluators, SlidingStopTimeMatchesAtFineSteps) {
     run.steps = static_cast<int>(std::lround(1.0 / h));
     const Truth& truth = run.scenario.truths[0];
     const auto& kind = std::get<SlidingStopTruth>(truth.kind);
-    Trajectory trajectory = Begin(run);
-    std::vector<BodyReading> states = StartStates(run);
-    double v = kind.v0, x = 0.0;
-    for (int step = 1; step <= run.steps; ++step) {
-      v = std::max(0.0, v - kind.mu * kind.g * h);
-      x += v * h;
-      states[1].centerOfMass = run.scenario.bodies[1].position + x * kind.direction;
-      states[1].linearVelocity = v * kind.direction;
-      trajectory.samples.push_back(MakeSample(run, step, states));
-    }
-    const auto metrics = EvaluateTruth(run, truth, trajectory);
+    // The clamped symplectic-Euler slide with friction coefficient `mu`.
+    const auto slide = [&](double mu) {
+      Trajectory trajectory = Begin(run);
+      std::vector<BodyReading> states = StartStates(run);
+      double v = kind.v0, x = 0.0;
+      for (int step = 1; step <= run.steps; ++step) {
+        v = std::max(0.0, v - mu * kind.g * h);
+        x += v * h;
+        states[1].centerOfMass = run.scenario.bodies[1].position + x * kind.direction;
+        states[1].linearVelocity = v * kind.direction;
+        trajectory.samples.push_back(MakeSample(run, step, states));
+      }
+      return EvaluateTruth(run, truth, trajectory);
+    };
+    const auto metrics = slide(kind.mu);
     EXPECT_TRUE(AllPass(metrics)) << h;
     EXPECT_NEAR(Find(metrics, "sliding_stop.time").error, 0.0, 1e-12) << h;
     EXPECT_NEAR(Find(metrics, "sliding_stop.distance").error, 0.0, 1e-12) << h;
+    const auto weak = slide(0.97 * kind.mu);
+    EXPECT_FALSE(Find(weak, "sliding_stop.distance").pass) << h;
+    EXPECT_EQ(Find(weak, "sliding_stop.time").pass, h > 1.0 / 100.0) << h;
   }
 }
 
