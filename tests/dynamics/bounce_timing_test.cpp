@@ -152,9 +152,12 @@ TEST(TimedBounces, BallApexesAreRestitutionSquaredPowersOfTheDrop) {
       for (const double h : {kH, 1.0 / 30.0, 1.0 / 240.0}) {
         BallScene scene = DropBall(height, e, BounceSettings());
         // Bounces whose impact speed e^(k-1) sqrt(2 g H) clears the 0.5 m/s
-        // threshold by 20%, at most 4.
+        // threshold at all (0.2% above it, far above round-off), at most 4:
+        // e = 0.5 from 1 m lands a fourth time at 0.55 m/s, after a flight
+        // whose last step starts 14.6 mm up at 1/30 s; a speculative row
+        // asking h vn of that step stopped it on the surface at 0.44 m/s.
         int count = 0;
-        while (count < 4 && std::pow(e, count) * std::sqrt(2.0 * kG * height) > 0.6) ++count;
+        while (count < 4 && std::pow(e, count) * std::sqrt(2.0 * kG * height) > 0.501) ++count;
         const std::vector<double> apexes = Apexes(scene, count, h);
         ASSERT_EQ(static_cast<int>(apexes.size()), count) << "e " << e << " H " << height << " h " << h;
         for (int k = 1; k <= count; ++k) {

@@ -111,12 +111,23 @@ PrincipalAxes ComputePrincipalAxes(const Mat3& inertia) {
 
 FreeRotation SplitFreeRotation(const Quat& orientation, const PrincipalAxes& principal, const Vec3& momentum,
                                double h, SplittingOrder order) {
+  const Vec3& moments = principal.moments;
+  if (moments[0] == moments[1] && moments[1] == moments[2]) {
+    // Equal moments (a sphere, a cube): I w x w = 0, so w = L / I stays
+    // constant and the exact flow is one turn at that rate. The splitting
+    // would only approximate it (its sub-flows do not commute even here)
+    // at 5 or 13 sines and cosines; with L = 0 nothing turns at all.
+    FreeRotation out;
+    out.angularVelocity = momentum / moments[0];
+    out.orientation = TurnAtConstantRate(orientation, out.angularVelocity, h);
+    return out;
+  }
+  if (momentum.isZero(0.0)) return {orientation, Vec3::Zero()};  // no flow to follow
   // Principal axes to world, and the momentum seen from them.
   const Quat start = orientation * principal.frame;
   Vec3 pi = start.conjugate() * momentum;
   const double magnitude = pi.norm();
   Quat turn = Quat::Identity();
-  const Vec3& moments = principal.moments;
   if (order == SplittingOrder::Fourth) {
     for (const auto& [axis, fraction] : kTripleJumpFlows) {
       FlowAboutPrincipalAxis(axis, fraction * h, moments, pi, turn);

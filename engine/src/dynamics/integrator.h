@@ -90,6 +90,8 @@ enum class SplittingOrder { Second, Fourth };
 /// for a body at `orientation` with principal axes `principal` and world
 /// angular momentum `momentum` (kg m^2/s): the new orientation (unit) and
 /// the angular velocity (world, rad/s) of that orientation with the same L.
+/// Equal principal moments take the exact flow instead (one turn at the
+/// constant rate L / I), and L = 0 returns `orientation` unchanged.
 struct FreeRotation {
   Quat orientation = Quat::Identity();
   Vec3 angularVelocity = Vec3::Zero();
