@@ -23,6 +23,7 @@ World MakePyramid(int h, ContactSolverKind kind, int settle) {
   WorldSettings settings;
   settings.sleeping = false;
   settings.contactSolver = kind;
+  settings.timeStages = true;  // the per-stage counters below read StepStatistics::seconds
   World world = World::Create(settings).Value();
   (void)world.CreateBody({.type = BodyType::Static,
                           .position = {0.0, -1.0, 0.0},

@@ -62,9 +62,12 @@ TEST(Replay, TalusCountersShowTheBroadPhaseFunnelForFifteenFallingCubes) {
   const harness::Run run = FreeFall15();
   ASSERT_EQ(run.scenario.world.broadPhase, BroadPhaseChoice::UniformGrid);
   RunnerOptions options;
-  options.backends = {"talus"};
+  // talus-coloured keeps the fixed 2 cm speculative margin, so the spheres
+  // are the shapes' own plus 2 cm; talus grows them by each body's reach
+  // this step (WorldSettings::speculativeMotion, the next test).
+  options.backends = {"talus-coloured"};
   options.replay = {"all"};
-  const RunResult result = RunOne(MakeRegistry(), run, "talus", options);
+  const RunResult result = RunOne(MakeRegistry(), run, "talus-coloured", options);
   const std::vector<std::string> expected = {"bodies",
                                              "candidate pairs",
                                              "sphere pairs",
@@ -94,15 +97,32 @@ TEST(Replay, TalusCountersShowTheBroadPhaseFunnelForFifteenFallingCubes) {
   EXPECT_TRUE(last.contacts.empty());
 }
 
+// talus's spheres grow by each body's reach this step (here the fall speed
+// times h), so more of them touch than the fixed margin's 10; but the
+// cubes fall side by side, nothing closes on anything, and the narrow
+// phase's pair margins (relative motion) leave them apart: no contact.
+TEST(Replay, TalusSpheresGrowWithTheFallButNoPairCloses) {
+  const harness::Run run = FreeFall15();
+  RunnerOptions options;
+  options.backends = {"talus"};
+  options.replay = {"all"};
+  const RunResult result = RunOne(MakeRegistry(), run, "talus", options);
+  const ReplayFrame& last = result.replay.frames.back();
+  EXPECT_GT(last.counters[2], 10.0);
+  EXPECT_EQ(last.counters[4], 0.0);
+  EXPECT_EQ(last.counters[5], 0.0);
+  EXPECT_TRUE(last.contacts.empty());
+}
+
 // Without the forcing, a world of 15 bodies takes brute force: every pair
 // is a candidate, and the pairs found are the same.
 TEST(Replay, AutoBroadPhaseRunsBruteForceOnFifteenCubesWithTheSamePairs) {
   harness::Run run = FreeFall15();
   run.scenario.world.broadPhase = BroadPhaseChoice::Auto;
   RunnerOptions options;
-  options.backends = {"talus"};
+  options.backends = {"talus-coloured"};  // the fixed margin, as above
   options.replay = {"all"};
-  const RunResult result = RunOne(MakeRegistry(), run, "talus", options);
+  const RunResult result = RunOne(MakeRegistry(), run, "talus-coloured", options);
   EXPECT_EQ(StructureThatRan(result.replay),
             "brute force in all " + std::to_string(result.replay.frames.size() - 1) + " recorded steps");
   const ReplayFrame& last = result.replay.frames.back();

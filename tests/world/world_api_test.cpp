@@ -174,5 +174,38 @@ TEST(WorldApi, StaticAndKinematicBodiesIgnoreForces) {
   EXPECT_EQ(world.GetBodyState(lift).Value().linearVelocity, Vec3(0, 1, 0));
 }
 
+// StepStatistics::seconds is filled only when WorldSettings::timeStages is
+// on; then every stage that ran took some time and the total is their sum.
+// Off, the same step leaves every field 0 and the physics is the same bits.
+TEST(WorldApi, StageTimesAreFilledOnlyWhenAskedFor) {
+  BodyState states[2];
+  for (const bool timed : {false, true}) {
+    World world = World::Create({.timeStages = timed}).Value();
+    ASSERT_TRUE(world.CreateBody({.type = BodyType::Static, .shape = Shape::CreateBox({5, 0.5, 5}).Value()}));
+    const BodyId box = world
+                           .CreateBody({.type = BodyType::Dynamic,
+                                        .position = {0, 0.7, 0},
+                                        .shape = Shape::CreateBox({0.2, 0.2, 0.2}).Value()})
+                           .Value();
+    StepStatistics last;
+    for (int n = 0; n < 30; ++n) last = world.Step(1.0 / 60.0).Value();
+    const StageTimes& t = last.seconds;
+    const double sum = t.updateBroadPhase + t.integrateVelocities + t.findContacts + t.prepareContacts +
+                       t.solveVelocities + t.solveSplitImpulses + t.scatterAndStoreImpulses +
+                       t.integratePositions + t.correctPositions + t.sleep;
+    if (timed) {
+      EXPECT_GT(t.findContacts, 0.0);
+      EXPECT_GT(t.solveVelocities, 0.0);
+      EXPECT_EQ(t.total, sum);
+    } else {
+      EXPECT_EQ(sum, 0.0);
+      EXPECT_EQ(t.total, 0.0);
+    }
+    states[timed ? 1 : 0] = world.GetBodyState(box).Value();
+  }
+  EXPECT_EQ(states[0].position, states[1].position);
+  EXPECT_EQ(states[0].orientation.coeffs(), states[1].orientation.coeffs());
+}
+
 }  // namespace
 }  // namespace talus

@@ -13,7 +13,8 @@ namespace talus {
 
 /// Wall-clock seconds spent in each stage of one step, one field per stage
 /// of World::Step (world_step.cpp), named as the stage function is; the
-/// stages partition the step, so `total` is their sum.
+/// stages partition the step, so `total` is their sum. All 0 unless
+/// WorldSettings::timeStages is on.
 struct StageTimes {
   double updateBroadPhase = 0.0;         ///< bounding spheres in, the structure rebuilt or refitted
   double integrateVelocities = 0.0;      ///< forces, gravity, gyroscopic term

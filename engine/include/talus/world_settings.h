@@ -264,6 +264,12 @@ struct WorldSettings {
   /// structure ran); true is for figures and tests that must show the
   /// selected structure at work on a small scene.
   bool forceBroadPhase = false;
+  /// Time each stage of the step into StepStatistics::seconds (11 clock
+  /// reads a step). Default off, the fields then stay 0: the reads cost
+  /// about 0.25 us a step, a fifth of a two-body step (a ball on a floor,
+  /// measured with perf), for figures only a profile asks for.
+  /// talus-scenes and the contact-solver benchmark turn it on.
+  bool timeStages = false;
   /// SAT mode, manifold generator, SAT cache and speculative margin (see
   /// talus/narrow_phase.h); the margin must be finite and >= 0. The World's
   /// default margin is 0.02 m, not the narrow phase's 0: points that lift by
@@ -272,6 +278,12 @@ struct WorldSettings {
   /// a resting box settles to 3e-7 m of its true height with it and to
   /// 2 mm (inside the slop) without.
   NarrowPhaseSettings narrowPhase = {.speculativeMargin = 0.02};
+  /// Grow each pair's speculative margin (and each body's broad-phase
+  /// sphere) by how far the bodies can move this step, h (|v| + |w| rho +
+  /// g h), rho the farthest point's distance from the centre of mass, so a
+  /// feature that can reach the other shape this step is in the manifold
+  /// before it lands. Default off (the fixed margin above).
+  bool speculativeMotion = false;
   /// Let islands at rest fall asleep and cost nothing. Default on.
   bool sleeping = true;
   /// A body is at rest while its linear speed stays below this, m/s, >= 0.

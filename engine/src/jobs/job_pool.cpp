@@ -95,7 +95,7 @@ JobPool::~JobPool() {
   for (std::thread& worker : m_workers) worker.join();
 }
 
-void JobPool::ParallelFor(int count, int grain, const std::function<void(int, int)>& fn) noexcept {
+void JobPool::ParallelForOnWorkers(int count, int grain, const std::function<void(int, int)>& fn) noexcept {
   const JobPhase phase{.count = count, .grain = grain};
   RunPhases(std::span<const JobPhase>(&phase, 1), [&fn](int, int begin, int end) { fn(begin, end); });
 }

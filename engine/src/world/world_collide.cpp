@@ -77,6 +77,27 @@ bool ReuseManifold(const WorldData& d, const Contact& before, const ManifoldAnch
   return true;
 }
 
+// How far the two bodies can close on each other this step
+// (WorldSettings::speculativeMotion): the step times the relative speed of
+// their centres, as gravity has already left them (IntegrateVelocities ran),
+// plus each one's turn rate times its turning radius; a free body moves on
+// the mean of its old and new velocity, up to g h / 2 off the new one, so a
+// pair with one dynamic body adds g h^2 / 2 (two dynamic bodies fall
+// alike). Relative, not each body's own reach: boxes falling side by side
+// do not close on each other. The pair's margin is the larger of this and
+// the fixed one: a corner that can land within the step is a speculative
+// point before it does, and where the reach is below the margin nothing
+// changes.
+double PairReach(const WorldData& d, const BodySim& simA, const BodySim& simB, std::size_t a, std::size_t b) {
+  const double h = d.reachStep;
+  const bool dynamicA = simA.type == BodyType::Dynamic;
+  const bool dynamicB = simB.type == BodyType::Dynamic;
+  const double fall = dynamicA != dynamicB ? 0.5 * d.settings.gravity.norm() * h * h : 0.0;
+  return h * ((simA.linearVelocity - simB.linearVelocity).norm() +
+              simA.angularVelocity.norm() * d.reachRadii[a] + simB.angularVelocity.norm() * d.reachRadii[b]) +
+         fall;
+}
+
 // One pair through the narrow phase: reads the world (bodies, shapes, last
 // step's contacts, anchors and caches) and writes only `out`, so pairs can
 // run on any thread in any order. `out.oldContact` and `out.oldCache` are
@@ -131,14 +152,18 @@ void CollidePair(const WorldData& d, const BroadPhasePair& pair, PairOutcome& ou
                                         : SatCache{}};
   // A is the lower slot: the manifold's normal points from b towards a.
   out.persistentPoints = 0;
-  const NarrowPhaseSettings& narrow = d.settings.narrowPhase;
+  NarrowPhaseSettings narrow = d.settings.narrowPhase;
+  if (d.settings.speculativeMotion) {
+    narrow.speculativeMargin = std::max(narrow.speculativeMargin, PairReach(d, simA, simB, a, b));
+  }
   if (!Collide(*d.shapes[a], xfA, *d.shapes[b], xfB, narrow, &out.cache.cache, &out.stats, &manifold)) return;
   // Spheres get exact single points from a closed form; only polyhedron
-  // pairs remember points.
-  const bool persists = narrow.persistence == ManifoldPersistence::Accumulate &&
-                        d.shapes[a]->Type() != ShapeType::Sphere && d.shapes[b]->Type() != ShapeType::Sphere;
-  out.anchors =
-      narrow.reuseDistance > 0.0 || persists ? RecordAnchors(manifold, xfA, xfB) : ManifoldAnchors{};
+  // pairs remember points, or reuse them (ReuseManifold), so only they need
+  // anchors.
+  const bool polyhedra = d.shapes[a]->Type() != ShapeType::Sphere && d.shapes[b]->Type() != ShapeType::Sphere;
+  const bool persists = narrow.persistence == ManifoldPersistence::Accumulate && polyhedra;
+  out.anchors = (narrow.reuseDistance > 0.0 && polyhedra) || persists ? RecordAnchors(manifold, xfA, xfB)
+                                                                      : ManifoldAnchors{};
   if (persists) SnapAnchorsToSurfaces(*d.shapes[a], xfA, *d.shapes[b], xfB, manifold, &out.anchors);
   if (persists && out.oldContact >= 0) {
     const auto old = static_cast<std::size_t>(out.oldContact);
@@ -184,29 +209,45 @@ void GatherPair(WorldData& d, const PairOutcome& outcome) {
 
 }  // namespace
 
-Result<int> UpdateBroadPhase(WorldData& d) {
+Result<int> UpdateBroadPhase(WorldData& d, double h) {
   const std::size_t count = d.sims.size();
   // The spheres grow by the speculative margin so pairs that close within
-  // the margin reach the narrow phase.
+  // the margin reach the narrow phase; with speculativeMotion, by the
+  // body's own reach this step where that is larger: |v| + g h (gravity is
+  // still to come) plus |w| times its turning radius, so any pair whose
+  // PairReach exceeds the margin is found.
   const double margin = d.settings.narrowPhase.speculativeMargin;
+  const bool motion = d.settings.speculativeMotion;
+  const double gravityStep = d.settings.gravity.norm() * h;
   d.proxies.resize(count);
-  d.jobs->ParallelFor(static_cast<int>(count), kProxyGrain, [&d, margin](int begin, int end) {
-    for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
-      BroadPhaseProxy& proxy = d.proxies[i];
-      const std::optional<Shape>& shape = d.shapes[i];
-      if (!d.records[i].alive || !shape.has_value()) {
-        proxy = BroadPhaseProxy{};
-        proxy.active = false;
-        continue;
-      }
-      const BodySim& sim = d.sims[i];
-      const Sphere& local = shape->LocalBoundingSphere();
-      proxy.active = true;
-      proxy.sphere.center = BodyTransform(sim).Apply(local.center);
-      proxy.sphere.radius = local.radius + margin;
-      proxy.isStatic = sim.type != BodyType::Dynamic;
-    }
-  });
+  d.reachStep = h;
+  d.reachRadii.resize(motion ? count : 0);
+  d.jobs->ParallelFor(
+      static_cast<int>(count), kProxyGrain, [&d, margin, motion, gravityStep, h](int begin, int end) {
+        for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
+          BroadPhaseProxy& proxy = d.proxies[i];
+          const std::optional<Shape>& shape = d.shapes[i];
+          if (!d.records[i].alive || !shape.has_value()) {
+            proxy = BroadPhaseProxy{};
+            proxy.active = false;
+            if (motion) d.reachRadii[i] = 0.0;
+            continue;
+          }
+          const BodySim& sim = d.sims[i];
+          const Sphere& local = shape->LocalBoundingSphere();
+          proxy.active = true;
+          proxy.sphere.center = BodyTransform(sim).Apply(local.center);
+          proxy.sphere.radius = local.radius + margin;
+          proxy.isStatic = sim.type != BodyType::Dynamic;
+          if (motion) {
+            const double radius = (proxy.sphere.center - sim.center).norm() + local.radius;
+            d.reachRadii[i] = radius;
+            const double speed = sim.linearVelocity.norm() + sim.angularVelocity.norm() * radius +
+                                 (sim.type == BodyType::Dynamic ? gravityStep : 0.0);
+            proxy.sphere.radius = local.radius + std::max(margin, speed * h);
+          }
+        }
+      });
   d.broadPhase.SetKind(d.settings.broadPhase);
   d.broadPhase.SetTinyWorldProxies(d.settings.forceBroadPhase ? 0 : kTinyWorldProxies);
   return d.broadPhase.Update(d.proxies);

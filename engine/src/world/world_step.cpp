@@ -42,10 +42,15 @@
 namespace talus {
 namespace {
 
-// Wall-clock seconds since construction or the last Lap().
+// Wall-clock seconds since construction or the last Lap(); 0 without
+// reading the clock when the world does not time its stages.
 class StageClock {
  public:
+  explicit StageClock(bool on) : m_on(on) {
+    if (m_on) m_last = std::chrono::steady_clock::now();
+  }
   double Lap() {
+    if (!m_on) return 0.0;
     const auto now = std::chrono::steady_clock::now();
     const double seconds = std::chrono::duration<double>(now - m_last).count();
     m_last = now;
@@ -53,7 +58,8 @@ class StageClock {
   }
 
  private:
-  std::chrono::steady_clock::time_point m_last = std::chrono::steady_clock::now();
+  bool m_on;
+  std::chrono::steady_clock::time_point m_last;
 };
 
 void CountBodies(const WorldData& d, StepStatistics& stats) {
@@ -154,8 +160,8 @@ Result<StepStatistics> World::Step(double dt) {
   }
   WorldData& d = *m_data;
   StepStatistics stats;
-  StageClock clock;
-  if (const Result<int> proxies = UpdateBroadPhase(d); !proxies) {
+  StageClock clock(d.settings.timeStages);
+  if (const Result<int> proxies = UpdateBroadPhase(d, dt); !proxies) {
     return Error{"World::Step refused: " + proxies.GetError().message};
   }
   CountBodies(d, stats);

@@ -168,6 +168,7 @@ Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_v
   auto created = registry.Create(engine, run);
   if (!created) return created.GetError();
   Backend& backend = *created.Value();
+  backend.TimeStages();
 
   const int driftStart = std::min(kPyramidDriftStartStep, steps);
   std::vector<Vec3> startCenters;

@@ -110,6 +110,7 @@ class TalusBackend final : public harness::Backend {
   [[nodiscard]] std::vector<harness::Setting> Settings() const override { return m_settings; }
   [[nodiscard]] std::vector<harness::StepCounter> StepCounters() const override;
   [[nodiscard]] std::vector<harness::StageTiming> StageTimings() const override;
+  void TimeStages() override;
   [[nodiscard]] std::string StepFailure() const override { return m_failure; }
 
  private:
@@ -183,6 +184,19 @@ harness::Setting FrictionSolveSetting(const WorldSettings& s) {
           "a stopping or sticking box is at rest within a sweep instead of converging by about 0.6 a sweep "
           "(box_slide at 1/30 s, 5 sweeps: 2.6e-5 m short and rocking before, exact after); contact scenes "
           "0.8-0.9 times the cost (the accepted pair's friction rows are skipped)"};
+}
+
+// The speculative margin, and whether it grows with the step's motion.
+harness::Setting SpeculativeMarginSetting(const WorldSettings& s) {
+  const std::string fixed = SettingNumber(s.narrowPhase.speculativeMargin);
+  if (!s.speculativeMotion) return {"speculative margin (m)", fixed};
+  return {"speculative margin (m)",
+          fixed + ", or the pair's reach this step where larger (h (|v| + |w| rho + g h) of each body)",
+          fixed + " (fixed)",
+          "a body that can reach the other shape within the step is in the manifold before it lands: "
+          "at 1/30 s tall_box_tipping 15 degrees 0.18 -> 4.4e-4 tolerances, 24 degrees 0.034 -> 0.008, "
+          "hull_rest 0.54 -> 4e-14; box_toss at 1/120 to 1/30 s moves within its round-off spread; no "
+          "change where the reach is below the margin"};
 }
 
 WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine friction,
@@ -276,7 +290,15 @@ WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine fric
   // at the exact distance instead of 2.6e-5 m short and rocking, and the
   // contact scenes cost 0.8-0.9 times as much (the pair's friction rows are
   // skipped when the block is accepted).
+  // A speculative margin as large as the step's reach (the same variants):
+  // measured on the sweep, a box tipping over at 1/30 s or a hull landing
+  // on a corner is caught at the surface instead of sinking in and being
+  // pushed out (at 1/30 s tall_box_tipping 15 degrees 0.18 -> 4.4e-4
+  // tolerances, 24 degrees 0.034 -> 0.008, hull_rest 0.54 -> 4e-14), and
+  // nothing changes where the reach is below the fixed margin (fine steps,
+  // slow bodies: the same bits).
   if (variant == Variant::Defaults || variant == Variant::SplitImpulses) {
+    settings.speculativeMotion = true;
     settings.frictionSolve = FrictionSolve::JointBlock;
   }
   return settings;
@@ -384,6 +406,13 @@ std::vector<harness::StageTiming> TalusBackend::StageTimings() const {
           {"UpdateSleep", t.sleep}};
 }
 
+void TalusBackend::TimeStages() {
+  WorldSettings settings = m_world.Settings();
+  settings.timeStages = true;
+  [[maybe_unused]] const Status set = m_world.SetSettings(settings);
+  assert(set);  // the world's own settings, one flag changed
+}
+
 harness::BodyReading TalusBackend::GetBodyState(int index) const {
   const auto state = m_world.GetBodyState(m_bodies.at(static_cast<std::size_t>(index)));
   assert(state);
@@ -464,7 +493,7 @@ void TalusBackend::AddSettings(const Run& run) {
       {"persistent points (m break distance)", s.narrowPhase.persistence == ManifoldPersistence::Accumulate
                                                    ? SettingNumber(s.narrowPhase.persistenceDistance)
                                                    : "off"},
-      {"speculative margin (m)", SettingNumber(s.narrowPhase.speculativeMargin)},
+      SpeculativeMarginSetting(s),
       {"gyroscopic term", s.rotation == RotationIntegrator::ConstantRate
                               ? "off (WorldSettings::rotation = ConstantRate)"
                           : s.rotation == RotationIntegrator::MomentumSplitting

@@ -110,6 +110,10 @@ class Backend {
   /// the backend's own work around it). Empty (the default) when the engine
   /// does not time its stages; talus-scenes reports them (bench_run.h).
   [[nodiscard]] virtual std::vector<StageTiming> StageTimings() const { return {}; }
+  /// Asks the engine to time its stages from the next Step on (an engine
+  /// that can time them may skip the clock reads otherwise). Does nothing
+  /// by default.
+  virtual void TimeStages() {}
 };
 
 /// Whether a backend's worlds may step on several threads at once: declared
