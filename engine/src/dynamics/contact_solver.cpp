@@ -135,7 +135,7 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
   m_frictions.resize(static_cast<std::size_t>(frictions));
   m_cold.resize(static_cast<std::size_t>(points));
   m_blockInverses.resize(static_cast<std::size_t>(blocks));
-  m_jointState.assign(m_jointBlock ? static_cast<std::size_t>(blocks) : 0, kJointUntried);
+  m_jointState.assign(m_jointBlock ? static_cast<std::size_t>(blocks) : 0, kJointUnbuilt);
   m_jointBlocks.resize(m_jointBlock ? static_cast<std::size_t>(blocks) : 0);
 
   std::atomic<int> timedBounces{0};
@@ -257,7 +257,6 @@ void ContactSolver::PreparePair(std::span<const BodySim> bodies, const Contact& 
     m_cold[static_cast<std::size_t>(pair.firstPoint + i)] = cold;
   }
   if (pair.block >= 0) PrepareBlock(pair);
-  if (UsesJointBlock(pair)) PrepareJointBlock(pair);
 }
 
 // Warm start: each point's accumulated impulse lambda_n n + lambda_1 t1 +
