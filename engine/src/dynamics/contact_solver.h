@@ -111,6 +111,7 @@
 //   friction rows, e == 0 no restitution work.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <span>
 #include <vector>
@@ -177,6 +178,20 @@ class ContactSolver {
   [[nodiscard]] int PointCount() const { return static_cast<int>(m_normals.size()); }
   /// The coloured solver of the last Prepare (empty unless ColouredWide).
   [[nodiscard]] const WideContactSolver& Wide() const { return m_wide; }
+
+  /// When FrictionSolve::JointBlock builds a face pair's operator: at the
+  /// pair's first try of the step (the default: a pair refused there, most
+  /// box-box pairs of a pyramid, never stores it), or at Prepare for every
+  /// face pair, the reference the first try must match bit for bit (the
+  /// same rows and warm-started impulses; tests compare the two).
+  enum class JointBlockBuild { AtFirstTry, AtPrepare };
+  void SetJointBlockBuild(JointBlockBuild when) { m_jointBuild = when; }
+  /// FrictionSolve::JointBlock's tries in the last step's sweeps.
+  struct JointBlockCounts {
+    std::int64_t accepted = 0;  ///< the pair stuck: normals and friction solved as one block
+    std::int64_t refused = 0;   ///< a pulling normal, a friction past its bound, or no lever for the twist
+  };
+  [[nodiscard]] const JointBlockCounts& LastJointBlockCounts() const { return m_jointCounts; }
 
  private:
   static RowJacobian MakeJacobian(const Vec3& d, const Vec3& rA, const Vec3& rB, const Mat3& invInertiaA,
@@ -258,6 +273,8 @@ class ContactSolver {
   bool m_useWide = false;     ///< ColouredWide selected at the last Prepare
   bool m_split = false;       ///< SplitImpulses selected at the last Prepare
   bool m_jointBlock = false;  ///< FrictionSolve::JointBlock selected at the last Prepare
+  JointBlockBuild m_jointBuild = JointBlockBuild::AtFirstTry;
+  JointBlockCounts m_jointCounts;
   PhaseRunner m_runner;
   std::vector<JobPhase> m_phases;  ///< scratch: the chain of the coloured passes
   int m_newPairs = 0;              ///< pairs that did not persist

@@ -193,6 +193,7 @@ bool ContactSolver::TryJointBlock(const PairRows& pair, const JointBlockRows& jo
     normal[si] = normals[i].impulse + xn[i];
     if (normal[si] < 0.0) {
       state = kJointRefused;
+      ++m_jointCounts.refused;
       return false;
     }
     load += normal[si];
@@ -225,6 +226,7 @@ bool ContactSolver::TryJointBlock(const PairRows& pair, const JointBlockRows& jo
   if (joint.spin) {
     if (!(spread > kLeastLever * kLeastLever)) {
       state = kJointRefused;  // the load sits at one place: it cannot carry a torque
+      ++m_jointCounts.refused;
       return false;
     }
     twist = (moment - (centre[0] * force[1] - centre[1] * force[0])) / spread;
@@ -240,6 +242,7 @@ bool ContactSolver::TryJointBlock(const PairRows& pair, const JointBlockRows& jo
     for (int k = 0; k < 2; ++k) {
       if (std::abs(part[k]) > bound) {
         state = kJointRefused;
+        ++m_jointCounts.refused;
         return false;
       }
       friction[static_cast<std::size_t>(2 * i + k)] = part[k];
@@ -264,6 +267,7 @@ bool ContactSolver::TryJointBlock(const PairRows& pair, const JointBlockRows& jo
   v.Store(a, b);
   if constexpr (kTrack) m_largestChange = std::max(m_largestChange, tracker.largest);
   state = kJointAccepted;
+  ++m_jointCounts.accepted;
   return true;
 }
 
