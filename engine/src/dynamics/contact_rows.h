@@ -45,21 +45,33 @@ struct PointCold {
   Vec3 armB = Vec3::Zero();          ///< rB = p - cB
 };
 
+/// A friction impulse pattern of FrictionSolve::JointBlock as the sweep
+/// reads it: the angular parts of its generalised row (sums of r x P over
+/// the points). Their images under the inverse inertia are needed only to
+/// build the operator, so they are not kept.
+struct PatternRow {
+  Vec3 angularA = Vec3::Zero();  ///< sum rA_i x P_i, metres
+  Vec3 angularB = Vec3::Zero();  ///< sum rB_i x P_i, metres
+};
+
 /// FrictionSolve::JointBlock's per-step data of a pair with a normal block
 /// (dynamics/contact_solver.h): three friction impulse patterns as
-/// generalised rows (slip along t1, along t2, spin about n), the points'
-/// places in the contact plane, and the pieces of the block's solve operator.
+/// generalised rows (slip along t1, along t2, spin about n), the pieces of
+/// the block's solve operator, and the points' places in the contact plane.
+/// 384 bytes, six cache lines (the sweep that tries every face pair is
+/// bound by memory, not arithmetic), the flags in the padding at the end.
 struct JointBlockRows {
-  RowJacobian pattern[3];  ///< sums of r x P over the points, and their images
+  PatternRow pattern[3];
+  /// B Knp: the normal block's pseudo-inverse times the normal-pattern coupling.
+  Eigen::Matrix<double, 4, 3> blockTimesCoupling = Eigen::Matrix<double, 4, 3>::Zero();
   /// Row i: point i's offset from the patterns' centre of pressure along
   /// t1 and t2, metres (where the accepted friction is shared out).
   Eigen::Matrix<double, 4, 2> plane = Eigen::Matrix<double, 4, 2>::Zero();
-  /// B Knp: the normal block's pseudo-inverse times the normal-pattern coupling.
-  Eigen::Matrix<double, 4, 3> blockTimesCoupling = Eigen::Matrix<double, 4, 3>::Zero();
   Eigen::Matrix3d schurInverse = Eigen::Matrix3d::Zero();  ///< (Kpp - Kpn B Knp)^-1
   bool spin = false;    ///< the spin pattern is used (some lever, some body can turn)
   bool usable = false;  ///< the Schur complement was positive definite
 };
+static_assert(sizeof(JointBlockRows) <= 384, "JointBlockRows: six cache lines, the sweep's budget");
 
 struct PairRows {
   int bodyA = -1, bodyB = -1;  ///< solver-body indices

@@ -135,8 +135,9 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
   m_frictions.resize(static_cast<std::size_t>(frictions));
   m_cold.resize(static_cast<std::size_t>(points));
   m_blockInverses.resize(static_cast<std::size_t>(blocks));
-  m_jointState.assign(m_jointBlock ? static_cast<std::size_t>(blocks) : 0, kJointUntried);
+  m_jointState.assign(m_jointBlock ? static_cast<std::size_t>(blocks) : 0, kJointUnbuilt);
   m_jointBlocks.resize(m_jointBlock ? static_cast<std::size_t>(blocks) : 0);
+  m_jointCounts = JointBlockCounts{};
 
   std::atomic<int> timedBounces{0};
   std::atomic<int> restitutionSkipped{0};
@@ -267,7 +268,13 @@ void ContactSolver::PreparePair(std::span<const BodySim> bodies, const Contact& 
     m_cold[static_cast<std::size_t>(pair.firstPoint + i)] = cold;
   }
   if (pair.block >= 0) PrepareBlock(pair);
-  if (UsesJointBlock(pair)) PrepareJointBlock(pair);
+  if (m_jointBuild == JointBlockBuild::AtPrepare && UsesJointBlock(pair)) {
+    // The reference build (SetJointBlockBuild): every face pair's operator
+    // now, from the same rows and impulses its first try would read.
+    const std::size_t slot = static_cast<std::size_t>(pair.block);
+    m_jointBlocks[slot] = BuildJointBlock(pair);
+    m_jointState[slot] = m_jointBlocks[slot].usable ? kJointUntried : kJointRefused;
+  }
 }
 
 // Warm start: each point's accumulated impulse lambda_n n + lambda_1 t1 +

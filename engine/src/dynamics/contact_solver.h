@@ -111,6 +111,7 @@
 //   friction rows, e == 0 no restitution work.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <span>
 #include <vector>
@@ -178,6 +179,20 @@ class ContactSolver {
   /// The coloured solver of the last Prepare (empty unless ColouredWide).
   [[nodiscard]] const WideContactSolver& Wide() const { return m_wide; }
 
+  /// When FrictionSolve::JointBlock builds a face pair's operator: at the
+  /// pair's first try of the step (the default: a pair refused there, most
+  /// box-box pairs of a pyramid, never stores it), or at Prepare for every
+  /// face pair, the reference the first try must match bit for bit (the
+  /// same rows and warm-started impulses; tests compare the two).
+  enum class JointBlockBuild { AtFirstTry, AtPrepare };
+  void SetJointBlockBuild(JointBlockBuild when) { m_jointBuild = when; }
+  /// FrictionSolve::JointBlock's tries in the last step's sweeps.
+  struct JointBlockCounts {
+    std::int64_t accepted = 0;  ///< the pair stuck: normals and friction solved as one block
+    std::int64_t refused = 0;   ///< a pulling normal, a friction past its bound, or no lever for the twist
+  };
+  [[nodiscard]] const JointBlockCounts& LastJointBlockCounts() const { return m_jointCounts; }
+
  private:
   static RowJacobian MakeJacobian(const Vec3& d, const Vec3& rA, const Vec3& rB, const Mat3& invInertiaA,
                                   const Mat3& invInertiaB);
@@ -211,13 +226,19 @@ class ContactSolver {
   [[nodiscard]] bool UsesJointBlock(const PairRows& pair) const {
     return m_jointBlock && pair.block >= 0 && pair.hasFriction && pair.pointCount >= 3;
   }
-  /// FrictionSolve::JointBlock's per-step patterns and solve operator of a
-  /// pair with a normal block and friction (after PrepareBlock).
-  void PrepareJointBlock(const PairRows& pair);
+  /// FrictionSolve::JointBlock's patterns and solve operator of a pair with
+  /// a normal block and friction, from its rows and warm-started impulses
+  /// (built at the pair's first try of the step, before they change).
+  [[nodiscard]] JointBlockRows BuildJointBlock(const PairRows& pair) const;
   /// FrictionSolve::JointBlock on a pair with a normal block and friction:
-  /// true when accepted (normals and friction written and applied).
+  /// true when accepted (normals and friction written and applied). Builds
+  /// the operator at the step's first try.
   template <bool kTrack>
   bool SolveJointBlock(const PairRows& pair);
+  enum JointState : unsigned char;
+  /// One try of the block with the operator `joint`; records the outcome in `state`.
+  template <bool kTrack>
+  bool TryJointBlock(const PairRows& pair, const JointBlockRows& joint, JointState& state);
   template <bool kTrack>
   void Sweep();
   /// `sweeps` coloured sweeps as one chain of phases through m_runner (each
@@ -233,8 +254,12 @@ class ContactSolver {
   std::vector<FrictionRow> m_frictions;  ///< two per point (t1, t2) of the pairs with friction
   std::vector<PointCold> m_cold;         ///< one per point
   std::vector<Eigen::Matrix4d> m_blockInverses;
-  std::vector<JointBlockRows> m_jointBlocks;  ///< per block, FrictionSolve::JointBlock only
-  /// Per block, FrictionSolve::JointBlock's last outcome this step. Refused
+  /// Per block, FrictionSolve::JointBlock only: the operator, stored at the
+  /// first try of the step unless that try refused the block.
+  std::vector<JointBlockRows> m_jointBlocks;
+  /// Per block, FrictionSolve::JointBlock's last outcome this step. Unbuilt:
+  /// not tried yet this step (the operator is built at the first try; an
+  /// operator that is not usable counts as refused). Refused
   /// (the pair slides or lifts): later sweeps of the step do not try again,
   /// a sliding pair stays sliding within a step. Accepted in this sweep's
   /// normal pass: the pair's friction rows are skipped in its friction
@@ -242,12 +267,14 @@ class ContactSolver {
   /// moves the bodies when the points are coplanar (a net force in the
   /// plane and a torque about n), so the rows could only redistribute
   /// impulse among the points.
-  enum JointState : unsigned char { kJointUntried, kJointRefused, kJointAccepted };
+  enum JointState : unsigned char { kJointUnbuilt, kJointUntried, kJointRefused, kJointAccepted };
   std::vector<JointState> m_jointState;
   WideContactSolver m_wide;
   bool m_useWide = false;     ///< ColouredWide selected at the last Prepare
   bool m_split = false;       ///< SplitImpulses selected at the last Prepare
   bool m_jointBlock = false;  ///< FrictionSolve::JointBlock selected at the last Prepare
+  JointBlockBuild m_jointBuild = JointBlockBuild::AtFirstTry;
+  JointBlockCounts m_jointCounts;
   PhaseRunner m_runner;
   std::vector<JobPhase> m_phases;  ///< scratch: the chain of the coloured passes
   int m_newPairs = 0;              ///< pairs that did not persist

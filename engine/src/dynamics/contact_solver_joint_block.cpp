@@ -38,15 +38,18 @@ double AngularCoupling(const P& p, const Q& q) {
 
 }  // namespace
 
-// Once per step, after the pair's rows and block inverse: the patterns from
-// the warm-started normal impulses (equal weights when there are none yet:
-// any weights give valid patterns, these only decide whose friction takes
-// what share, and the acceptance test reads the current normal impulses),
-// and the solve operator, so that a sweep costs seven dot products, two
-// small products and the updates.
-void ContactSolver::PrepareJointBlock(const PairRows& pair) {
-  JointBlockRows& joint = m_jointBlocks[static_cast<std::size_t>(pair.block)];
-  joint = JointBlockRows{};
+// Once per step, at the pair's first try (its first normal pass of the
+// step, before anything changed its impulses, so the same operator as one
+// built at Prepare): the patterns from the warm-started normal impulses
+// (equal weights when there are none yet: any weights give valid patterns,
+// these only decide whose friction takes what share, and the acceptance
+// test reads the current normal impulses), and the solve operator, so that
+// a sweep costs seven dot products, two small products and the updates.
+JointBlockRows ContactSolver::BuildJointBlock(const PairRows& pair) const {
+  JointBlockRows joint;
+  // The patterns with their images under the inverse inertia (the images
+  // only build K; the sweep keeps the angular parts).
+  RowJacobian pattern[3];
   const int count = pair.pointCount;
   const std::size_t first = static_cast<std::size_t>(pair.firstPoint);
   const NormalRow* normals = &m_normals[first];
@@ -66,10 +69,10 @@ void ContactSolver::PrepareJointBlock(const PairRows& pair) {
     centreA += w * cold[i].armA;
     for (int k = 0; k < 2; ++k) {
       const RowJacobian& j = rows[2 * i + k].j;
-      joint.pattern[k].angularA += w * j.angularA;
-      joint.pattern[k].angularB += w * j.angularB;
-      joint.pattern[k].imageA += w * j.imageA;
-      joint.pattern[k].imageB += w * j.imageB;
+      pattern[k].angularA += w * j.angularA;
+      pattern[k].angularB += w * j.angularB;
+      pattern[k].imageA += w * j.imageA;
+      pattern[k].imageB += w * j.imageB;
     }
   }
   // Spin pattern w_i (n x (p_i - c)) / S, S = sum w_i |n x (p_i - c)|^2: no
@@ -90,14 +93,15 @@ void ContactSolver::PrepareJointBlock(const PairRows& pair) {
     for (int i = 0; i < count; ++i) {
       const std::size_t si = static_cast<std::size_t>(i);
       const double share = weight[si] / leverSum;
-      joint.pattern[2].angularA += share * cold[i].armA.cross(lever[si]);
-      joint.pattern[2].angularB += share * cold[i].armB.cross(lever[si]);
+      pattern[2].angularA += share * cold[i].armA.cross(lever[si]);
+      pattern[2].angularB += share * cold[i].armB.cross(lever[si]);
     }
-    joint.pattern[2].imageA = m_bodies.InvInertia(pair.bodyA) * joint.pattern[2].angularA;
-    joint.pattern[2].imageB = m_bodies.InvInertia(pair.bodyB) * joint.pattern[2].angularB;
-    joint.spin = AngularCoupling(joint.pattern[2], joint.pattern[2]) > 0.0;  // neither body can turn
+    pattern[2].imageA = m_bodies.InvInertia(pair.bodyA) * pattern[2].angularA;
+    pattern[2].imageB = m_bodies.InvInertia(pair.bodyB) * pattern[2].angularB;
+    joint.spin = AngularCoupling(pattern[2], pattern[2]) > 0.0;  // neither body can turn
   }
-  if (!joint.spin) joint.pattern[2] = RowJacobian{};
+  if (!joint.spin) pattern[2] = RowJacobian{};
+  for (int p = 0; p < 3; ++p) joint.pattern[p] = {pattern[p].angularA, pattern[p].angularB};
   // K = [Knn Knp; Kpn Kpp], normals n (padded to four), patterns p. Knn's
   // pseudo-inverse B is the block inverse. Every column of Knp lies in
   // Knn's range (a null vector z of Knn is a normal impulse pattern that
@@ -109,12 +113,12 @@ void ContactSolver::PrepareJointBlock(const PairRows& pair) {
   const int patterns = joint.spin ? 3 : 2;
   Eigen::Matrix<double, 4, 3> knp = Eigen::Matrix<double, 4, 3>::Zero();
   for (int i = 0; i < count; ++i) {
-    for (int p = 0; p < patterns; ++p) knp(i, p) = AngularCoupling(normals[i].j, joint.pattern[p]);
+    for (int p = 0; p < patterns; ++p) knp(i, p) = AngularCoupling(normals[i].j, pattern[p]);
   }
   Eigen::Matrix3d kpp = Eigen::Matrix3d::Identity();
   for (int p = 0; p < patterns; ++p) {
     for (int q = 0; q < patterns; ++q) {
-      kpp(p, q) = (p == q && p < 2 ? linear : 0.0) + AngularCoupling(joint.pattern[p], joint.pattern[q]);
+      kpp(p, q) = (p == q && p < 2 ? linear : 0.0) + AngularCoupling(pattern[p], pattern[q]);
     }
   }
   const Eigen::Matrix4d& blockInverse = m_blockInverses[static_cast<std::size_t>(pair.block)];
@@ -126,13 +130,33 @@ void ContactSolver::PrepareJointBlock(const PairRows& pair) {
     joint.schurInverse = factor.solve(Eigen::Matrix3d::Identity());
     joint.usable = joint.schurInverse.allFinite();
   }
+  return joint;
+}
+
+// The first try of a step builds the operator (in place of Prepare, into a
+// local): most box-box pairs of a pyramid are refused at their first try
+// and not tried again that step, so their operator is never stored, and
+// nothing is written at Prepare to be read back from memory here. Any other
+// pair keeps it for the step's later sweeps. An operator that is not usable
+// counts as refused (it would be refused at every try).
+template <bool kTrack>
+bool ContactSolver::SolveJointBlock(const PairRows& pair) {
+  const std::size_t slot = static_cast<std::size_t>(pair.block);
+  JointState& state = m_jointState[slot];
+  if (state == kJointRefused) return false;
+  if (state != kJointUnbuilt) return TryJointBlock<kTrack>(pair, m_jointBlocks[slot], state);
+  const JointBlockRows joint = BuildJointBlock(pair);
+  if (!joint.usable) {
+    state = kJointRefused;
+    return false;
+  }
+  const bool accepted = TryJointBlock<kTrack>(pair, joint, state);
+  if (state != kJointRefused) m_jointBlocks[slot] = joint;
+  return accepted;
 }
 
 template <bool kTrack>
-bool ContactSolver::SolveJointBlock(const PairRows& pair) {
-  JointState& state = m_jointState[static_cast<std::size_t>(pair.block)];
-  const JointBlockRows& joint = m_jointBlocks[static_cast<std::size_t>(pair.block)];
-  if (state == kJointRefused || !joint.usable) return false;
+bool ContactSolver::TryJointBlock(const PairRows& pair, const JointBlockRows& joint, JointState& state) {
   state = kJointUntried;
   const int count = pair.pointCount;
   const std::size_t first = static_cast<std::size_t>(pair.firstPoint);
@@ -162,17 +186,21 @@ bool ContactSolver::SolveJointBlock(const PairRows& pair) {
   // (the pair sticks). With mu > 0 a pulling normal also fails the bound
   // (it is negative); the normal test says why first.
   std::array<double, 4> normal{};
+  std::array<double, 4> share{};  // each point's part of the new load
   double load = 0.0;
   for (int i = 0; i < count; ++i) {
     const std::size_t si = static_cast<std::size_t>(i);
     normal[si] = normals[i].impulse + xn[i];
     if (normal[si] < 0.0) {
       state = kJointRefused;
+      ++m_jointCounts.refused;
       return false;
     }
     load += normal[si];
   }
   if (!(load > 0.0)) return false;
+  for (int i = 0; i < count; ++i)
+    share[static_cast<std::size_t>(i)] = normal[static_cast<std::size_t>(i)] / load;
   double force[2] = {xp[0], xp[1]};
   double moment = joint.spin ? xp[2] : 0.0;
   double centre[2] = {0.0, 0.0};
@@ -182,13 +210,13 @@ bool ContactSolver::SolveJointBlock(const PairRows& pair) {
     force[0] += f1;
     force[1] += f2;
     moment += joint.plane(i, 0) * f2 - joint.plane(i, 1) * f1;  // (rho x f) . n, t1 x t2 = n
-    const double u = normal[static_cast<std::size_t>(i)] / load;
+    const double u = share[static_cast<std::size_t>(i)];
     centre[0] += u * joint.plane(i, 0);
     centre[1] += u * joint.plane(i, 1);
   }
   double spread = 0.0;
   for (int i = 0; i < count; ++i) {
-    const double u = normal[static_cast<std::size_t>(i)] / load;
+    const double u = share[static_cast<std::size_t>(i)];
     const double d0 = joint.plane(i, 0) - centre[0];
     const double d1 = joint.plane(i, 1) - centre[1];
     spread += u * (d0 * d0 + d1 * d1);
@@ -198,6 +226,7 @@ bool ContactSolver::SolveJointBlock(const PairRows& pair) {
   if (joint.spin) {
     if (!(spread > kLeastLever * kLeastLever)) {
       state = kJointRefused;  // the load sits at one place: it cannot carry a torque
+      ++m_jointCounts.refused;
       return false;
     }
     twist = (moment - (centre[0] * force[1] - centre[1] * force[0])) / spread;
@@ -205,17 +234,18 @@ bool ContactSolver::SolveJointBlock(const PairRows& pair) {
   std::array<double, 8> friction{};
   for (int i = 0; i < count; ++i) {
     const std::size_t si = static_cast<std::size_t>(i);
-    const double u = normal[si] / load;
+    const double u = share[si];
     // n x (rho - c') in the tangent basis is (-(rho2 - c2), rho1 - c1).
-    const double share[2] = {u * (force[0] - twist * (joint.plane(i, 1) - centre[1])),
-                             u * (force[1] + twist * (joint.plane(i, 0) - centre[0]))};
+    const double part[2] = {u * (force[0] - twist * (joint.plane(i, 1) - centre[1])),
+                            u * (force[1] + twist * (joint.plane(i, 0) - centre[0]))};
     const double bound = pair.friction * normal[si];
     for (int k = 0; k < 2; ++k) {
-      if (std::abs(share[k]) > bound) {
+      if (std::abs(part[k]) > bound) {
         state = kJointRefused;
+        ++m_jointCounts.refused;
         return false;
       }
-      friction[static_cast<std::size_t>(2 * i + k)] = share[k];
+      friction[static_cast<std::size_t>(2 * i + k)] = part[k];
     }
   }
   // Applied row by row, so the velocities are exactly what the stored
@@ -237,9 +267,14 @@ bool ContactSolver::SolveJointBlock(const PairRows& pair) {
   v.Store(a, b);
   if constexpr (kTrack) m_largestChange = std::max(m_largestChange, tracker.largest);
   state = kJointAccepted;
+  ++m_jointCounts.accepted;
   return true;
 }
 
+template bool ContactSolver::TryJointBlock<true>(const PairRows& pair, const JointBlockRows& joint,
+                                                 JointState& state);
+template bool ContactSolver::TryJointBlock<false>(const PairRows& pair, const JointBlockRows& joint,
+                                                  JointState& state);
 template bool ContactSolver::SolveJointBlock<true>(const PairRows& pair);
 template bool ContactSolver::SolveJointBlock<false>(const PairRows& pair);
 
