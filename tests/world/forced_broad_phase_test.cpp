@@ -9,14 +9,16 @@
 
 #include <array>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
+#include "support/same_bits.h"
 #include "talus/harness/support/split_mix64.h"
 #include "talus/world.h"
 
 namespace talus {
 namespace {
+
+using testing_support::SameBits;
 
 constexpr double kStep = 1.0 / 60.0;
 constexpr int kSteps = 20;
@@ -74,13 +76,6 @@ std::int64_t OraclePairCount(const World& world, const std::vector<BodyId>& ids,
     }
   }
   return pairs;
-}
-
-bool SameBits(const BodyState& a, const BodyState& b) {
-  return std::memcmp(a.position.data(), b.position.data(), 3 * sizeof(double)) == 0 &&
-         std::memcmp(a.orientation.coeffs().data(), b.orientation.coeffs().data(), 4 * sizeof(double)) == 0 &&
-         std::memcmp(a.linearVelocity.data(), b.linearVelocity.data(), 3 * sizeof(double)) == 0 &&
-         std::memcmp(a.angularVelocity.data(), b.angularVelocity.data(), 3 * sizeof(double)) == 0;
 }
 
 struct Configuration {

@@ -8,13 +8,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
+#include "support/same_bits.h"
 #include "talus/world.h"
 
 namespace talus {
 namespace {
+
+using testing_support::SameBits;
 
 constexpr double kH = 1.0 / 30.0;
 
@@ -107,13 +109,6 @@ TEST(SpeculativeMotion, ASpinningBarsCornerIsCaughtNearTheSurface) {
   }
   EXPECT_LT(std::abs(deepest[1]), arc);
   EXPECT_GT(deepest[0], arc);
-}
-
-bool SameBits(const BodyState& a, const BodyState& b) {
-  return std::memcmp(a.position.data(), b.position.data(), 3 * sizeof(double)) == 0 &&
-         std::memcmp(a.orientation.coeffs().data(), b.orientation.coeffs().data(), 4 * sizeof(double)) == 0 &&
-         std::memcmp(a.linearVelocity.data(), b.linearVelocity.data(), 3 * sizeof(double)) == 0 &&
-         std::memcmp(a.angularVelocity.data(), b.angularVelocity.data(), 3 * sizeof(double)) == 0;
 }
 
 TEST(SpeculativeMotion, BelowTheFixedMarginNothingChanges) {

@@ -2,25 +2,18 @@
 // settings validation.
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <limits>
 
+#include "support/same_bits.h"
 #include "talus/world.h"
 
 namespace talus {
 namespace {
 
+using testing_support::SameBits;
+
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// Every number of a body's state, bitwise, to prove "unchanged".
-bool SameBits(const BodyState& a, const BodyState& b) {
-  return std::memcmp(a.position.data(), b.position.data(), 3 * sizeof(double)) == 0 &&
-         std::memcmp(a.orientation.coeffs().data(), b.orientation.coeffs().data(), 4 * sizeof(double)) == 0 &&
-         std::memcmp(a.linearVelocity.data(), b.linearVelocity.data(), 3 * sizeof(double)) == 0 &&
-         std::memcmp(a.angularVelocity.data(), b.angularVelocity.data(), 3 * sizeof(double)) == 0 &&
-         a.awake == b.awake;
-}
 
 TEST(WorldApi, CreatedBodyReportsItsDefinition) {
   World world;
