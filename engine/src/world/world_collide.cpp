@@ -77,6 +77,15 @@ bool ReuseManifold(const WorldData& d, const Contact& before, const ManifoldAnch
   return true;
 }
 
+// The farthest point of the body's shape from its centre of mass, metres:
+// how far a turn moves any of its points, per radian. A constant of the
+// body (its shape's bounding sphere and its centre of mass, both in the
+// body frame).
+double TurningRadius(const Shape& shape, const BodySim& sim) {
+  const Sphere& sphere = shape.LocalBoundingSphere();
+  return (sphere.center - sim.localCenter).norm() + sphere.radius;
+}
+
 // How far the two bodies can close on each other this step
 // (WorldSettings::speculativeMotion): the step times the relative speed of
 // their centres, as gravity has already left them (IntegrateVelocities ran),
@@ -88,13 +97,14 @@ bool ReuseManifold(const WorldData& d, const Contact& before, const ManifoldAnch
 // the fixed one: a corner that can land within the step is a speculative
 // point before it does, and where the reach is below the margin nothing
 // changes.
-double PairReach(const WorldData& d, const BodySim& simA, const BodySim& simB, std::size_t a, std::size_t b) {
-  const double h = d.reachStep;
+double PairReach(const WorldData& d, const BodySim& simA, const BodySim& simB, std::size_t a, std::size_t b,
+                 double h) {
   const bool dynamicA = simA.type == BodyType::Dynamic;
   const bool dynamicB = simB.type == BodyType::Dynamic;
   const double fall = dynamicA != dynamicB ? 0.5 * d.settings.gravity.norm() * h * h : 0.0;
   return h * ((simA.linearVelocity - simB.linearVelocity).norm() +
-              simA.angularVelocity.norm() * d.reachRadii[a] + simB.angularVelocity.norm() * d.reachRadii[b]) +
+              simA.angularVelocity.norm() * TurningRadius(*d.shapes[a], simA) +
+              simB.angularVelocity.norm() * TurningRadius(*d.shapes[b], simB)) +
          fall;
 }
 
@@ -103,7 +113,7 @@ double PairReach(const WorldData& d, const BodySim& simA, const BodySim& simB, s
 // run on any thread in any order. `out.oldContact` and `out.oldCache` are
 // already set. The contact is built in place in `out.contact`; a Reused
 // pair's anchors stay in last step's list (the gather copies them once).
-void CollidePair(const WorldData& d, const BroadPhasePair& pair, PairOutcome& out) {
+void CollidePair(const WorldData& d, const BroadPhasePair& pair, double h, PairOutcome& out) {
   const auto a = static_cast<std::size_t>(pair.a);
   const auto b = static_cast<std::size_t>(pair.b);
   const BodySim& simA = d.sims[a];
@@ -154,7 +164,7 @@ void CollidePair(const WorldData& d, const BroadPhasePair& pair, PairOutcome& ou
   out.persistentPoints = 0;
   NarrowPhaseSettings narrow = d.settings.narrowPhase;
   if (d.settings.speculativeMotion) {
-    narrow.speculativeMargin = std::max(narrow.speculativeMargin, PairReach(d, simA, simB, a, b));
+    narrow.speculativeMargin = std::max(narrow.speculativeMargin, PairReach(d, simA, simB, a, b, h));
   }
   if (!Collide(*d.shapes[a], xfA, *d.shapes[b], xfB, narrow, &out.cache.cache, &out.stats, &manifold)) return;
   // Spheres get exact single points from a closed form; only polyhedron
@@ -220,8 +230,6 @@ Result<int> UpdateBroadPhase(WorldData& d, double h) {
   const bool motion = d.settings.speculativeMotion;
   const double gravityStep = d.settings.gravity.norm() * h;
   d.proxies.resize(count);
-  d.reachStep = h;
-  d.reachRadii.resize(motion ? count : 0);
   d.jobs->ParallelFor(
       static_cast<int>(count), kProxyGrain, [&d, margin, motion, gravityStep, h](int begin, int end) {
         for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
@@ -230,7 +238,6 @@ Result<int> UpdateBroadPhase(WorldData& d, double h) {
           if (!d.records[i].alive || !shape.has_value()) {
             proxy = BroadPhaseProxy{};
             proxy.active = false;
-            if (motion) d.reachRadii[i] = 0.0;
             continue;
           }
           const BodySim& sim = d.sims[i];
@@ -240,9 +247,8 @@ Result<int> UpdateBroadPhase(WorldData& d, double h) {
           proxy.sphere.radius = local.radius + margin;
           proxy.isStatic = sim.type != BodyType::Dynamic;
           if (motion) {
-            const double radius = (proxy.sphere.center - sim.center).norm() + local.radius;
-            d.reachRadii[i] = radius;
-            const double speed = sim.linearVelocity.norm() + sim.angularVelocity.norm() * radius +
+            const double speed = sim.linearVelocity.norm() +
+                                 sim.angularVelocity.norm() * TurningRadius(*shape, sim) +
                                  (sim.type == BodyType::Dynamic ? gravityStep : 0.0);
             proxy.sphere.radius = local.radius + std::max(margin, speed * h);
           }
@@ -253,7 +259,7 @@ Result<int> UpdateBroadPhase(WorldData& d, double h) {
   return d.broadPhase.Update(d.proxies);
 }
 
-void FindContacts(WorldData& d, StepStatistics& stats) {
+void FindContacts(WorldData& d, double h, StepStatistics& stats) {
   // The swapped-in lists are resized (not cleared) at the gather, which
   // overwrites every element it keeps.
   d.previousContacts.swap(d.contacts);
@@ -284,9 +290,9 @@ void FindContacts(WorldData& d, StepStatistics& stats) {
   }
 
   // 2. The narrow phase, each pair into its own slot, on every thread.
-  d.jobs->ParallelFor(pairCount, kNarrowPhaseGrain, [&d](int begin, int end) {
+  d.jobs->ParallelFor(pairCount, kNarrowPhaseGrain, [&d, h](int begin, int end) {
     for (int p = begin; p < end; ++p) {
-      CollidePair(d, d.pairs[static_cast<std::size_t>(p)], d.pairOutcomes[static_cast<std::size_t>(p)]);
+      CollidePair(d, d.pairs[static_cast<std::size_t>(p)], h, d.pairOutcomes[static_cast<std::size_t>(p)]);
     }
   });
 

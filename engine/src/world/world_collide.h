@@ -39,13 +39,13 @@ namespace talus {
 
 /// Feeds the broad phase this step's bounding spheres, each grown by the
 /// speculative margin or, with WorldSettings::speculativeMotion, by its
-/// body's reach over the step of `h` seconds where that is larger (the
-/// turning radii and `h` are kept in `d` for the pairs' margins); an Error
-/// (nothing changed) when a body left the broad phase's valid range.
+/// body's reach over the step of `h` seconds where that is larger; an
+/// Error (nothing changed) when a body left the broad phase's valid range.
 Result<int> UpdateBroadPhase(WorldData& d, double h);
 
-/// Rebuilds `d.contacts` from the broad phase's pairs and the narrow phase;
-/// adds its counts to `stats`.
-void FindContacts(WorldData& d, StepStatistics& stats);
+/// Rebuilds `d.contacts` from the broad phase's pairs and the narrow phase
+/// (with speculativeMotion, each pair's margin from its reach over the step
+/// of `h` seconds); adds its counts to `stats`.
+void FindContacts(WorldData& d, double h, StepStatistics& stats);
 
 }  // namespace talus

@@ -99,12 +99,6 @@ struct WorldData {
 
   BroadPhase broadPhase;
   std::vector<BroadPhaseProxy> proxies;
-  /// With WorldSettings::speculativeMotion, each body's turning radius
-  /// (metres, same index as `sims`): the farthest point of its shape from
-  /// its centre of mass, for the reach of its pairs (world_collide.cpp);
-  /// and the step being taken (seconds). Set by UpdateBroadPhase.
-  std::vector<double> reachRadii;
-  double reachStep = 0.0;
   std::vector<BroadPhasePair> pairs;
   std::vector<PairSatCache> satCaches;
   std::vector<PairSatCache> previousSatCaches;

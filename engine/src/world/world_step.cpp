@@ -170,7 +170,7 @@ Result<StepStatistics> World::Step(double dt) {
   stats.awakeBodies = IntegrateVelocitiesOnThreads(d, dt);
   stats.seconds.integrateVelocities = clock.Lap();
 
-  FindContacts(d, stats);
+  FindContacts(d, dt, stats);
   stats.seconds.findContacts = clock.Lap();
 
   PrepareContacts(d, dt, stats);
