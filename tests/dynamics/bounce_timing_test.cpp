@@ -57,8 +57,12 @@ TEST(TimeBounce, PenetrationTimesTheImpactInTheLastStep) {
 }
 
 TEST(TimeBounce, NoBounceWhereNoneHappensThisStep) {
-  // Misses the step: 10 cm away at 1 m/s.
-  EXPECT_FALSE(TimeBounce(0.1, -1.0, 0.0, kH, 0.7, 0.5).hits);
+  // Misses the step: 10 cm away at 1 m/s. The later landing's impact
+  // speed is still given (1 m/s: nothing accelerates it), so a caller can
+  // tell that it will bounce.
+  const TimedBounce later = TimeBounce(0.1, -1.0, 0.0, kH, 0.7, 0.5);
+  EXPECT_FALSE(later.hits);
+  EXPECT_EQ(later.speed, 1.0);
   // Rising and never pulled back, or penetrating and already leaving.
   EXPECT_FALSE(TimeBounce(0.001, 1.0, 0.0, kH, 0.7, 0.5).hits);
   EXPECT_FALSE(TimeBounce(-0.001, 1.0, -kG, kH, 0.7, 0.5).hits);

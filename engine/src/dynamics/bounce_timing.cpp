@@ -28,13 +28,13 @@ TimedBounce TimeBounce(double gap, double speed, double acceleration, double h, 
   } else {
     return out;  // separating and not pulled back
   }
+  out.speed = impact;  // also for a landing outside this step (TimedBounce::speed)
   out.tooDeep = time < -h;
   if (!(time >= -h && time <= h) || !(impact > threshold)) return out;
   const double rest = h - time;
   const double rebound = restitution * impact;
   out.hits = true;
   out.time = time;
-  out.speed = impact;
   out.endSpeed = rebound + acceleration * rest;
   out.endGap = rebound * rest + 0.5 * acceleration * rest * rest;
   if (out.endGap < 0.0) {

@@ -35,9 +35,12 @@ namespace talus {
 
 /// A contact point's impact inside (or just before) a step, when there is one.
 struct TimedBounce {
-  bool hits = false;      ///< the point reaches the surface at t* in [-h, h], faster than the threshold
-  double time = 0.0;      ///< t*, seconds from the step's start (< 0: the last step carried it through)
-  double speed = 0.0;     ///< impact speed sqrt(D), m/s, > 0
+  bool hits = false;  ///< the point reaches the surface at t* in [-h, h], faster than the threshold
+  double time = 0.0;  ///< t*, seconds from the step's start (< 0: the last step carried it through)
+  /// Impact speed sqrt(D), m/s, > 0, whenever this flight crosses the
+  /// surface, also outside [-h, h] (a later landing: the caller can tell
+  /// whether it will bounce); 0 when it never does.
+  double speed = 0.0;
   double endSpeed = 0.0;  ///< normal speed at the step's end after the bounce, m/s
   double endGap = 0.0;    ///< gap at the step's end after the bounce, metres, >= 0
   /// Penetrating deeper than one step of approach explains (t* < -h, or no

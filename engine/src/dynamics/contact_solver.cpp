@@ -217,10 +217,9 @@ void ContactSolver::PreparePair(std::span<const BodySim> bodies, const Contact& 
           RelativeVelocity(a.linearVelocity, a.angularVelocity, rA, b.linearVelocity, b.angularVelocity, rB));
       TimedBounce bounce;
       double acceleration = 0.0;
-      double u0 = vn;  // the normal speed at the step's start (before forces)
       if (settings.bounceTiming == BounceTiming::TimeOfImpact) {
-        u0 = n.dot(RelativeVelocity(StartVelocity(a), a.angularVelocity, rA, StartVelocity(b),
-                                    b.angularVelocity, rB));
+        const double u0 = n.dot(RelativeVelocity(StartVelocity(a), a.angularVelocity, rA, StartVelocity(b),
+                                                 b.angularVelocity, rB));
         acceleration = (vn - u0) * invH;
         bounce =
             TimeBounce(-cp.depth, u0, acceleration, h, contact.restitution, settings.restitutionThreshold);
@@ -238,17 +237,16 @@ void ContactSolver::PreparePair(std::span<const BodySim> bodies, const Contact& 
         }
       } else if (cp.depth < 0.0 && vn < 0.0 &&
                  settings.translation == TranslationIntegrator::ExactConstantAcceleration &&
-                 u0 * u0 + 2.0 * acceleration * cp.depth >
-                     settings.restitutionThreshold * settings.restitutionThreshold) {
+                 bounce.speed > settings.restitutionThreshold) {
         // An approach that misses the surface this step and will bounce
-        // when it lands (its impact speed sqrt(u0^2 - 2 a gap), not its
-        // speed now, clears the threshold): an untouched body closes the
-        // gap by h (vn - a h / 2), not h vn, so the row asks no more of it.
-        // With h vn the row would stop the point on the surface a step
-        // early, short of its impact speed: a ball 14.6 mm up, falling at
-        // 0.15 m/s, stopped at 0.44 m/s at 1/30 s instead of landing at
-        // 0.55 m/s next step and bouncing (the fourth bounce of
-        // sphere_bounce_series, e = 0.5, was lost).
+        // when it lands (its impact speed, which TimeBounce gives for a
+        // later landing too, not its speed now, clears the threshold): an
+        // untouched body closes the gap by h (vn - a h / 2), not h vn, so
+        // the row asks no more of it. With h vn the row would stop the
+        // point on the surface a step early, short of its impact speed: a
+        // ball 14.6 mm up, falling at 0.15 m/s, stopped at 0.44 m/s at
+        // 1/30 s instead of landing at 0.55 m/s next step and bouncing (the
+        // fourth bounce of sphere_bounce_series, e = 0.5, was lost).
         row.target = cp.depth * invH + 0.5 * acceleration * h;
       }
     } else {
