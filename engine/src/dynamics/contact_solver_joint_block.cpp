@@ -271,10 +271,6 @@ bool ContactSolver::TryJointBlock(const PairRows& pair, const JointBlockRows& jo
   return true;
 }
 
-template bool ContactSolver::TryJointBlock<true>(const PairRows& pair, const JointBlockRows& joint,
-                                                 JointState& state);
-template bool ContactSolver::TryJointBlock<false>(const PairRows& pair, const JointBlockRows& joint,
-                                                  JointState& state);
 template bool ContactSolver::SolveJointBlock<true>(const PairRows& pair);
 template bool ContactSolver::SolveJointBlock<false>(const PairRows& pair);
 
