@@ -60,10 +60,9 @@ void RunPhasesWith(const PhaseRunner& runner, std::span<const JobPhase> phases,
     return;
   }
   for (std::size_t p = 0; p < phases.size(); ++p) {
-    const int g = phases[p].grain < 1 ? 1 : phases[p].grain;
-    for (int begin = 0; begin < phases[p].count; begin += g) {
-      fn(static_cast<int>(p), begin, phases[p].count - begin < g ? phases[p].count : begin + g);
-    }
+    const int phase = static_cast<int>(p);
+    ForEachChunkInOrder(phases[p].count, phases[p].grain,
+                        [&fn, phase](int begin, int end) { fn(phase, begin, end); });
   }
 }
 

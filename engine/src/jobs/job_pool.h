@@ -70,6 +70,14 @@ void RunPhasesWith(const PhaseRunner& runner, std::span<const JobPhase> phases,
 /// per chunk (grain < 1 counts as 1). Chunk c is [c grain, min(count, (c+1) grain)).
 [[nodiscard]] int ChunkCount(int count, int grain);
 
+/// fn(begin, end) for every chunk of [0, count) (as ChunkCount cuts it), in
+/// order, on this thread.
+template <class Fn>
+void ForEachChunkInOrder(int count, int grain, Fn&& fn) {
+  const int g = grain < 1 ? 1 : grain;
+  for (int begin = 0; begin < count; begin += g) fn(begin, count - begin < g ? count : begin + g);
+}
+
 class JobPool {
  public:
   /// A pool that runs ParallelFor on `threads` threads, the caller included
@@ -94,12 +102,11 @@ class JobPool {
   /// two-body step's integration (perf, sphere_bounce_series).
   template <class Fn>
   void ParallelFor(int count, int grain, Fn&& fn) noexcept {
-    if (!m_workers.empty()) {
+    if (m_workers.empty()) {
+      ForEachChunkInOrder(count, grain, fn);
+    } else {
       ParallelForOnWorkers(count, grain, fn);
-      return;
     }
-    const int g = grain < 1 ? 1 : grain;
-    for (int begin = 0; begin < count; begin += g) fn(begin, count - begin < g ? count : begin + g);
   }
 
   /// Runs the loops `phases` one after the other: fn(p, begin, end) once for
