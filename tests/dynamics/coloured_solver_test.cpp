@@ -221,8 +221,8 @@ TEST(ColouredSolver, AnyCutOfAColourIntoRangesGivesBitIdenticalStates) {
 TEST(ColouredSolver, PyramidStandsLikeTheScalarSolver) {
   // Physics, not bits: the coloured order must hold the 30-box pyramid as
   // the scalar order does. After 2 s every box is within 1 mm of where it
-  // started (they are placed touching; the Baumgarte slop is 5 mm, so a box
-  // that sinks by the slop in each of 4 layers would be 2 cm off) and at
+  // started (they are placed touching; the Baumgarte slop is 4 mm, so a box
+  // that sinks by the slop in each of 4 layers would be 1.6 cm off) and at
   // rest to 1 cm/s.
   for (const ContactSolverKind kind :
        {ContactSolverKind::SequentialImpulses, ContactSolverKind::ColouredWide}) {

@@ -28,7 +28,7 @@ TEST(ContactSolver, BoxRestsOnGroundWithoutSinking) {
   const double settled = scene.Body(box).center.y();
   for (int n = 0; n < 480; ++n) scene.Step(kH);
   const BodySim& b = scene.Body(box);
-  // Baumgarte leaves at most `slop` (5 mm) of penetration by design; the
+  // Baumgarte leaves at most `slop` (4 mm) of penetration by design; the
   // box must sit there and stay: no sinking, no creeping, no spin.
   EXPECT_GT(b.center.y(), 0.5 - Settings().slop - 1e-4);
   EXPECT_LT(b.center.y(), 0.5 + 1e-9);

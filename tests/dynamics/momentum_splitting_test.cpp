@@ -351,7 +351,7 @@ TEST(ExactConstantAcceleration, ContactsRestTheSameAsWithSymplecticEuler) {
         RotationIntegrator::MomentumSplitting}) {
     const BodyState s = DropBox(TranslationIntegrator::ExactConstantAcceleration, rotation);
     // At rest on one of its faces (half heights 0.15, 0.25, 0.4 m; which
-    // one depends on the tumble) within the 5 mm slop, like the reference,
+    // one depends on the tumble) within the 4 mm slop, like the reference,
     // and still.
     for (const BodyState* state : {&s, &reference}) {
       const double y = state->position.y();

@@ -70,11 +70,11 @@ TEST_P(SmallHullPile, KeepsEveryBodyInsideTheWalls) {
 
 // Issue 15's edge contacts under load, in small: 40 hulls (L = 2) settle
 // for 600 steps. The Baumgarte bias pushes only depth beyond the slop, so a
-// resting contact settles at the slop (5 mm, WorldSettings::slop); one the
+// resting contact settles at the slop (4 mm, WorldSettings::slop); one the
 // velocity solve failed to hold for a whole step sinks at most one step of
 // free fall, g h^2 (2.7 mm at 1/60 s), deeper. With single-point edge
 // contacts (ManifoldPersistence::Fresh) this pile ended 8.6 mm deep;
-// persistent points hold it at 5.0 mm (docs/collision-narrow-phase.md).
+// persistent points hold it at the slop (docs/collision-narrow-phase.md).
 TEST(SmallHullPileTalus, SettlesWithinTheSlopPlusOneStepOfFreeFall) {
   const BenchReport report = RunScene("talus", "hull_pile", 2, 600);
   EXPECT_EQ(report.bodies, 40);

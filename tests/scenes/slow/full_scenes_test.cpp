@@ -33,11 +33,11 @@ TEST(FullScenes, TalusHullPileOfSideTenKeepsEveryBodyInside) {
   std::printf("hull_pile 10 at step %d: kinetic energy %.3f J, max penetration %.4f m\n", kBenchDefaultSteps,
               *report.kineticEnergy, report.maxPenetration.value_or(-1.0));
   // The Baumgarte bias pushes only depth beyond the slop, so a resting
-  // contact settles at the slop (5 mm, WorldSettings::slop); a contact the
+  // contact settles at the slop (4 mm, WorldSettings::slop); a contact the
   // velocity solve failed to hold for a whole step sinks at most one step of
   // free fall, g h^2 (2.7 mm at 1/60 s), deeper. Issue 15: with single-point
   // edge contacts the pile ended at 1.6-4.1 cm; persistent points hold it
-  // at 5.0 mm.
+  // at the slop (5.0 mm with the 5 mm slop before it became 4 mm).
   ASSERT_TRUE(report.maxPenetration.has_value());
   const double gravity = 9.81;
   EXPECT_LE(*report.maxPenetration, talus::WorldSettings{}.slop + gravity * kBenchTimeStep * kBenchTimeStep);
