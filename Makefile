@@ -9,8 +9,9 @@
 #                  and write the comparison report to reports/latest/
 #   make report-full   the same page with every analysis added: the time
 #                  step x iterations sweep, the stress envelope and the
-#                  large scenes' scaling series (long: about an hour on 2
-#                  cores), in reports/full/
+#                  large scenes' scaling series and speed against
+#                  accuracy (long: about an hour on 2 cores), in
+#                  reports/full/
 #
 #   make fuzz      build the libFuzzer targets (clang, ASan + UBSan) in
 #                  build-fuzz/ and run each for FUZZ_SECONDS (default 600)
@@ -47,6 +48,12 @@ SCENES_ENGINES ?= talus,bullet-f32,bullet-f32-tuned,ode-quickstep-tuned,ode-step
 # back, for the report's thread-scaling and where-the-time-goes tables
 # (docs/bench-scenes.md); each count adds Talus's share of the series again.
 SCENES_THREADS ?= 1,2
+# Speed against accuracy (docs/bench-scenes.md, "Iterations and
+# substeps"): pyramid H = 10 and hull_pile L = 10 again at these solver
+# iteration counts, one run each, on the engines of the series that have
+# the knob; their defaults are the series' own runs. A few minutes.
+SCENES_TRADEOFF_ENGINES ?= talus,bullet-f32,bullet-f32-tuned,ode-quickstep-tuned
+SCENES_ITERATIONS ?= 2,4,8,20
 
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 600
@@ -203,6 +210,10 @@ report-full: build
 	    extras="$$extras --sweep $(FULL_DIR)/sweep/results.json"; else status=1; fi; \
 	  if $(TESTBED) stress -b talus,talus-split,bullet,ode-step,ode-quickstep -o $(FULL_DIR)/stress >/dev/null; \
 	    then extras="$$extras --stress $(FULL_DIR)/stress/stress.json"; else status=1; fi; \
-	  if $(SCENES) --series --engines $(SCENES_ENGINES) --threads $(SCENES_THREADS) --format jsonl >$(FULL_DIR)/scenes.jsonl; then \
+	  if $(SCENES) --series --engines $(SCENES_ENGINES) --threads $(SCENES_THREADS) --format jsonl >$(FULL_DIR)/scenes.jsonl \
+	    && $(SCENES) --scene pyramid --param 10 --engines $(SCENES_TRADEOFF_ENGINES) \
+	      --iterations $(SCENES_ITERATIONS) --format jsonl >>$(FULL_DIR)/scenes.jsonl \
+	    && $(SCENES) --scene hull_pile --param 10 --engines $(SCENES_TRADEOFF_ENGINES) \
+	      --iterations $(SCENES_ITERATIONS) --format jsonl >>$(FULL_DIR)/scenes.jsonl; then \
 	    extras="$$extras --scenes $(FULL_DIR)/scenes.jsonl"; else status=1; fi; \
 	  $(TESTBED) report $(FULL_DIR)/results.json $$extras && exit $$status

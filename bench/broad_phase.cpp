@@ -1,6 +1,6 @@
 // Broad phase benchmarks: uniform grid, AABB tree and brute force on worlds
 // of 100 to 100k bodies, uniform and mixed sizes, dense, sparse and on the
-// SCENES.md floor, static and moving; plus tiny worlds for the brute-force
+// benchmark-scene floor (docs/bench-scenes.md), static and moving; plus tiny worlds for the brute-force
 // crossover. One iteration is one step: Update(proxies) then FindPairs.
 // Counters: candidate pairs, pairs after the sphere test, oversized tests.
 #include <benchmark/benchmark.h>
@@ -14,7 +14,7 @@
 namespace talus {
 namespace {
 
-// SplitMix64 (SCENES.md), so the worlds are the same everywhere.
+// SplitMix64 (docs/bench-scenes.md), so the worlds are the same everywhere.
 struct Rng {
   std::uint64_t state;
   double Uniform() {
@@ -31,7 +31,7 @@ enum class Scene {
   Uniform,  ///< 1 m cubes' spheres (r 0.866), 8 m^3 of space per body: a dense pile
   Mixed,    ///< radii log-uniform 0.05 to 5 m, 60 m^3 per body
   Sparse,   ///< radii log-uniform 0.05 to 5 m, 20000 m^3 per body
-  Floor,    ///< the SCENES.md floor under layers of cubes, 1 m apart horizontally
+  Floor,    ///< the benchmark scenes' floor under layers of cubes, 1 m apart horizontally
 };
 
 struct World {

@@ -1,4 +1,4 @@
-// The contact solver on the reference pyramid (shared/bench/SCENES.md,
+// The contact solver on the reference pyramid (its specification:
 // docs/bench-scenes.md): the scalar Sequential Impulses against the
 // coloured wide solver (WorldSettings::contactSolver), per step and per
 // stage. Google Benchmark's time is the thread's CPU time, which a busy

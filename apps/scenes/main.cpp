@@ -9,7 +9,13 @@
 //   talus-scenes --scene pyramid --engines talus,bullet --perturb 1e-9 --repeats 10
 //       (each repeat from initial positions moved by up to 1e-9 m; the spread
 //       and whether the verdict held in every repeat go to stderr)
+//   talus-scenes --scene pyramid --param 10 --iterations 0,4,8,16 --substeps 1,2
+//       (one line per engine, iteration count and substep count: total time
+//       against drift or penetration over each engine's settings)
 //
+// The cost of a run is its total wall time (and the mean step, total /
+// steps), with the longest step beside it; never a median over the steps of
+// one run (docs/bench-scenes.md, "Cost").
 // With a list of thread counts each Talus engine runs once per count, one
 // right after the other, so the speed-ups compare runs minutes apart; every
 // peer runs once, on one thread.
@@ -46,6 +52,8 @@ struct Options {
   std::optional<double> perturb;             // metres; absent: unperturbed
   std::optional<int> repeats;                // absent: 1
   std::optional<std::uint64_t> perturbSeed;  // absent: 0
+  std::vector<int> iterations = {0};         // Run::iterations per run; 0: the engine's default
+  std::vector<int> substeps = {1};           // backend steps of h / N per scene step
 };
 
 std::vector<std::string> SplitList(const std::string& text) {
@@ -57,7 +65,7 @@ std::vector<std::string> SplitList(const std::string& text) {
   return items;
 }
 
-// A thread count the list names more than once, or nothing.
+// A count the list names more than once, or nothing.
 std::optional<int> RepeatedCount(const std::vector<int>& counts) {
   for (std::size_t i = 0; i < counts.size(); ++i) {
     if (std::find(counts.begin(), counts.begin() + static_cast<std::ptrdiff_t>(i), counts[i]) !=
@@ -67,6 +75,12 @@ std::optional<int> RepeatedCount(const std::vector<int>& counts) {
   }
   return std::nullopt;
 }
+
+// The thread count and solver settings of one series of runs.
+struct Setting {
+  int threads = 1;
+  talus::harness::BenchSolver solver;
+};
 
 // One (scene, parameter) pair to run on every engine.
 struct Job {
@@ -105,6 +119,19 @@ int main(int argc, char** argv) {
   app.add_option("--perturb-seed", options.perturbSeed,
                  "with --perturb: the first repeat's SplitMix64 seed (default 0)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option(
+         "--iterations", options.iterations,
+         "comma-separated solver iteration counts, one run each (0: the engine's default, else 1 to " +
+             std::to_string(talus::harness::kBenchMaxIterations) +
+             "): Talus's velocity and position iterations, Bullet's solver iterations, ODE "
+             "quickstep's iterations per step, MuJoCo's iterations; refused for ode-step, "
+             "which has none")
+      ->delimiter(',');
+  app.add_option("--substeps", options.substeps,
+                 "comma-separated substep counts, one run each (1 to " +
+                     std::to_string(talus::harness::kBenchMaxSubsteps) +
+                     "): every engine takes N steps of h / N per scene step, timed as one")
+      ->delimiter(',');
   CLI11_PARSE(app, argc, argv);
 
   if (!options.perturb && (options.repeats || options.perturbSeed)) {
@@ -124,9 +151,14 @@ int main(int argc, char** argv) {
     std::cerr << "talus-scenes: --repeats: " << *problem << '\n';
     return 2;
   }
-  if (const auto repeat = RepeatedCount(options.threads)) {
-    std::cerr << "talus-scenes: --threads names " << *repeat << " twice\n";
-    return 2;
+  for (const auto& [flag, counts] :
+       {std::pair<const char*, const std::vector<int>*>{"--threads", &options.threads},
+        {"--iterations", &options.iterations},
+        {"--substeps", &options.substeps}}) {
+    if (const auto repeat = RepeatedCount(*counts)) {
+      std::cerr << "talus-scenes: " << flag << " names " << *repeat << " twice\n";
+      return 2;
+    }
   }
   // One registry per thread count: a Talus backend's worlds take their
   // thread count from the registry that builds them.
@@ -155,6 +187,27 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  // Every setting checked before anything runs, so a bad one is refused
+  // whole, not after minutes of other runs: the ranges first, then whether
+  // each engine has the knob.
+  for (int iterations : options.iterations) {
+    if (auto problem = talus::harness::BenchSolverProblem("", {iterations, 1})) {
+      std::cerr << "talus-scenes: --iterations: " << *problem << '\n';
+      return 2;
+    }
+    for (const std::string& engine : engines) {
+      if (auto problem = talus::harness::BenchSolverProblem(engine, {iterations, 1})) {
+        std::cerr << "talus-scenes: --iterations: " << *problem << '\n';
+        return 2;
+      }
+    }
+  }
+  for (int substeps : options.substeps) {
+    if (auto problem = talus::harness::BenchSolverProblem("", {0, substeps})) {
+      std::cerr << "talus-scenes: --substeps: " << *problem << '\n';
+      return 2;
+    }
+  }
 
   std::vector<Job> jobs;
   for (const BenchScene& scene : talus::harness::BenchScenes()) {
@@ -173,10 +226,22 @@ int main(int argc, char** argv) {
     for (const std::string& engine : engines) {
       // The Talus worlds step on each of the --threads counts; every peer on one.
       const bool talus = engine.starts_with("talus");
+      // Every (threads, iterations, substeps) setting is one series of repeats.
+      std::vector<Setting> settings;
       for (int threads : talus ? options.threads : std::vector<int>{1}) {
+        for (int iterations : options.iterations) {
+          for (int substeps : options.substeps) settings.push_back({threads, {iterations, substeps}});
+        }
+      }
+      for (const Setting& setting : settings) {
+        const int threads = setting.threads;
         std::string label = std::string(job.scene->name) + " " + std::string(job.scene->parameterName) + "=" +
                             std::to_string(job.parameter) + " " + engine;
         if (talus && options.threads.size() > 1) label += " threads=" + std::to_string(threads);
+        if (options.iterations.size() > 1 || options.substeps.size() > 1 || setting.solver.iterations != 0 ||
+            setting.solver.substeps != 1) {
+          label += " (" + talus::harness::BenchSolverLabel(setting.solver) + ")";
+        }
         const talus::harness::BackendRegistry& builder = talus ? registries.at(threads) : registry;
         std::vector<talus::harness::BenchReport> series;
         for (int repeat = 0; repeat < repeats; ++repeat) {
@@ -196,7 +261,7 @@ int main(int argc, char** argv) {
             };
           }
           auto report = talus::harness::RunBenchScene(builder, engine, *job.scene, job.parameter,
-                                                      options.steps, progress, perturbation);
+                                                      options.steps, progress, perturbation, setting.solver);
           if (!report) {
             std::cerr << "talus-scenes: " << runLabel << ": " << report.GetError().message << '\n';
             ++failures;

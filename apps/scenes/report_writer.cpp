@@ -29,14 +29,14 @@ std::string Quote(const std::string& text) {
   return quoted + "\"";
 }
 
-// "UpdateBroadPhase=0.12;FindContacts=3.4;...": each stage's median ms in
+// "UpdateBroadPhase=0.12;FindContacts=3.4;...": each stage's mean ms in
 // one field (stage names hold no ',' or ';'), so the columns stay fixed
 // whatever stages an engine times.
 std::string StageField(const std::vector<harness::BenchStage>& stages) {
   std::string field;
   for (const harness::BenchStage& stage : stages) {
     if (!field.empty()) field += ';';
-    field += stage.name + "=" + Number(stage.msMedian);
+    field += stage.name + "=" + Number(stage.msMean);
   }
   return field;
 }
@@ -45,8 +45,8 @@ std::string StageField(const std::vector<harness::BenchStage>& stages) {
 
 std::string CsvHeader(bool perturbed) {
   std::string header =
-      "engine,scene,parameter,bodies,threads,steps,ms_per_step_median,ms_per_step_mean,max_contacts,"
-      "drift_m,max_penetration_m,kinetic_energy_j,escaped,skipped,stage_ms_median";
+      "engine,scene,parameter,bodies,threads,steps,iterations,substeps,total_ms,ms_per_step_mean,"
+      "ms_per_step_max,max_contacts,drift_m,max_penetration_m,kinetic_energy_j,escaped,skipped,stage_ms_mean";
   if (perturbed) header.append(",repeat,perturb_m,perturb_seed");
   return header;
 }
@@ -54,14 +54,15 @@ std::string CsvHeader(bool perturbed) {
 std::string FormatCsv(const harness::BenchReport& report) {
   std::string line = report.engine + "," + report.scene + "," + std::to_string(report.parameter) + "," +
                      std::to_string(report.bodies) + "," + std::to_string(report.threads) + "," +
-                     std::to_string(report.steps) + ",";
+                     std::to_string(report.steps) + "," + std::to_string(report.solver.iterations) + "," +
+                     std::to_string(report.solver.substeps) + ",";
   if (!report.skipped.empty()) {
-    line += ",,,,,,," + Quote(report.skipped) + ",";
+    line += ",,,,,,,," + Quote(report.skipped) + ",";
   } else {
-    line += Number(report.msMedian) + "," + Number(report.msMean) + "," + std::to_string(report.maxContacts) +
-            "," + Optional(report.drift) + "," + Optional(report.maxPenetration) + "," +
-            Optional(report.kineticEnergy) + "," + (report.escaped ? std::to_string(*report.escaped) : "") +
-            ",," + StageField(report.stages);
+    line += Number(report.totalMs) + "," + Number(report.msMean) + "," + Number(report.msMax) + "," +
+            std::to_string(report.maxContacts) + "," + Optional(report.drift) + "," +
+            Optional(report.maxPenetration) + "," + Optional(report.kineticEnergy) + "," +
+            (report.escaped ? std::to_string(*report.escaped) : "") + ",," + StageField(report.stages);
   }
   if (report.perturbation) {
     // 17 significant digits: the amount reads back as the same double.

@@ -1,5 +1,5 @@
 // Formatting benchmark reports (talus::harness::BenchReport) as the
-// machine-readable lines SCENES.md asks for: CSV (one header line, then one
+// machine-readable lines of docs/bench-scenes.md: CSV (one header line, then one
 // line per run, fixed columns) or JSON lines (one object per run, only the
 // figures that apply to the scene). A skipped run is a line too, with its
 // reason, so nothing is left out silently.
@@ -15,10 +15,11 @@ namespace talus::scenes {
 enum class ReportFormat { Csv, JsonLines };
 
 /// The CSV header line (no newline): engine, scene, parameter, bodies,
-/// threads, steps, ms_per_step_median, ms_per_step_mean, max_contacts,
+/// threads, steps, iterations (0: the engine's default), substeps,
+/// total_ms (the cost), ms_per_step_mean, ms_per_step_max, max_contacts,
 /// drift_m, max_penetration_m, kinetic_energy_j, escaped, skipped,
-/// stage_ms_median (for an engine that times its stages:
-/// "Stage=ms;Stage=ms;..." in its stage order, each the median over the
+/// stage_ms_mean (for an engine that times its stages:
+/// "Stage=ms;Stage=ms;..." in its stage order, each its mean over the
 /// steps; empty otherwise); when `perturbed` (talus-scenes
 /// --perturb/--repeats), then repeat, perturb_m, perturb_seed.
 std::string CsvHeader(bool perturbed = false);

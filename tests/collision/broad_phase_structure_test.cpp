@@ -34,7 +34,7 @@ std::vector<BroadPhasePair> RunOnce(BroadPhaseKind kind, const std::vector<Broad
   return pairs;
 }
 
-// The SCENES.md floor, box (50, 1, 50) at (0, -1, 0), under a layer of 1 m
+// The benchmark scenes' floor (docs/bench-scenes.md), box (50, 1, 50) at (0, -1, 0), under a layer of 1 m
 // cubes (bounding radius sqrt(3)/2) resting on it.
 std::vector<BroadPhaseProxy> FloorUnderCubes(int side) {
   std::vector<BroadPhaseProxy> proxies = {Ball({0, -1, 0}, std::sqrt(50.0 * 50 + 1 + 50.0 * 50), true)};

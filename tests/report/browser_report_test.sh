@@ -23,14 +23,18 @@ rm -rf "$work"
 mkdir -p "$work/profile"
 "$testbed" run "$scenario" -b talus,bullet --replay all --deterministic -j 1 -q -o "$work" >/dev/null
 # A small large-scenes file (the layout talus-scenes --format jsonl writes):
-# two scenes, two engines, so the page must draw two scaling charts.
+# two scenes, two engines, so the page must draw two scaling charts; and
+# pyramid H = 4 again at 3 iterations, so it must draw a speed-against-
+# accuracy chart too (its script runs without errors).
 cat >"$work/scenes.jsonl" <<'LINES'
-{"engine":"talus","scene":"pyramid","parameter":4,"bodies":30,"threads":1,"steps":60,"ms_per_step_median":1.0,"ms_per_step_mean":1.2,"max_contacts":496,"drift_m":0.001}
-{"engine":"bullet","scene":"pyramid","parameter":4,"bodies":30,"threads":1,"steps":60,"ms_per_step_median":0.5,"ms_per_step_mean":0.6,"max_contacts":486,"drift_m":0.002}
-{"engine":"talus","scene":"pyramid","parameter":6,"bodies":91,"threads":1,"steps":60,"ms_per_step_median":3.0,"ms_per_step_mean":3.1,"max_contacts":1500,"drift_m":0.001}
-{"engine":"bullet","scene":"pyramid","parameter":6,"bodies":91,"threads":1,"steps":60,"ms_per_step_median":1.5,"ms_per_step_mean":1.6,"max_contacts":1400,"drift_m":0.002}
-{"engine":"talus","scene":"hull_pile","parameter":2,"bodies":40,"threads":1,"steps":60,"ms_per_step_median":0.05,"ms_per_step_mean":0.2,"max_contacts":27,"max_penetration_m":0.05,"kinetic_energy_j":3.4e5,"escaped":0}
-{"engine":"bullet","scene":"hull_pile","parameter":2,"bodies":40,"threads":1,"steps":60,"ms_per_step_median":0.1,"ms_per_step_mean":0.2,"max_contacts":30,"max_penetration_m":0.03,"kinetic_energy_j":3.3e5,"escaped":0}
+{"engine":"talus","scene":"pyramid","parameter":4,"bodies":30,"threads":1,"steps":60,"iterations":0,"substeps":1,"total_ms":72.0,"ms_per_step_mean":1.2,"ms_per_step_max":2.4,"max_contacts":496,"drift_m":0.001}
+{"engine":"talus","scene":"pyramid","parameter":4,"bodies":30,"threads":1,"steps":60,"iterations":3,"substeps":1,"total_ms":36.0,"ms_per_step_mean":0.6,"ms_per_step_max":1.2,"max_contacts":480,"drift_m":0.004}
+{"engine":"bullet","scene":"pyramid","parameter":4,"bodies":30,"threads":1,"steps":60,"iterations":3,"substeps":1,"total_ms":24.0,"ms_per_step_mean":0.4,"ms_per_step_max":0.8,"max_contacts":470,"drift_m":0.009}
+{"engine":"bullet","scene":"pyramid","parameter":4,"bodies":30,"threads":1,"steps":60,"iterations":0,"substeps":1,"total_ms":36.0,"ms_per_step_mean":0.6,"ms_per_step_max":1.2,"max_contacts":486,"drift_m":0.002}
+{"engine":"talus","scene":"pyramid","parameter":6,"bodies":91,"threads":1,"steps":60,"iterations":0,"substeps":1,"total_ms":186.0,"ms_per_step_mean":3.1,"ms_per_step_max":6.2,"max_contacts":1500,"drift_m":0.001}
+{"engine":"bullet","scene":"pyramid","parameter":6,"bodies":91,"threads":1,"steps":60,"iterations":0,"substeps":1,"total_ms":96.0,"ms_per_step_mean":1.6,"ms_per_step_max":3.2,"max_contacts":1400,"drift_m":0.002}
+{"engine":"talus","scene":"hull_pile","parameter":2,"bodies":40,"threads":1,"steps":60,"iterations":0,"substeps":1,"total_ms":12.0,"ms_per_step_mean":0.2,"ms_per_step_max":0.4,"max_contacts":27,"max_penetration_m":0.05,"kinetic_energy_j":3.4e5,"escaped":0}
+{"engine":"bullet","scene":"hull_pile","parameter":2,"bodies":40,"threads":1,"steps":60,"iterations":0,"substeps":1,"total_ms":12.0,"ms_per_step_mean":0.2,"ms_per_step_max":0.4,"max_contacts":30,"max_penetration_m":0.03,"kinetic_energy_j":3.3e5,"escaped":0}
 LINES
 "$testbed" report "$work/results.json" -o "$work" --scenes "$work/scenes.jsonl" >/dev/null
 
@@ -61,5 +65,6 @@ check "Quickhull trace meshes" '"hullTraceMeshes":[1-9]'
 check "the Quickhull view has drawn pixels" '"hullTraceLitPixels":[1-9]'
 check "a broad-phase funnel chart (talus)" '"funnelCharts":1'
 check "one scaling chart per large scene" '"scalingCharts":2'
+check "one speed-against-accuracy chart (pyramid H = 4)" '"tradeoffCharts":1'
 check "the scorecard's pass-fraction chart" '"scorecardCharts":1'
 exit $fail

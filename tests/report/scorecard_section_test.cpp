@@ -182,8 +182,10 @@ TEST(ScorecardSection, SweepAndScenesAddTheirColumns) {
     r.engine = engine;
     r.scene = "pyramid";
     r.parameter = parameter;
-    r.msMedian = ms;
+    r.steps = 600;
+    r.totalMs = 600.0 * ms;
     r.msMean = ms;
+    r.msMax = ms;
     scenes.push_back(r);
   }
   BenchReport skipped;
@@ -197,13 +199,14 @@ TEST(ScorecardSection, SweepAndScenesAddTheirColumns) {
   extras.scenes = &scenes;
 
   const Scorecard card = BuildScorecard(Results(), extras);
-  ASSERT_EQ(card.scenes, std::vector<std::string>{"pyramid H = 15 (ms/step)"});
+  ASSERT_EQ(card.scenes, std::vector<std::string>{"pyramid H = 15 (mean ms/step)"});
   // Engines only the extras ran get rows of their own, after the results' ones.
   ASSERT_EQ(card.rows.size(), 5u);
   EXPECT_EQ(card.rows[3].backend, "bullet");
   EXPECT_EQ(card.rows[4].backend, "bullet-f32");
   const std::string md = ScorecardMarkdown(card);
-  EXPECT_NE(md.find("| most accurate at equal cost | pyramid H = 15 (ms/step) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| most accurate at equal cost | pyramid H = 15 (mean ms/step) |"), std::string::npos)
+      << md;
   EXPECT_NE(md.find("| talus | 3 of 4 (75%) | 1 of 2 | 0 | 0 | 1 of 3 | 2.5 | [col_5](#col_5) (1) |"),
             std::string::npos)
       << md;

@@ -189,6 +189,26 @@ TEST(SummarizeRepeats, SpreadAndVerdictOfASeries) {
   EXPECT_TRUE(std::isnan(failed.Value().max));
 }
 
+// The one median of a time: across repeated runs, of each run's total.
+// Three runs of 9, 7 and 30 s (the last a busy machine): the median is 9 s,
+// and the line says it beside the spread.
+TEST(SummarizeRepeats, TheCostIsTheMedianOfTheRunsTotals) {
+  std::vector<BenchReport> runs = {PyramidRun(0.001), PyramidRun(0.002), PyramidRun(0.003)};
+  runs[0].totalMs = 9000.0;
+  runs[1].totalMs = 7000.0;
+  runs[2].totalMs = 30000.0;
+  auto summary = SummarizeRepeats(runs);
+  ASSERT_TRUE(summary.Ok());
+  EXPECT_EQ(summary.Value().totalMsMin, 7000.0);
+  EXPECT_EQ(summary.Value().totalMsMedian, 9000.0);
+  EXPECT_EQ(summary.Value().totalMsMax, 30000.0);
+  const std::string line = FormatRepeatSummary(runs[0], summary.Value());
+  EXPECT_NE(line.find("; total ms min 7000 median 9000 max 30000"), std::string::npos) << line;
+  // An even count: the mean of the middle two.
+  runs.pop_back();
+  EXPECT_EQ(SummarizeRepeats(runs).Value().totalMsMedian, 8000.0);
+}
+
 TEST(SummarizeRepeats, HullPileVerdictIsNothingEscapedAndSkippedRunsAreLeftOut) {
   BenchReport inside;
   inside.scene = "hull_pile";
@@ -264,13 +284,13 @@ TEST(ScenesCommandPerturb, RepeatsPrintOneLineEachAndTheSpread) {
   const Outcome alone =
       Execute("--scene pyramid --param 2 --steps 125 --engines talus --perturb 1e-9 --perturb-seed 11");
   ASSERT_EQ(alone.code, 0) << alone.output;
-  // The drift is the 10th column (index 9); times (6, 7) differ between runs.
+  // The drift is the 13th column (index 12); times (8, 9, 10) differ between runs.
   auto driftOf = [](const std::string& output, const std::string& suffix) {
     const size_t end = output.find(suffix);
     if (end == std::string::npos) return std::string("missing");
     const size_t begin = output.rfind('\n', end) + 1;
     std::string line = output.substr(begin, end - begin);
-    for (int column = 0; column < 9; ++column) line = line.substr(line.find(',') + 1);
+    for (int column = 0; column < 12; ++column) line = line.substr(line.find(',') + 1);
     return line.substr(0, line.find(','));
   };
   EXPECT_EQ(driftOf(series.output, ",1,1.0000000000000001e-09,11"),

@@ -1,4 +1,4 @@
-// The scene generators against the definitions of SCENES.md: counts,
+// The scene generators against the specification in docs/bench-scenes.md: counts,
 // positions, materials, walls, the random stream, and the body-frame /
 // centre-of-mass mapping each backend applies to the hull pile.
 #include "talus/harness/scenes/bench_scenes.h"

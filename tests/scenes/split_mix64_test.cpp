@@ -1,4 +1,4 @@
-// SplitMix64 against the check values of SCENES.md and an independent
+// SplitMix64 against the check values of docs/bench-scenes.md and an independent
 // transcription of the definition.
 #include "talus/harness/support/split_mix64.h"
 

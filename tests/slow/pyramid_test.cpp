@@ -1,8 +1,8 @@
 // Large scenes through the real pipeline, too slow for the sanitizer pass
 // (this binary's tests carry the ctest label "slow", which that pass
-// excludes; the Release pass runs them). The scenes follow
-// shared/bench/SCENES.md (beside the repository) exactly, so the figures compare with the
-// benchmark reports.
+// excludes; the Release pass runs them). The scenes follow their
+// specification in docs/bench-scenes.md exactly, so the figures compare
+// with the benchmark reports.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,7 +16,7 @@ namespace {
 
 constexpr double kH = 1.0 / 60.0;
 
-// SCENES.md `pyramid`: layer i of (H - i)^2 cubes of edge 2 m, each layer
+// docs/bench-scenes.md `pyramid`: layer i of (H - i)^2 cubes of edge 2 m, each layer
 // starting 0.5 m above its resting height, on a static floor; friction 0.2.
 struct Pyramid {
   World world;
@@ -52,7 +52,7 @@ Pyramid BuildPyramid(int height, const WorldSettings& settings) {
 
 TEST(SlowScenes, PyramidOfFifteenLayersStandsWithDefaultSettings) {
   WorldSettings settings;
-  settings.sleeping = false;  // SCENES.md: the point is to measure the work
+  settings.sleeping = false;  // docs/bench-scenes.md: the point is to measure the work
   Pyramid p = BuildPyramid(15, settings);
   ASSERT_EQ(p.cubes.size(), 1240u);
   std::vector<Vec3> at120;
@@ -69,7 +69,7 @@ TEST(SlowScenes, PyramidOfFifteenLayersStandsWithDefaultSettings) {
       }
     }
   }
-  // SCENES.md's stability figure: a standing pyramid drifts well under 5 cm.
+  // docs/bench-scenes.md's stability figure: a standing pyramid drifts well under 5 cm.
   EXPECT_LT(drift, 0.05);
   // Every cube rests on its layer, centre at 1 + 2 i m, less the
   // penetration Baumgarte leaves by design: up to `slop` at each of the

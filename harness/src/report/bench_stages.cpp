@@ -43,11 +43,18 @@ std::string SizeName(const std::string& scene, int parameter) {
 
 bool Ran(const BenchReport* r) { return r->skipped.empty(); }
 
-// The run of `engine` at `threads` among `rows`, or null.
-const BenchReport* AtThreads(const std::vector<const BenchReport*>& rows, const std::string& engine,
+bool SameSolver(const BenchReport* a, const BenchReport* b) {
+  return a->solver.iterations == b->solver.iterations && a->solver.substeps == b->solver.substeps;
+}
+
+// The run of `like`'s engine and solver settings at `threads` among `rows`
+// with as many steps, or null: a thread speed-up compares like with like.
+const BenchReport* AtThreads(const std::vector<const BenchReport*>& rows, const BenchReport* like,
                              int threads) {
   for (const BenchReport* r : rows) {
-    if (Ran(r) && r->engine == engine && r->threads == threads) return r;
+    if (Ran(r) && r->engine == like->engine && SameSolver(r, like) && r->steps == like->steps &&
+        r->threads == threads)
+      return r;
   }
   return nullptr;
 }
@@ -80,7 +87,7 @@ std::vector<std::pair<const BenchReport*, const BenchReport*>> ThreadPairs(
   std::vector<std::pair<const BenchReport*, const BenchReport*>> pairs;
   for (const BenchReport* r : runs) {
     if (r->threads == 1) continue;
-    if (const BenchReport* one = AtThreads(runs, r->engine, 1)) pairs.emplace_back(one, r);
+    if (const BenchReport* one = AtThreads(runs, r, 1)) pairs.emplace_back(one, r);
   }
   return pairs;
 }
@@ -113,12 +120,13 @@ void WriteStageTable(std::ostringstream& out, const SizeRows& size) {
         out << " - |";
         continue;
       }
-      out << ' ' << FormatNumber(stage->msMedian, 3) << " (" << Share(stage->msMean, r->msMean) << ") |";
+      out << ' ' << FormatNumber(stage->msMean, 3) << " (" << Share(stage->msMean, r->msMean) << "; max "
+          << FormatNumber(stage->msMax, 3) << ") |";
     }
     for (const auto& [one, many] : pairs) {
       const BenchStage* before = FindStage(*one, name);
       const BenchStage* after = FindStage(*many, name);
-      out << ' ' << (before && after ? Ratio(before->msMedian, after->msMedian) : std::string("-")) << " |";
+      out << ' ' << (before && after ? Ratio(before->msMean, after->msMean) : std::string("-")) << " |";
     }
     out << '\n';
   }
@@ -130,29 +138,31 @@ void WriteStageTable(std::ostringstream& out, const SizeRows& size) {
   }
   for (std::size_t i = 0; i < pairs.size(); ++i) out << " - |";
   out << "\n| step |";
-  for (const BenchReport* r : runs) out << ' ' << FormatNumber(r->msMedian, 4) << " (100%) |";
-  for (const auto& [one, many] : pairs) out << ' ' << Ratio(one->msMedian, many->msMedian) << " |";
+  for (const BenchReport* r : runs)
+    out << ' ' << FormatNumber(r->msMean, 4) << " (100%; max " << FormatNumber(r->msMax, 4) << ") |";
+  for (const auto& [one, many] : pairs) out << ' ' << Ratio(one->totalMs, many->totalMs) << " |";
   out << '\n';
 }
 
 }  // namespace
 
 std::string BenchRunLabel(const BenchReport& report) {
-  if (report.threads == 1) return report.engine;
-  return Concat({report.engine, ", ", std::to_string(report.threads), " threads"});
+  std::string label = report.engine;
+  if (report.threads != 1) label += Concat({", ", std::to_string(report.threads), " threads"});
+  if (report.solver.iterations != 0 || report.solver.substeps != 1)
+    label += Concat({", ", BenchSolverLabel(report.solver)});
+  return label;
 }
 
 std::string BenchStagesMarkdown(const std::vector<const BenchReport*>& rows) {
   std::ostringstream out;
   for (const SizeRows& size : GroupBySize(rows)) WriteStageTable(out, size);
   if (out.str().empty()) return "";
-  return "\n### Where the time goes\n\nEach cell: the stage's median ms/step over the run, and (in brackets) "
-         "its share of the "
-         "step's time, from the means, which add up where medians do not and which count in full a stage "
-         "whose cost varies from step to step (more velocity sweeps in a step where new pairs touch); "
-         "\"other\" is the step's time outside the engine's stages. A speed-up column divides an engine's "
-         "1-thread median by its N-thread "
-         "one from the same invocation: a stage near 1 does not run on the thread pool.\n" +
+  return "\n### Where the time goes\n\nEach cell: the stage's mean ms/step over the run (its total / steps), "
+         "and in brackets its share of the run's total time and its longest step, which shows the steps "
+         "where new pairs touch and the velocity sweeps run on; \"other\" is the time outside the engine's "
+         "stages. A speed-up column divides an engine's 1-thread mean by its N-thread one from the same "
+         "invocation: a stage near 1 does not run on the thread pool.\n" +
          out.str();
 }
 
@@ -168,21 +178,24 @@ std::string BenchThreadsMarkdown(const std::vector<const BenchReport*>& rows) {
       if (several) engines.push_back(r->engine);
     }
     for (const std::string& engine : engines) {
-      const BenchReport* one = AtThreads(size.rows, engine, 1);
       for (const BenchReport* r : size.rows) {
         if (!Ran(r) || r->engine != engine) continue;
-        table << "| " << SizeName(size.scene, size.parameter) << " | " << engine << " | " << r->threads
-              << " | " << FormatNumber(r->msMedian, 4) << " | "
-              << (one != nullptr ? Ratio(one->msMedian, r->msMedian) : std::string("-")) << " |\n";
+        const BenchReport* one = AtThreads(size.rows, r, 1);
+        BenchReport settings = *r;
+        settings.threads = 1;  // the label of its settings, without the count the next column gives
+        table << "| " << SizeName(size.scene, size.parameter) << " | " << BenchRunLabel(settings) << " | "
+              << r->threads << " | " << FormatNumber(r->msMean, 4) << " | "
+              << (one != nullptr ? Ratio(one->totalMs, r->totalMs) : std::string("-")) << " |\n";
       }
     }
   }
   if (table.str().empty()) return "";
-  return "\n### Thread scaling\n\nEach engine's median ms/step at each thread count it ran at, and the "
-         "speed-up over its own 1-thread run in the same invocation (goal: at least " +
+  return "\n### Thread scaling\n\nEach engine's mean ms/step (total / steps) at each thread count it ran at, "
+         "and the speed-up (ratio of the total times) over its own 1-thread run with the same settings in "
+         "the same invocation (goal: at least " +
          FormatNumber(kBenchThreadGoalSpeedup) +
          " at 2 threads on pyramid H = 20 and hull_pile L = 20).\n\n| scene | engine | threads | ms/step "
-         "(median) | speed-up over 1 thread |\n|---|---|---|---|---|\n" +
+         "(mean) | speed-up over 1 thread |\n|---|---|---|---|---|\n" +
          table.str();
 }
 
@@ -197,10 +210,11 @@ std::string BenchThreadGoals(const std::vector<const BenchReport*>& rows) {
     for (const BenchReport* r : sized) {
       if (r->threads != 2 || !Ran(r) || std::find(engines.begin(), engines.end(), r->engine) != engines.end())
         continue;
-      const BenchReport* one = AtThreads(sized, r->engine, 1);
-      if (one == nullptr || !(one->msMedian > 0.0) || !(r->msMedian > 0.0)) continue;
+      if (r->solver.iterations != 0 || r->solver.substeps != 1) continue;  // the goal is at the defaults
+      const BenchReport* one = AtThreads(sized, r, 1);
+      if (one == nullptr || !(one->totalMs > 0.0) || !(r->totalMs > 0.0)) continue;
       engines.push_back(r->engine);
-      const double speedup = one->msMedian / r->msMedian;
+      const double speedup = one->totalMs / r->totalMs;
       goals << "- " << SizeName(scene, parameter) << ": " << r->engine
             << " at 1 / 2 threads = " << FormatNumber(speedup, 3)
             << " (goal >= " << FormatNumber(kBenchThreadGoalSpeedup) << ": "

@@ -16,24 +16,26 @@ namespace talus::harness {
 inline constexpr double kBenchThreadGoalSpeedup = 1.7;
 
 /// How the section names a run: the engine, with ", N threads" when it
-/// stepped on more than one ("talus-coloured, 2 threads").
+/// stepped on more than one and its solver settings when they are not the
+/// engine's defaults ("talus-coloured, 2 threads", "bullet, 20 iterations,
+/// 2 substeps").
 std::string BenchRunLabel(const BenchReport& report);
 
 /// "### <scene> <P> = <p>: where the time goes" for each scene and size
 /// with a run that timed its stages (`rows` in the section's row order):
 /// one row per stage (in the engine's order) and one column per such run,
-/// each cell the stage's median ms/step and its share of the step (stage
-/// mean / step mean, since means add up where medians do not); an "other"
-/// row for the step's time outside the stages (the backend's own work),
-/// a "step" row with the step's median; and, for an engine run at one and
-/// at N threads, a column of each stage's speed-up (1-thread median /
-/// N-thread median), which shows the stages that do not run on the pool.
+/// each cell the stage's mean ms/step, its share of the run's total time
+/// (stage mean / step mean) and its longest step; an "other" row for the
+/// time outside the stages (the backend's own work), a "step" row with the
+/// mean and longest step; and, for an engine run at one and at N threads,
+/// a column of each stage's speed-up (1-thread mean / N-thread mean), which
+/// shows the stages that do not run on the pool.
 /// Empty when no run has stages.
 std::string BenchStagesMarkdown(const std::vector<const BenchReport*>& rows);
 
 /// "### Thread scaling": for each scene, size and engine run at more than
-/// one thread count, its median ms/step at each count and the speed-up over
-/// its 1-thread run from the same file. Empty when no engine ran at two
+/// one thread count, its mean ms/step (total / steps) at each count and the
+/// speed-up (ratio of the totals) over its 1-thread run from the same file. Empty when no engine ran at two
 /// counts.
 std::string BenchThreadsMarkdown(const std::vector<const BenchReport*>& rows);
 

@@ -2,11 +2,13 @@
 //
 // Rows are grouped by scene (in BenchScenes() order, unknown scenes after,
 // by name), then parameter ascending, then engine in the order the reports
-// first name it, so the same reports always give the same text. Ratios
-// divide by the median of Bullet's fastest configuration in the same file
-// (any of "bullet", "bullet-tuned", "bullet-f32", "bullet-f32-tuned" that
-// ran): talus-scenes runs every engine in one invocation, so they were
-// measured on the same machine at the same moment.
+// first name it, so the same reports always give the same text. The cost is
+// the run's total wall time (docs/bench-scenes.md, "Cost"): ratios divide
+// one run's total by that of Bullet's fastest configuration at its defaults
+// with the same number of steps in the same file (any of "bullet",
+// "bullet-tuned", "bullet-f32", "bullet-f32-tuned" that ran): talus-scenes
+// runs every engine in one invocation, so they were measured on the same
+// machine at the same moment.
 #include "talus/harness/report/bench_summary.h"
 
 #include <algorithm>
@@ -17,6 +19,7 @@
 #include <sstream>
 
 #include "report/bench_stages.h"
+#include "report/bench_tradeoff.h"
 #include "report/markdown_html.h"
 #include "support/text_util.h"
 #include "talus/harness/scenes/bench_scenes.h"
@@ -63,30 +66,34 @@ std::vector<SceneRows> GroupByScene(const std::vector<BenchReport>& reports) {
   return groups;
 }
 
+// A run at the engine's defaults: one thread, its own iteration count, one
+// substep (the goals and the ratios judge engines as their users get them).
+bool AtDefaults(const BenchReport& r) {
+  return r.threads == 1 && r.solver.iterations == 0 && r.solver.substeps == 1 && r.skipped.empty();
+}
+
 const BenchReport* Find(const std::vector<BenchReport>& reports, const std::string& engine,
                         const std::string& scene, int parameter) {
   for (const BenchReport& r : reports) {
-    if (r.engine == engine && r.scene == scene && r.parameter == parameter && r.threads == 1 &&
-        r.skipped.empty()) {
-      return &r;
-    }
+    if (r.engine == engine && r.scene == scene && r.parameter == parameter && AtDefaults(r)) return &r;
   }
   return nullptr;
 }
 
-// The fastest run of the peer's configurations (kBenchRatioPeer or a name
-// starting with it and '-') at this scene and parameter; null if none ran.
+// The fastest run (least total time) of the peer's configurations
+// (kBenchRatioPeer or a name starting with it and '-') at their defaults on
+// this scene, parameter and number of steps; null if none ran.
 const BenchReport* FastestPeer(const std::vector<BenchReport>& reports, const std::string& scene,
-                               int parameter) {
+                               int parameter, int steps) {
   const std::string peer = kBenchRatioPeer;
   const BenchReport* fastest = nullptr;
   for (const BenchReport& r : reports) {
     const bool isPeer = r.engine == peer || r.engine.rfind(peer + "-", 0) == 0;
-    if (!isPeer || r.scene != scene || r.parameter != parameter || !r.skipped.empty() ||
-        !(r.msMedian > 0.0)) {
+    if (!isPeer || r.scene != scene || r.parameter != parameter || r.steps != steps || !AtDefaults(r) ||
+        !(r.totalMs > 0.0)) {
       continue;
     }
-    if (fastest == nullptr || r.msMedian < fastest->msMedian) fastest = &r;
+    if (fastest == nullptr || r.totalMs < fastest->totalMs) fastest = &r;
   }
   return fastest;
 }
@@ -103,22 +110,23 @@ std::string ParameterName(const std::string& scene) {
 void WriteTable(std::ostringstream& out, const SceneRows& group, const std::vector<BenchReport>& reports) {
   const bool pyramid = group.scene == "pyramid";
   out << "\n### " << group.scene << "\n\n| " << ParameterName(group.scene)
-      << " | bodies | engine | ms/step (median) | ms/step (mean) | / fastest " << kBenchRatioPeer
-      << " | max contacts | "
+      << " | bodies | engine | steps | total (s) | ms/step (mean) | longest step (ms) | / fastest "
+      << kBenchRatioPeer << " (total) | max contacts | "
       << (pyramid ? "drift (m)" : "max penetration (m) | kinetic energy (J) | escaped")
-      << " |\n|---|---|---|---|---|---|---|" << (pyramid ? "---|" : "---|---|---|") << "\n";
+      << " |\n|---|---|---|---|---|---|---|---|---|" << (pyramid ? "---|" : "---|---|---|") << "\n";
   for (const BenchReport* r : group.rows) {
-    out << "| " << r->parameter << " | " << r->bodies << " | " << BenchRunLabel(*r) << " | ";
+    out << "| " << r->parameter << " | " << r->bodies << " | " << BenchRunLabel(*r) << " | " << r->steps
+        << " | ";
     if (!r->skipped.empty()) {
       out << "skipped: " << r->skipped << " |\n";
       continue;
     }
-    const BenchReport* peer = FastestPeer(reports, r->scene, r->parameter);
+    const BenchReport* peer = FastestPeer(reports, r->scene, r->parameter, r->steps);
     const std::string ratio =
-        peer != nullptr ? Concat({FormatNumber(r->msMedian / peer->msMedian, 3), " (", peer->engine, ")"})
+        peer != nullptr ? Concat({FormatNumber(r->totalMs / peer->totalMs, 3), " (", peer->engine, ")"})
                         : "-";
-    out << FormatNumber(r->msMedian, 4) << " | " << FormatNumber(r->msMean, 4) << " | " << ratio << " | "
-        << r->maxContacts << " | ";
+    out << FormatNumber(r->totalMs / 1e3, 4) << " | " << FormatNumber(r->msMean, 4) << " | "
+        << FormatNumber(r->msMax, 4) << " | " << ratio << " | " << r->maxContacts << " | ";
     if (pyramid) {
       out << Figure(r->drift) << " |\n";
     } else {
@@ -143,11 +151,13 @@ void WriteGoals(std::ostringstream& out, const std::vector<BenchReport>& reports
   std::ostringstream goals;
   for (const auto& [scene, parameter] : {std::pair<std::string, int>{"pyramid", 15}, {"hull_pile", 10}}) {
     const BenchReport* ours = Find(reports, kBenchGoalEngine, scene, parameter);
-    const BenchReport* peer = FastestPeer(reports, scene, parameter);
-    if (ours == nullptr || peer == nullptr) continue;
-    const double ratio = ours->msMedian / peer->msMedian;
+    if (ours == nullptr) continue;
+    const BenchReport* peer = FastestPeer(reports, scene, parameter, ours->steps);
+    if (peer == nullptr) continue;
+    const double ratio = ours->totalMs / peer->totalMs;
     goals << "- " << scene << " " << ParameterName(scene) << " = " << parameter << ": " << kBenchGoalEngine
-          << " / " << peer->engine << " (the fastest " << kBenchRatioPeer << ") = " << FormatNumber(ratio, 3)
+          << " / " << peer->engine << " (the fastest " << kBenchRatioPeer << "), total time over "
+          << ours->steps << " steps = " << FormatNumber(ratio, 3)
           << " (goal <= " << FormatNumber(kBenchGoalRatio) << ": "
           << (ratio <= kBenchGoalRatio ? "met" : "missed") << ")"
           << Compare("drift", ours->drift, peer->drift, " m")
@@ -164,17 +174,18 @@ void WriteGoals(std::ostringstream& out, const std::vector<BenchReport>& reports
   out << "\n### Goals\n\n" << goals.str();
 }
 
-// Chart data: per scene, per engine, the (bodies, ms) points of the runs made.
+// Chart data: per scene, per engine, the (bodies, mean ms/step) points of
+// the runs made.
 nlohmann::ordered_json ChartData(const std::vector<SceneRows>& groups) {
   nlohmann::ordered_json scenes = nlohmann::ordered_json::array();
   for (const SceneRows& group : groups) {
     std::vector<std::string> engines;
     std::map<std::string, nlohmann::ordered_json> points;
     for (const BenchReport* r : group.rows) {
-      if (!r->skipped.empty() || !std::isfinite(r->msMedian)) continue;
+      if (!r->skipped.empty() || !std::isfinite(r->msMean)) continue;
       const std::string label = BenchRunLabel(*r);
       if (!points.count(label)) engines.push_back(label);
-      points[label].push_back({{"bodies", r->bodies}, {"parameter", r->parameter}, {"ms", r->msMedian}});
+      points[label].push_back({{"bodies", r->bodies}, {"parameter", r->parameter}, {"ms", r->msMean}});
     }
     nlohmann::ordered_json lines = nlohmann::ordered_json::array();
     for (const std::string& e : engines) lines.push_back({{"engine", e}, {"points", points[e]}});
@@ -184,7 +195,7 @@ nlohmann::ordered_json ChartData(const std::vector<SceneRows>& groups) {
   return scenes;
 }
 
-// One log-log chart per scene: median ms/step against dynamic bodies.
+// One log-log chart per scene: mean ms/step (total / steps) against dynamic bodies.
 constexpr const char* kScalingScript = R"(
 (function() {
   const scenes = JSON.parse(document.getElementById('scenes-data').textContent);
@@ -203,7 +214,7 @@ constexpr const char* kScalingScript = R"(
                 tooltip: {callbacks: {label: c => c.dataset.label + ' ' + scene.parameterName + '=' + c.raw.p +
                   ': ' + c.raw.x + ' bodies, ' + c.raw.y.toPrecision(3) + ' ms/step'}}},
       scales: {x: {type: 'logarithmic', title: {display: true, text: 'dynamic bodies'}},
-               y: {type: 'logarithmic', title: {display: true, text: 'median ms/step'}}}}});
+               y: {type: 'logarithmic', title: {display: true, text: 'mean ms/step (total / steps)'}}}}});
   }
 })();
 )";
@@ -217,19 +228,24 @@ std::string BenchMarkdown(const std::vector<BenchReport>& reports) {
   for (const SceneRows& group : groups) rows.insert(rows.end(), group.rows.begin(), group.rows.end());
   const std::string stages = BenchStagesMarkdown(rows);
   const std::string threads = BenchThreadsMarkdown(rows);
+  const std::string tradeoff = BenchTradeoffMarkdown(rows);
   std::ostringstream out;
-  out << "## Large scenes\n\nThe reference scenes of bench/SCENES.md (talus-scenes): median and mean wall "
-         "time of one step, and each engine's median divided by that of "
+  out << "## Large scenes\n\nThe reference scenes of docs/bench-scenes.md (talus-scenes). The cost is the "
+         "run's total wall time (its mean step is total / steps), with the longest step beside it; each "
+         "run's total is divided by that of "
       << kBenchRatioPeer
-      << "'s fastest configuration (named in brackets) from the same invocation; an engine run on more "
-         "than one thread is named with its thread count, every other on one.";
+      << "'s fastest configuration at its defaults (named in brackets) over the same steps from the same "
+         "invocation. An engine run on more than one thread is named with its thread count, every other "
+         "on one; one run with other solver settings is named with them (iterations, substeps).";
+  if (!tradeoff.empty())
+    out << " [Speed against accuracy](#speed-against-accuracy) sets each engine's settings side by side.";
   if (!threads.empty()) out << " [Thread scaling](#thread-scaling) compares an engine's thread counts.";
   if (!stages.empty())
     out << " For an engine that times its stages, a table per size says [where the time "
            "goes](#where-the-time-goes).";
   out << "\n";
   for (const SceneRows& group : groups) WriteTable(out, group, reports);
-  out << threads << stages;
+  out << tradeoff << threads << stages;
   WriteGoals(out, reports, rows);
   return out.str();
 }
@@ -246,11 +262,18 @@ std::vector<BenchHeadline> BenchHeadlines(const std::vector<BenchReport>& report
     }
     BenchHeadline headline;
     headline.title = Concat(
-        {group.scene, " ", ParameterName(group.scene), " = ", std::to_string(parameter), " (ms/step)"});
+        {group.scene, " ", ParameterName(group.scene), " = ", std::to_string(parameter), " (mean ms/step)"});
     for (const BenchReport* r : group.rows) {
-      // One thread: the scorecard's rows are engines, and the goals judge one thread.
-      if (r->parameter != parameter || r->threads != 1) continue;
-      headline.cellByEngine[r->engine] = r->skipped.empty() ? FormatNumber(r->msMedian, 4) : "skipped";
+      // At the defaults: the scorecard's rows are engines, and the goals
+      // judge one thread at each engine's own settings.
+      if (r->parameter != parameter || r->threads != 1 || r->solver.iterations != 0 ||
+          r->solver.substeps != 1)
+        continue;
+      if (!r->skipped.empty()) {
+        headline.cellByEngine[r->engine] = "skipped";
+        continue;
+      }
+      headline.cellByEngine[r->engine] = FormatNumber(r->msMean, 4);
     }
     headlines.push_back(std::move(headline));
   }
@@ -265,6 +288,16 @@ std::string BenchHtmlSection(const std::vector<BenchReport>& reports) {
   out << "<script type=\"application/json\" id=\"scenes-data\">"
       << ScriptSafe(ChartData(GroupByScene(reports)).dump()) << "</script>\n";
   out << "<script>" << kScalingScript << "</script>\n";
+  const std::vector<SceneRows> groups = GroupByScene(reports);
+  std::vector<const BenchReport*> rows;
+  for (const SceneRows& group : groups) rows.insert(rows.end(), group.rows.begin(), group.rows.end());
+  const nlohmann::ordered_json tradeoff = BenchTradeoffChartData(rows);
+  if (!tradeoff.empty()) {
+    out << "<div class=\"plots\" id=\"scenes-tradeoff\"></div>\n";
+    out << "<script type=\"application/json\" id=\"scenes-tradeoff-data\">" << ScriptSafe(tradeoff.dump())
+        << "</script>\n";
+    out << "<script>" << kBenchTradeoffScript << "</script>\n";
+  }
   return out.str();
 }
 

@@ -234,8 +234,8 @@ std::string ScorecardMarkdown(const Scorecard& card) {
     out << " Most accurate at equal cost: the sweep groups the configuration wins out of those it is "
            "compared in ([Run time against error](#run-time-against-error)).";
   if (!card.scenes.empty())
-    out << " ms/step: median wall time of one step on the large scenes at their reference size, or the "
-           "largest run ([Large scenes](#large-scenes)).";
+    out << " Mean ms/step: the run's total wall time / steps on the large scenes at their reference size, "
+           "or the largest run, each engine at its defaults on one thread ([Large scenes](#large-scenes)).";
   out << "\n\n";
   return out.str();
 }

@@ -29,8 +29,20 @@ std::optional<bool> BenchVerdict(const BenchReport& report) {
   return std::nullopt;
 }
 
+namespace {
+
+// The median of a non-empty list.
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+}  // namespace
+
 Result<BenchRepeatSummary> SummarizeRepeats(const std::vector<BenchReport>& repeats) {
   std::vector<double> figures;
+  std::vector<double> totals;
   BenchRepeatSummary summary;
   bool anyNan = false;
   for (const BenchReport& report : repeats) {
@@ -39,20 +51,22 @@ Result<BenchRepeatSummary> SummarizeRepeats(const std::vector<BenchReport>& repe
     if (!figure || !verdict) continue;
     anyNan = anyNan || std::isnan(*figure);
     figures.push_back(*figure);
+    totals.push_back(report.totalMs);
     if (*verdict) ++summary.verdictsHeld;
   }
   if (figures.empty()) return Error{"no repeat was run (all skipped or empty), nothing to summarize"};
   summary.runs = static_cast<int>(figures.size());
   summary.sameVerdict = summary.verdictsHeld == 0 || summary.verdictsHeld == summary.runs;
+  summary.totalMsMin = *std::min_element(totals.begin(), totals.end());
+  summary.totalMsMax = *std::max_element(totals.begin(), totals.end());
+  summary.totalMsMedian = Median(totals);
   if (anyNan) {
     summary.min = summary.median = summary.max = std::nan("");
     return summary;
   }
-  std::sort(figures.begin(), figures.end());
-  const size_t n = figures.size();
-  summary.min = figures.front();
-  summary.max = figures.back();
-  summary.median = n % 2 == 1 ? figures[n / 2] : 0.5 * (figures[n / 2 - 1] + figures[n / 2]);
+  summary.min = *std::min_element(figures.begin(), figures.end());
+  summary.max = *std::max_element(figures.begin(), figures.end());
+  summary.median = Median(figures);
   return summary;
 }
 
@@ -69,7 +83,9 @@ std::string FormatRepeatSummary(const BenchReport& first, const BenchRepeatSumma
        << FormatNumber(summary.max) << "; verdict "
        << (pyramid ? "drift_m <= " + FormatNumber(kPyramidDriftGoal) : std::string("escaped == 0"))
        << " held in " << summary.verdictsHeld << " of " << summary.runs << ": "
-       << (summary.sameVerdict ? "same in every repeat" : "DIFFERS between repeats");
+       << (summary.sameVerdict ? "same in every repeat" : "DIFFERS between repeats") << "; total ms min "
+       << FormatNumber(summary.totalMsMin) << " median " << FormatNumber(summary.totalMsMedian) << " max "
+       << FormatNumber(summary.totalMsMax);
   return line.str();
 }
 

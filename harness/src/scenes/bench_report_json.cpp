@@ -14,9 +14,14 @@ nlohmann::ordered_json JsonNumber(double value) {
   return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
 }
 
+// Whether `part` <= `whole` within 1e-9 relative: room for the rounding
+// of sums of milliseconds, none for a figure that was changed by hand.
+bool AtMost(double part, double whole) { return part <= whole * (1.0 + 1e-9); }
+
 // The stage times of an engine that reports them: each stage a non-empty
-// name met once, its median and mean finite and >= 0, and the means adding
-// up to no more than the step's mean (the stages run inside the timed step).
+// name met once, its mean and longest step finite and >= 0, the means adding
+// up to no more than the step's mean and no stage's longest step longer
+// than the longest step (the stages run inside the timed step).
 void ReadStages(JsonChecker& check, const Json& line, const std::string& path, BenchReport& report) {
   const Json* stages = check.Array(line, path, "stages");
   if (stages == nullptr) return;
@@ -26,8 +31,8 @@ void ReadStages(JsonChecker& check, const Json& line, const std::string& path, B
     const std::string at = Concat({stagesPath, "[", std::to_string(i), "]"});
     BenchStage stage;
     stage.name = check.Text((*stages)[i], at, "stage");
-    stage.msMedian = check.Number((*stages)[i], at, "ms_median", true);
     stage.msMean = check.Number((*stages)[i], at, "ms_mean", true);
+    stage.msMax = check.Number((*stages)[i], at, "ms_max", true);
     if (check.Failed()) return;
     for (const BenchStage& before : report.stages) {
       if (before.name == stage.name) {
@@ -35,23 +40,43 @@ void ReadStages(JsonChecker& check, const Json& line, const std::string& path, B
         return;
       }
     }
+    if (!AtMost(stage.msMax, report.msMax)) {
+      check.Fail(Concat({at, ".ms_max"}), "a longest step no longer than ms_per_step_max");
+      return;
+    }
     sumOfMeans += stage.msMean;
     report.stages.push_back(std::move(stage));
   }
-  // The step's mean holds every stage and a little more; 1e-9 relative
-  // leaves room for the rounding of the sums, nothing for a wrong file.
-  if (!check.Failed() && std::isfinite(report.msMean) && sumOfMeans > report.msMean * (1.0 + 1e-9)) {
+  if (!check.Failed() && !AtMost(sumOfMeans, report.msMean)) {
     check.Fail(stagesPath, "stage means adding up to at most ms_per_step_mean");
+  }
+}
+
+// The cost of a run that was made: finite times >= 0 that hang together
+// (mean = total / steps, mean <= longest <= total), so a figure edited by
+// hand does not pass for a measured one.
+void ReadCost(JsonChecker& check, const Json& line, const std::string& path, BenchReport& report) {
+  report.totalMs = check.Number(line, path, "total_ms", true);
+  report.msMean = check.Number(line, path, "ms_per_step_mean", true);
+  report.msMax = check.Number(line, path, "ms_per_step_max", true);
+  if (check.Failed()) return;
+  if (report.steps < 1) {
+    check.Fail(path + ".steps", "at least 1 step in a run that was made");
+    return;
+  }
+  const double mean = report.totalMs / static_cast<double>(report.steps);
+  if (!AtMost(report.msMean, mean) || !AtMost(mean, report.msMean)) {
+    check.Fail(path + ".ms_per_step_mean", "total_ms / steps");
+    return;
+  }
+  if (!AtMost(report.msMean, report.msMax) || !AtMost(report.msMax, report.totalMs)) {
+    check.Fail(path + ".ms_per_step_max", "a longest step between ms_per_step_mean and total_ms");
   }
 }
 
 // The figures of a run that was made; `path` is the line's JSON path.
 void ReadFigures(JsonChecker& check, const Json& line, const std::string& path, BenchReport& report) {
-  report.msMedian = check.NumberOrNull(line, path, "ms_per_step_median");
-  report.msMean = check.NumberOrNull(line, path, "ms_per_step_mean");
-  if (!check.Failed() && (report.msMedian < 0.0 || report.msMean < 0.0)) {
-    check.Fail(path + ".ms_per_step_median", "times >= 0");
-  }
+  ReadCost(check, line, path, report);
   report.maxContacts = check.Count(line, path, "max_contacts");
   if (JsonChecker::Has(line, "drift_m")) report.drift = check.NumberOrNull(line, path, "drift_m");
   if (JsonChecker::Has(line, "max_penetration_m")) {
@@ -64,6 +89,19 @@ void ReadFigures(JsonChecker& check, const Json& line, const std::string& path, 
   if (JsonChecker::Has(line, "stages")) ReadStages(check, line, path, report);
 }
 
+// The solver settings, as BenchSolverProblem accepts them for the engine.
+void ReadSolver(JsonChecker& check, const Json& line, const std::string& path, BenchReport& report) {
+  report.solver.iterations = check.Count(line, path, "iterations");
+  report.solver.substeps = check.Count(line, path, "substeps");
+  if (check.Failed()) return;
+  if (const auto problem = BenchSolverProblem(report.engine, report.solver)) {
+    const char* key = report.solver.substeps < 1 || report.solver.substeps > kBenchMaxSubsteps
+                          ? ".substeps"
+                          : ".iterations";
+    check.Fail(path + key, Concat({"a setting the engine has: ", *problem}).c_str());
+  }
+}
+
 }  // namespace
 
 std::string BenchReportToJson(const BenchReport& report) {
@@ -74,6 +112,8 @@ std::string BenchReportToJson(const BenchReport& report) {
   line["bodies"] = report.bodies;
   line["threads"] = report.threads;
   line["steps"] = report.steps;
+  line["iterations"] = report.solver.iterations;
+  line["substeps"] = report.solver.substeps;
   if (report.perturbation) {
     line["repeat"] = report.perturbation->repeat;
     line["perturb_m"] = report.perturbation->amount;
@@ -83,8 +123,9 @@ std::string BenchReportToJson(const BenchReport& report) {
     line["skipped"] = report.skipped;
     return line.dump();
   }
-  line["ms_per_step_median"] = JsonNumber(report.msMedian);
+  line["total_ms"] = JsonNumber(report.totalMs);
   line["ms_per_step_mean"] = JsonNumber(report.msMean);
+  line["ms_per_step_max"] = JsonNumber(report.msMax);
   line["max_contacts"] = report.maxContacts;
   if (report.drift) line["drift_m"] = JsonNumber(*report.drift);
   if (report.maxPenetration) line["max_penetration_m"] = JsonNumber(*report.maxPenetration);
@@ -94,8 +135,8 @@ std::string BenchReportToJson(const BenchReport& report) {
     nlohmann::ordered_json stages = nlohmann::ordered_json::array();
     for (const BenchStage& stage : report.stages) {
       stages.push_back({{"stage", stage.name},
-                        {"ms_median", JsonNumber(stage.msMedian)},
-                        {"ms_mean", JsonNumber(stage.msMean)}});
+                        {"ms_mean", JsonNumber(stage.msMean)},
+                        {"ms_max", JsonNumber(stage.msMax)}});
     }
     line["stages"] = std::move(stages);
   }
@@ -122,6 +163,7 @@ Result<std::vector<BenchReport>> ParseBenchReportLines(std::string_view text, st
     report.bodies = check.Count(line, "$", "bodies");
     report.threads = check.Count(line, "$", "threads");
     report.steps = check.Count(line, "$", "steps");
+    ReadSolver(check, line, "$", report);
     if (JsonChecker::Has(line, "skipped")) {
       report.skipped = check.Text(line, "$", "skipped");
     } else {

@@ -1,9 +1,10 @@
 // Running a reference scene through a backend (see talus/harness/scenes/bench_run.h).
 //
-// The loop is: build the world (untimed), then for each step time Step()
-// alone, read the contact count, and keep the few states the figures need
-// (the pyramid's horizontal positions at the drift start step). The figures
-// at the last step are read once the loop ends.
+// The loop is: build the world (untimed), then for each step time its
+// Step() calls alone (one per substep), read the contact count, and keep the
+// few states the figures need (the pyramid's horizontal positions at the
+// drift start step). The figures at the last step are read once the loop
+// ends. The cost is the sum of the timed calls: no median over steps.
 #include "talus/harness/scenes/bench_run.h"
 
 #include "talus/harness/scenes/bench_perturb.h"
@@ -11,7 +12,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numeric>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,31 +35,24 @@ std::vector<Vec3> HorizontalCenters(const Backend& backend, int count) {
   return centers;
 }
 
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-double Mean(const std::vector<double>& values) {
-  return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
-}
-
 std::string Join(const std::vector<std::string>& names) {
   std::string text;
   for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
   return text;
 }
 
-// Each stage's times over the steps, in the engine's stage order.
+// Each stage's total and longest step over the run, in the engine's stage
+// order. A step of several substeps adds up its substeps' timings first.
 class StageRecorder {
  public:
-  // Adds one step's timings, or says why not: the stages must be those of
-  // the first step.
+  // Adds one backend step's timings to the current scene step, or says why
+  // not: the stages must be those of the first step.
   std::optional<Error> Add(const std::vector<StageTiming>& timings, int step) {
     if (m_names.empty() && step == 1) {
       for (const StageTiming& t : timings) m_names.push_back(t.stage);
-      m_milliseconds.resize(m_names.size());
+      m_stepMs.assign(m_names.size(), 0.0);
+      m_totalMs.assign(m_names.size(), 0.0);
+      m_maxMs.assign(m_names.size(), 0.0);
     }
     bool same = timings.size() == m_names.size();
     for (std::size_t i = 0; same && i < timings.size(); ++i) same = timings[i].stage == m_names[i];
@@ -69,21 +62,32 @@ class StageRecorder {
       return Error{"step " + std::to_string(step) + ": the backend's stage timings (" + Join(names) +
                    ") are not those of step 1 (" + Join(m_names) + ")"};
     }
-    for (std::size_t i = 0; i < timings.size(); ++i) m_milliseconds[i].push_back(timings[i].seconds * 1e3);
+    for (std::size_t i = 0; i < timings.size(); ++i) m_stepMs[i] += timings[i].seconds * 1e3;
     return std::nullopt;
   }
 
-  std::vector<BenchStage> Stages() const {
+  // Closes the scene step: its stage times go into the totals and maxima.
+  void EndStep() {
+    for (std::size_t i = 0; i < m_names.size(); ++i) {
+      m_totalMs[i] += m_stepMs[i];
+      m_maxMs[i] = std::max(m_maxMs[i], m_stepMs[i]);
+      m_stepMs[i] = 0.0;
+    }
+  }
+
+  std::vector<BenchStage> Stages(int steps) const {
     std::vector<BenchStage> stages;
     for (std::size_t i = 0; i < m_names.size(); ++i) {
-      stages.push_back({m_names[i], Median(m_milliseconds[i]), Mean(m_milliseconds[i])});
+      stages.push_back({m_names[i], m_totalMs[i] / static_cast<double>(steps), m_maxMs[i]});
     }
     return stages;
   }
 
  private:
   std::vector<std::string> m_names;
-  std::vector<std::vector<double>> m_milliseconds;  // per stage, per step
+  std::vector<double> m_stepMs;   // per stage, this scene step so far
+  std::vector<double> m_totalMs;  // per stage, over the run
+  std::vector<double> m_maxMs;    // per stage, the longest scene step
 };
 
 // The hull pile's figures at the end of a run.
@@ -128,11 +132,36 @@ std::optional<std::string> BenchSkipReason(std::string_view engine, int dynamicB
   return std::nullopt;
 }
 
+std::optional<std::string> BenchSolverProblem(std::string_view engine, const BenchSolver& solver) {
+  if (solver.iterations < 0 || solver.iterations > kBenchMaxIterations) {
+    return "iterations " + std::to_string(solver.iterations) + ": must be in [0, " +
+           std::to_string(kBenchMaxIterations) + "] (0: the engine's default)";
+  }
+  if (solver.substeps < 1 || solver.substeps > kBenchMaxSubsteps) {
+    return "substeps " + std::to_string(solver.substeps) + ": must be in [1, " +
+           std::to_string(kBenchMaxSubsteps) + "]";
+  }
+  if (solver.iterations > 0 && engine.substr(0, 8) == "ode-step") {
+    return "iterations " + std::to_string(solver.iterations) + ": " + std::string(engine) +
+           " has no iteration count (dWorldStep solves each island directly, a Dantzig LCP)";
+  }
+  return std::nullopt;
+}
+
+std::string BenchSolverLabel(const BenchSolver& solver) {
+  std::string label = solver.iterations == 0 ? std::string("engine default")
+                                             : std::to_string(solver.iterations) + " iterations";
+  if (solver.substeps > 1) label += ", " + std::to_string(solver.substeps) + " substeps";
+  return label;
+}
+
 Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_view engine,
                                   const BenchScene& scene, int parameter, int steps,
                                   const BenchProgress& progress,
-                                  const std::optional<BenchPerturbation>& perturbation) {
+                                  const std::optional<BenchPerturbation>& perturbation,
+                                  const BenchSolver& solver) {
   if (steps < 1) return Error{"steps = " + std::to_string(steps) + ": must be >= 1"};
+  if (auto problem = BenchSolverProblem(engine, solver)) return Error{*problem};
   auto built = scene.make(parameter);
   if (!built) return built.GetError();
   if (perturbation) {
@@ -148,6 +177,7 @@ Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_v
   report.parameter = parameter;
   report.bodies = dynamicBodies;
   report.steps = steps;
+  report.solver = solver;
   report.perturbation = perturbation;
   if (!registry.Has(engine)) {
     // Let the registry word the error (it lists the known names).
@@ -162,9 +192,12 @@ Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_v
   Run run;
   run.id = scenario.name;
   run.scenario = scenario;
-  run.timeStep = scenario.world.timeStep;
-  run.iterations = scenario.world.iterations;
-  run.steps = steps;
+  // Substeps: every engine steps N times with h / N (none of the backends
+  // exposes a substep setting of its own; Bullet's stepSimulation(h, N,
+  // h / N) would take the same N internal steps).
+  run.timeStep = scenario.world.timeStep / solver.substeps;
+  run.iterations = solver.iterations != 0 ? solver.iterations : scenario.world.iterations;
+  run.steps = steps * solver.substeps;
   auto created = registry.Create(engine, run);
   if (!created) return created.GetError();
   Backend& backend = *created.Value();
@@ -173,23 +206,30 @@ Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_v
   const int driftStart = std::min(kPyramidDriftStartStep, steps);
   std::vector<Vec3> startCenters;
   StageRecorder stages;
-  std::vector<double> times;
-  times.reserve(static_cast<size_t>(steps));
+  double totalMs = 0.0;
+  double longestMs = 0.0;
   for (int step = 1; step <= steps; ++step) {
-    const auto begin = std::chrono::steady_clock::now();
-    backend.Step();
-    const auto end = std::chrono::steady_clock::now();
-    times.push_back(std::chrono::duration<double, std::milli>(end - begin).count());
-    if (auto refused = stages.Add(backend.StageTimings(), step)) return *refused;
+    double stepMs = 0.0;
+    for (int substep = 0; substep < solver.substeps; ++substep) {
+      const auto begin = std::chrono::steady_clock::now();
+      backend.Step();
+      const auto end = std::chrono::steady_clock::now();
+      stepMs += std::chrono::duration<double, std::milli>(end - begin).count();
+      if (auto refused = stages.Add(backend.StageTimings(), step)) return *refused;
+    }
+    stages.EndStep();
+    totalMs += stepMs;
+    longestMs = std::max(longestMs, stepMs);
     report.maxContacts = std::max(report.maxContacts, static_cast<int>(backend.GetContacts().size()));
     if (scene.kind == BenchSceneKind::Pyramid && step == driftStart) {
       startCenters = HorizontalCenters(backend, dynamicBodies);
     }
     if (progress) progress(step, steps);
   }
-  report.msMedian = Median(times);
-  report.msMean = Mean(times);
-  report.stages = stages.Stages();
+  report.totalMs = totalMs;
+  report.msMean = totalMs / static_cast<double>(steps);
+  report.msMax = longestMs;
+  report.stages = stages.Stages(steps);
 
   if (scene.kind == BenchSceneKind::Pyramid) {
     const std::vector<Vec3> endCenters = HorizontalCenters(backend, dynamicBodies);

@@ -1,6 +1,6 @@
 // The reference benchmark scenes (see talus/harness/scenes/bench_scenes.h and
 // docs/bench-scenes.md). Each builder is a direct transcription of the
-// scene's definition in SCENES.md: the layout loops run in the order the
+// scene's specification there: the layout loops run in the order the
 // definition numbers the bodies, so body numbers, random draws and scenario
 // indices agree.
 #include "talus/harness/scenes/bench_scenes.h"

@@ -1,7 +1,7 @@
 // The full-size hull_pile scene through Talus with its defaults (label
-// `slow`: Release only). Criterion from SCENES.md: no body's centre ends
+// `slow`: Release only). Criterion from docs/bench-scenes.md: no body's centre ends
 // below y = 0 or outside the walls ("must be 0"), plus a penetration bound.
-// SCENES.md gives the final kinetic energy as a figure ("a settled pile is
+// docs/bench-scenes.md gives the final kinetic energy as a figure ("a settled pile is
 // near 0") without a threshold, so it is printed, not asserted; the measured
 // values are in docs/bench-scenes.md. The full-size pyramid is checked by
 // tests/slow/pyramid_test.cpp through talus::World directly.

@@ -28,7 +28,7 @@ namespace talus::harness {
 inline constexpr int kMaxBenchRepeats = 1000;
 
 /// The pyramid's verdict (issue 12's goal): it holds when drift_m <= this,
-/// metres. Stricter than the 5 cm "stands" line of SCENES.md.
+/// metres. Stricter than the 5 cm "stands" line of docs/bench-scenes.md.
 inline constexpr double kPyramidDriftGoal = 0.005;
 
 /// Why `repeats` is not a usable repeat count (outside 1..kMaxBenchRepeats),
@@ -53,6 +53,12 @@ struct BenchRepeatSummary {
   double max = 0.0;         ///< largest BenchVerdictFigure (NaN if any is NaN)
   int verdictsHeld = 0;     ///< runs whose BenchVerdict held
   bool sameVerdict = true;  ///< all held or none did
+  /// The cost over the repeats: each run's total wall time (BenchReport::
+  /// totalMs), milliseconds. The median across repeated runs is the one
+  /// median of a time the benchmark takes (never one across steps).
+  double totalMsMin = 0.0;
+  double totalMsMedian = 0.0;
+  double totalMsMax = 0.0;
 };
 
 /// Reduces the repeats of one series; skipped runs are left out. An empty
@@ -61,7 +67,7 @@ Result<BenchRepeatSummary> SummarizeRepeats(const std::vector<BenchReport>& repe
 
 /// One readable line: "<scene> <P>=<n> <engine>: <figure> over N repeats
 /// (+-amount m, seed S): min .. median .. max ..; verdict <rule> held in K of
-/// N: same|DIFFERS".
+/// N: same|DIFFERS; total ms min .. median .. max ..".
 std::string FormatRepeatSummary(const BenchReport& first, const BenchRepeatSummary& summary);
 
 }  // namespace talus::harness

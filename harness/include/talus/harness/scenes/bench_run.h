@@ -1,14 +1,20 @@
 // Running a reference benchmark scene (talus/harness/scenes/bench_scenes.h) through
-// one backend and reducing it to the figures of SCENES.md "What a benchmark
-// run reports": per-step wall time (median and mean), the largest contact
-// count of any step, and the scene's stability figures.
+// one backend and reducing it to the figures of docs/bench-scenes.md, "What
+// a run reports": the cost (total wall time of the run's steps, the mean
+// step, and the longest step beside it), the largest contact count of any
+// step, and the scene's stability figures.
+//
+// The cost is the total wall time, never a median over the steps of one
+// run: a median hides the landing steps, where new contacts make Talus's
+// solver sweep up to maxVelocityIterations times (docs/bench-scenes.md,
+// "Cost"). A median belongs only across repeated runs (bench_perturb.h).
 //
 // Only Backend::Step() is timed (std::chrono::steady_clock around each
 // call); reading contacts and states for the figures happens between steps,
 // outside the timed region. Every figure other than the times is a
 // deterministic function of the backend's results. An engine that times its
-// own stages (Backend::StageTimings: Talus) also gets each stage's median
-// and mean ms/step, read between steps. Every peer steps on one thread; the
+// own stages (Backend::StageTimings: Talus) also gets each stage's mean and
+// longest ms/step, read between steps. Every peer steps on one thread; the
 // caller sets `threads` for a Talus world built with more (talus-scenes).
 #pragma once
 
@@ -25,8 +31,9 @@
 
 namespace talus::harness {
 
-/// The pyramid's drift is measured from this step to the last one (SCENES.md:
-/// between step 120 and step 600; the first 2 s let the layers land).
+/// The pyramid's drift is measured from this step to the last one
+/// (docs/bench-scenes.md: between step 120 and step 600; the first 2 s let
+/// the layers land).
 inline constexpr int kPyramidDriftStartStep = 120;
 
 /// ODE's dWorldStep solves every island as one dense LCP (Dantzig): memory
@@ -53,14 +60,35 @@ inline constexpr int kOdeMaxBodies = 5000;
 /// run.
 inline constexpr int kMujocoMaxBodies = 63;
 
+/// Largest solver iteration count a run may ask for (--iterations): the
+/// bound of Talus's own WorldSettings::velocityIterations, [1, 1000].
+inline constexpr int kBenchMaxIterations = 1000;
+/// Largest number of substeps per scene step (--substeps): h / 100 is
+/// 1/6000 s, and pyramid 15 at 100 substeps is already 60,000 backend steps.
+inline constexpr int kBenchMaxSubsteps = 100;
+
+/// The solver settings of one run, each engine's own knob (docs/bench-scenes.md,
+/// "Iterations and substeps").
+struct BenchSolver {
+  /// Solver iterations (Run::iterations), 0 = the engine's own default, else
+  /// in [1, kBenchMaxIterations]: Talus's velocity and position iterations,
+  /// Bullet's m_numIterations, ODE quickstep's iterations per step,
+  /// MuJoCo's <option iterations>. ODE's dWorldStep has none (refused).
+  int iterations = 0;
+  /// Backend steps per scene step, [1, kBenchMaxSubsteps]: every engine
+  /// steps N times with h / N (Run::timeStep) for each step of the scene,
+  /// and the N steps are timed and counted as one.
+  int substeps = 1;
+};
+
 /// One stage of the engine's step over a run (Backend::StageTimings).
 struct BenchStage {
-  std::string name;       ///< the engine's name for it, e.g. "FindContacts"
-  double msMedian = 0.0;  ///< median over the steps of its wall time, milliseconds
+  std::string name;  ///< the engine's name for it, e.g. "FindContacts"
   /// mean over the steps, milliseconds: the means of the stages add up to
-  /// the engine's mean step, so stage mean / BenchReport::msMean is the
-  /// stage's share of the step
+  /// at most the engine's mean step, so stage mean / BenchReport::msMean is
+  /// the stage's share of the run's total time
   double msMean = 0.0;
+  double msMax = 0.0;  ///< its longest step, milliseconds
 };
 
 /// The initial positions of one perturbed repeat (bench_perturb.h): every
@@ -75,15 +103,19 @@ struct BenchPerturbation {
 
 /// One line of a benchmark report.
 struct BenchReport {
-  std::string engine;     ///< backend name, e.g. "bullet"
-  std::string scene;      ///< "pyramid" or "hull_pile"
-  int parameter = 0;      ///< H or L
-  int bodies = 0;         ///< dynamic bodies (static floor and walls not counted)
-  int threads = 1;        ///< threads the engine stepped with
-  int steps = 0;          ///< steps run
-  double msMedian = 0.0;  ///< median wall time of one Step(), milliseconds
-  double msMean = 0.0;    ///< mean wall time of one Step(), milliseconds
-  int maxContacts = 0;    ///< largest number of contact points reported after any step
+  std::string engine;  ///< backend name, e.g. "bullet"
+  std::string scene;   ///< "pyramid" or "hull_pile"
+  int parameter = 0;   ///< H or L
+  int bodies = 0;      ///< dynamic bodies (static floor and walls not counted)
+  int threads = 1;     ///< threads the engine stepped with
+  int steps = 0;       ///< steps run (scene steps of h; substeps not counted)
+  BenchSolver solver;  ///< the iterations and substeps it ran with
+  /// The cost: wall time of every step's Step() calls together, milliseconds.
+  double totalMs = 0.0;
+  double msMean = 0.0;  ///< totalMs / steps, milliseconds
+  /// The longest single step, milliseconds (a landing step: new contacts).
+  double msMax = 0.0;
+  int maxContacts = 0;  ///< largest number of contact points reported after any step
   /// pyramid: the largest horizontal (x, z) distance any cube's centre of
   /// mass moved between step min(120, steps) and the last step, metres.
   std::optional<double> drift;
@@ -110,20 +142,30 @@ struct BenchReport {
 /// when it is (see kOdeStepMaxBodies, kOdeMaxBodies, kMujocoMaxBodies).
 std::optional<std::string> BenchSkipReason(std::string_view engine, int dynamicBodies);
 
+/// Why `solver` cannot be run on `engine`, or nothing when it can: an
+/// iteration count outside [0, kBenchMaxIterations] or a substep count
+/// outside [1, kBenchMaxSubsteps] (named with its value and range), or
+/// iterations asked of ODE's dWorldStep ("ode-step", "ode-step-tuned"),
+/// which solves each island directly and has no iteration count.
+std::optional<std::string> BenchSolverProblem(std::string_view engine, const BenchSolver& solver);
+
+/// "engine default" or "8 iterations", and ", 2 substeps" when more than one.
+std::string BenchSolverLabel(const BenchSolver& solver);
+
 /// Called after every step with the step number (1-based) and the total;
 /// may be empty.
 using BenchProgress = std::function<void(int step, int steps)>;
 
 /// Builds `scene` at `parameter` with the named backend, runs `steps` steps
-/// (>= 1) and reports. A parameter out of range, an unknown engine, a world
-/// the backend refuses, or stage timings that change their stages from one
-/// step to the next is an Error. When BenchSkipReason says so, the report
-/// comes back with `skipped` set and nothing run. With a `perturbation`, the
-/// scene's dynamic bodies start from PerturbDynamicPositions(amount, seed)
-/// and the report carries it; a bad amount is an Error.
+/// (>= 1) with `solver` and reports. A parameter out of range, an unknown
+/// engine, a BenchSolverProblem, a world the backend refuses, or stage
+/// timings that change their stages from one step to the next is an Error. When BenchSkipReason says so, the
+/// report comes back with `skipped` set and nothing run. With a `perturbation`, the scene's dynamic bodies
+/// start from PerturbDynamicPositions(amount, seed) and the report carries it; a bad amount is an Error.
 Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_view engine,
                                   const BenchScene& scene, int parameter, int steps,
                                   const BenchProgress& progress = {},
-                                  const std::optional<BenchPerturbation>& perturbation = std::nullopt);
+                                  const std::optional<BenchPerturbation>& perturbation = std::nullopt,
+                                  const BenchSolver& solver = {});
 
 }  // namespace talus::harness

@@ -1,9 +1,8 @@
 // The reference benchmark scenes (`pyramid`, `hull_pile`), built as
 // engine-agnostic Scenarios so every backend constructs the same world
-// through the Backend interface. The definitions are those of
-// shared/bench/SCENES.md (beside the repository), restated in docs/bench-scenes.md; this file
-// is the single scene list that the tests (tests/scenes), the `talus-scenes`
-// program (apps/scenes) and the reports all read.
+// through the Backend interface. The definitions are those of the
+// specification in docs/bench-scenes.md; this file is the single scene list that the tests (tests/scenes),
+// the `talus-scenes` program (apps/scenes) and the reports all read.
 //
 // Body order (an invariant the tests and the figures rely on): the dynamic
 // bodies come first, in the order the scene defines them (pyramid: layer,

@@ -1,6 +1,6 @@
 // SplitMix64: the small, fully specified pseudo-random generator the
-// reference benchmark scenes draw from (shared/bench/SCENES.md (beside the repository),
-// docs/bench-scenes.md), so that any engine, in any language, can rebuild
+// reference benchmark scenes draw from (specified in docs/bench-scenes.md),
+// so that any engine, in any language, can rebuild
 // the same random scene bit for bit.
 //
 // The generator is Steele, Lea and Flood's SplitMix64 ("Fast splittable
