@@ -70,12 +70,15 @@ struct PassBody {
 };
 
 // Row speed Cdot = d.(vA - vB) + (rA x d).wA - (rB x d).wB.
-double RowSpeed(const Vec3& d, const RowJacobian& j, const PassBody& a, const PassBody& b) {
+// Forced inline: called per row per pass, and GCC left the calls in
+// (7% of a pyramid step in the calls alone, perf).
+[[gnu::always_inline]] inline double RowSpeed(const Vec3& d, const RowJacobian& j, const PassBody& a,
+                                              const PassBody& b) {
   return d.dot(a.v - b.v) + j.angularA.dot(a.w) - j.angularB.dot(b.w);
 }
 
-void ApplyRow(const Vec3& d, const RowJacobian& j, double impulse, const SoftPair& pair, PassBody& a,
-              PassBody& b) {
+[[gnu::always_inline]] inline void ApplyRow(const Vec3& d, const RowJacobian& j, double impulse,
+                                            const SoftPair& pair, PassBody& a, PassBody& b) {
   a.v += (pair.invMassA * impulse) * d;
   a.w += impulse * j.imageA;
   b.v -= (pair.invMassB * impulse) * d;
@@ -444,14 +447,16 @@ void SoftStepSolver::SolvePair(std::span<BodySim> bodies, const SoftPair& pair, 
   const Vec3& n = pair.normal;
   // How far each body has moved since the step's start (header: separation).
   const Vec3 moved = (body.a.center - pair.startCenterA) - (body.b.center - pair.startCenterB);
-  const Quat& qA = body.a.orientation;
-  const Quat& qB = body.b.orientation;
+  // The turns as matrices, once per pair: a point's arm is then 15
+  // operations instead of a quaternion product's 30.
+  const Mat3 turnA = body.a.orientation.toRotationMatrix();
+  const Mat3 turnB = body.b.orientation.toRotationMatrix();
   const double invH = 1.0 / m_h;
   double gaps[kMaxManifoldPoints];
   bool touching = true;
   for (int i = 0; i < pair.pointCount; ++i) {
     const SoftPoint& point = m_points[static_cast<std::size_t>(pair.firstPoint + i)];
-    const Vec3 turned = (qA * point.localAnchorA - point.armA) - (qB * point.localAnchorB - point.armB);
+    const Vec3 turned = (turnA * point.localAnchorA - point.armA) - (turnB * point.localAnchorB - point.armB);
     gaps[i] = n.dot(moved + turned) - point.depth;
     touching = touching && gaps[i] <= 0.0;
   }

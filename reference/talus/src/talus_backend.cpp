@@ -286,11 +286,11 @@ WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine fric
   } else if (variant == Variant::SplitImpulses) {
     settings.positionCorrection = PositionCorrection::SplitImpulses;
   } else if (variant == Variant::Soft) {
-    // The soft step (docs/dynamics.md, "The soft step"); the run's
-    // iterations, when given, are its sub-steps (its one solver knob, as
-    // Box2D v3's), and its solver ignores the sweep settings above.
+    // The soft step (docs/dynamics.md, "The soft step") at the engine's
+    // 4 sub-steps: the run's iterations are a sweep count, which this solver
+    // does not have (it solves once and relaxes once per sub-step), so they
+    // leave it alone, as every sweep setting above.
     settings.stepSolver = StepSolver::SoftStep;
-    if (run.iterations > 0) settings.softStep.substeps = run.iterations;
   }
   // A sticking pair's normals and friction solved as one block (the scalar
   // variants; the coloured solver has none): measured on the sweep
