@@ -170,6 +170,52 @@ enum class FrictionSolve {
   JointBlock,
 };
 
+/// Which step solver advances the bodies (the pipeline after the narrow
+/// phase; dynamics/soft_step_solver.h for the soft step's derivation).
+enum class StepSolver {
+  /// The write-up's: one velocity solve per step (Sequential Impulses with
+  /// the options above: Baumgarte or split impulses, block solve, extra
+  /// sweeps for new pairs), then one position update.
+  SequentialImpulses,
+  /// Box2D v3's and Box3D's soft step (Catto's Solver2D study): the step is
+  /// cut into WorldSettings::softStep.substeps sub-steps, each integrating
+  /// velocities, warm starting, solving the contacts once as soft springs
+  /// (a stiffness and damping from a frequency and a damping ratio instead
+  /// of Baumgarte's push), integrating positions and relaxing once without
+  /// the spring's push; restitution after the last sub-step. Contact points
+  /// come from the narrow phase once per step; each sub-step updates their
+  /// separation from the bodies' motion since the step's start. The pairs
+  /// are graph-coloured, so the result is the same bits for any thread
+  /// count. Unused by it: velocityIterations, maxVelocityIterations,
+  /// velocityTolerance, blockSolver, contactSolver, positionIterations,
+  /// baumgarte, slop, positionSlop, positionCorrection, bounceTiming and
+  /// frictionSolve.
+  SoftStep,
+};
+
+/// The soft step's tunables (StepSolver::SoftStep). Validated at
+/// World::Create and SetSettings.
+struct SoftStepSettings {
+  /// Sub-steps per step, [1, 1000]. Default 4, Box2D v3's and Box3D's
+  /// default: the springs are stepped at 4 times the step rate.
+  int substeps = 4;
+  /// Most contact spring frequency, Hz, finite and > 0. The frequency used
+  /// is min(contactHertz, 0.25 x sub-step rate) (Box2D v3: a spring stepped
+  /// at fewer than four sub-steps per period is not resolved); a contact
+  /// with an immovable body gets twice that (Box2D v3's static softness).
+  /// Default 30, Box2D v3's: a resting contact sinks g / (2 pi f)^2 under its
+  /// own weight (0.28 mm at 30 Hz, 0.07 mm at 60 Hz on the ground).
+  double contactHertz = 30.0;
+  /// Contact spring damping ratio, unitless, finite and >= 0. Default 10,
+  /// Box2D v3's: strongly over-damped, so a penetration is removed without
+  /// a rebound.
+  double dampingRatio = 10.0;
+  /// Fastest speed at which the spring pushes overlapping bodies apart,
+  /// m/s, finite and > 0. Default 3, Box2D v3's contactSpeed: a deep
+  /// overlap is undone over several steps instead of launching the bodies.
+  double pushOutSpeed = 3.0;
+};
+
 struct WorldSettings {
   /// Acceleration of gravity, m/s^2, any finite vector. Default Earth's,
   /// along -y.
@@ -308,6 +354,11 @@ struct WorldSettings {
   /// chunks that depend on the item count only, each item writes its own
   /// slot, and results are gathered in item order (docs/threading.md).
   int threads = 1;
+  /// Which step solver runs (see StepSolver). Default SequentialImpulses,
+  /// the write-up's.
+  StepSolver stepSolver = StepSolver::SequentialImpulses;
+  /// The soft step's tunables (read only with StepSolver::SoftStep).
+  SoftStepSettings softStep = {};
 };
 
 /// The most threads a World may use (WorldSettings::threads): far above the

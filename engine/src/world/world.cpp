@@ -173,6 +173,7 @@ std::string ValidateSettings(const WorldSettings& s) {
     return "WorldSettings.narrowPhase.persistenceDistance = " +
            std::to_string(s.narrowPhase.persistenceDistance) + " m must be finite and > 0";
   }
+  if (std::string error = ValidateSoftStepSettings(s); !error.empty()) return error;
   constexpr double kHuge = 1e300;
   for (const std::string& error :
        {CheckRange("baumgarte", s.baumgarte, 0.0, 1.0), CheckRange("slop", s.slop, 0.0, 1.0),

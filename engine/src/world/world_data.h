@@ -39,6 +39,7 @@
 #include "dynamics/contact.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/sleep.h"
+#include "dynamics/soft_step_solver.h"
 #include "jobs/job_pool.h"
 #include "talus/body.h"
 #include "talus/shape.h"
@@ -109,6 +110,7 @@ struct WorldData {
   std::vector<ManifoldAnchors> contactAnchors;
   std::vector<ManifoldAnchors> previousContactAnchors;  ///< same index as `previousContacts`
   ContactSolver solver;
+  SoftStepSolver softSolver;  ///< WorldSettings::stepSolver = SoftStep
   SleepManager sleepManager;
 
   /// The step's threads, settings.threads of them (no worker for 1).

@@ -19,6 +19,10 @@
 //   8. CorrectPositions         non-linear Gauss-Seidel (when selected)
 //   9. UpdateSleep              islands at rest fall asleep
 //
+// With WorldSettings::stepSolver = SoftStep the stages after the broad
+// phase are StepSoft's instead: contacts, soft rows, the sub-steps (each
+// integrating velocities and positions), impulses stored, sleep.
+//
 // Nothing in here decides physics;
 // the stages live in engine/src/dynamics and engine/src/collision.
 //
@@ -152,6 +156,34 @@ void UpdateSleep(WorldData& d, double h, StepStatistics& stats) {
   stats.islands = d.sleepManager.Update(d.sims, d.sleep, d.contacts, d.settings, h);
 }
 
+// The soft step (StepSolver::SoftStep, dynamics/soft_step_solver.h): the
+// narrow phase once at the step's start, then the sub-steps (each
+// integrating velocities, solving, integrating positions, relaxing) as one
+// chain of phases on the world's threads. Timed under the same stage names:
+// the sub-step chain, integration included, is solveVelocities.
+void StepSoft(WorldData& d, double dt, StepStatistics& stats, StageClock& clock) {
+  FindContacts(d, dt, stats);
+  stats.seconds.findContacts = clock.Lap();
+
+  if (d.settings.warmStarting) stats.warmStartedPoints = CarryImpulses(d.previousContacts, d.contacts);
+  if (d.jobs->ThreadCount() > 1) {
+    d.softSolver.SetPhaseRunner(
+        [&d](std::span<const JobPhase> phases, const std::function<void(int, int, int)>& fn) {
+          d.jobs->RunPhases(phases, fn);
+        });
+  } else {
+    d.softSolver.SetPhaseRunner(nullptr);
+  }
+  d.softSolver.Prepare(d.sims, d.contacts, d.settings, dt, stats);
+  stats.seconds.prepareContacts = clock.Lap();
+
+  stats.awakeBodies = d.softSolver.Step(d.sims, d.settings, dt);
+  stats.seconds.solveVelocities = clock.Lap();
+
+  d.softSolver.StoreImpulses(d.contacts);
+  stats.seconds.scatterAndStoreImpulses = clock.Lap();
+}
+
 }  // namespace
 
 Result<StepStatistics> World::Step(double dt) {
@@ -166,6 +198,16 @@ Result<StepStatistics> World::Step(double dt) {
   }
   CountBodies(d, stats);
   stats.seconds.updateBroadPhase = clock.Lap();
+
+  if (d.settings.stepSolver == StepSolver::SoftStep) {
+    StepSoft(d, dt, stats, clock);
+    UpdateSleep(d, dt, stats);
+    stats.seconds.sleep = clock.Lap();
+    const StageTimes& t = stats.seconds;
+    stats.seconds.total = t.updateBroadPhase + t.findContacts + t.prepareContacts + t.solveVelocities +
+                          t.scatterAndStoreImpulses + t.sleep;
+    return stats;
+  }
 
   stats.awakeBodies = IntegrateVelocitiesOnThreads(d, dt);
   stats.seconds.integrateVelocities = clock.Lap();

@@ -36,7 +36,7 @@ using harness::Run;
 constexpr double kNewContactTolerance = 1e-9;
 
 /// Which engine options a variant uses.
-enum class Variant { Defaults, WriteUp, SplitImpulses, Coloured };
+enum class Variant { Defaults, WriteUp, SplitImpulses, Coloured, Soft };
 
 const char* VariantName(Variant variant) {
   switch (variant) {
@@ -48,6 +48,8 @@ const char* VariantName(Variant variant) {
       return "talus-split";
     case Variant::Coloured:
       return "talus-coloured";
+    case Variant::Soft:
+      return "talus-soft";
   }
   return "talus";
 }
@@ -283,6 +285,12 @@ WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine fric
     settings.contactSolver = ContactSolverKind::ColouredWide;
   } else if (variant == Variant::SplitImpulses) {
     settings.positionCorrection = PositionCorrection::SplitImpulses;
+  } else if (variant == Variant::Soft) {
+    // The soft step (docs/dynamics.md, "The soft step") at the engine's
+    // 4 sub-steps: the run's iterations are a sweep count, which this solver
+    // does not have (it solves once and relaxes once per sub-step), so they
+    // leave it alone, as every sweep setting above.
+    settings.stepSolver = StepSolver::SoftStep;
   }
   // A sticking pair's normals and friction solved as one block (the scalar
   // variants; the coloured solver has none): measured on the sweep
@@ -297,9 +305,10 @@ WorldSettings MakeSettings(const Run& run, Variant variant, FrictionCombine fric
   // tolerances, 24 degrees 0.034 -> 0.008, hull_rest 0.54 -> 4e-14), and
   // nothing changes where the reach is below the fixed margin (fine steps,
   // slow bodies: the same bits).
-  if (variant == Variant::Defaults || variant == Variant::SplitImpulses) {
+  if (variant == Variant::Defaults || variant == Variant::SplitImpulses || variant == Variant::Soft) {
     settings.speculativeMotion = true;
-    settings.frictionSolve = FrictionSolve::JointBlock;
+    // The soft step has no joint block (its friction rows are per point).
+    if (variant != Variant::Soft) settings.frictionSolve = FrictionSolve::JointBlock;
   }
   return settings;
 }
@@ -463,7 +472,15 @@ void TalusBackend::AddSettings(const Run& run) {
                          ? "symplectic Euler (v += h a; x += h v)"
                          : "v += h a; x += h (v0 + v) / 2 for a body no impulse touched (exact for constant "
                            "acceleration), else x += h v"},
-      {"solver", s.contactSolver == ContactSolverKind::SequentialImpulses
+      {"solver", s.stepSolver == StepSolver::SoftStep
+                     ? "soft step: " + std::to_string(s.softStep.substeps) + " sub-steps, contacts at " +
+                           SettingNumber(s.softStep.contactHertz) +
+                           " Hz (at most a quarter of the sub-step "
+                           "rate), damping ratio " +
+                           SettingNumber(s.softStep.dampingRatio) + ", push-out " +
+                           SettingNumber(s.softStep.pushOutSpeed) +
+                           " m/s; the sweep settings below are unused"
+                 : s.contactSolver == ContactSolverKind::SequentialImpulses
                      ? "sequential impulses (scalar, pair order)"
                      : "sequential impulses, coloured, four pairs per SIMD bundle"},
       {"velocity iterations",
@@ -536,6 +553,11 @@ void RegisterTalusBackends(harness::BackendRegistry& registry, TalusBackendOptio
                     independent, [options](const Run& run) {
                       return TalusBackend::Create(run, Variant::Coloured, options);
                     });
+  registry.Register("talus-soft",
+                    "Talus (double): the soft step solver (4 sub-steps of soft contacts, relax, "
+                    "restitution; Box2D v3's) instead of Sequential Impulses",
+                    independent,
+                    [options](const Run& run) { return TalusBackend::Create(run, Variant::Soft, options); });
 }
 
 }  // namespace talus::reference
