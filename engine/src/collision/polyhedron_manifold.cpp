@@ -132,9 +132,31 @@ void BuildEdgeContact(const PosedHull& a, const PosedHull& b, const SatResult& s
   Vec3 onB = Vec3::Zero();
   ClosestPointsOfSegments(a.Vertex(a.EdgeStart(ea)), a.Vertex(a.EdgeEnd(ea)), b.Vertex(b.EdgeStart(eb)),
                           b.Vertex(b.EdgeEnd(eb)), &onA, &onB);
+  bool missed = false;
+  Vec3 position = InsideBoth(a, b, sat.normal, 0.5 * (onA + onB), &missed);
+  if (missed) {
+    // The line along the normal through the edges' closest points crosses
+    // A and B where each is thinner than the depth, so their stretches on
+    // it do not meet: a pair deeper than the shapes are thick there (a 5 m
+    // hull 1.7 m into another, issue 26's large parallel family). The
+    // shapes still overlap, and a vertex of one inside the other is in the
+    // intersection: the one farthest inside both is taken, when any is
+    // less outside than the line's best point.
+    double best = std::max(OutsideDistance(a, position), OutsideDistance(b, position));
+    for (const PosedHull* hull : {&a, &b}) {
+      for (int v = 0; v < hull->hull->VertexCount(); ++v) {
+        const Vec3 vertex = hull->Vertex(v);
+        const double outside = std::max(OutsideDistance(a, vertex), OutsideDistance(b, vertex));
+        if (outside < best) {
+          best = outside;
+          position = vertex;
+        }
+      }
+    }
+  }
   out->pointCount = 1;
   out->points[0] = {
-      .position = InsideBoth(a, b, sat.normal, 0.5 * (onA + onB)),
+      .position = position,
       .depth = out->depth,
       .featureId = MakeFeatureId(PackFeature(FeatureType::Edge, ea), PackFeature(FeatureType::Edge, eb))};
 }
