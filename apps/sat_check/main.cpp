@@ -1,53 +1,30 @@
 // talus-sat-check: the SAT validation program. Runs RunSatCheck, writes the
 // JSON and Markdown reports (docs/collision-validation.md) and exits
-// non-zero when a Talus mode breaks a stated bound.
+// non-zero when a Talus mode breaks a stated bound or the truth is broken.
 //
-// Exit status: 0 every Talus mode within its bounds; 1 a bound broken (the
-// summary line on stderr names the first); 2 bad arguments or a report that
-// could not be written.
+// Exit status (sat_check.h): 0 every Talus mode within its bounds; 1 a
+// bound broken or a Talus error (the summary line on stderr names the
+// first); 2 bad arguments or an output that could not be written; 3 the
+// truth disagrees with its own checks (qhull against BuildHull, the box
+// closed form), so Talus cannot be judged.
 #include <CLI/CLI.hpp>
 
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
+#include <cerrno>
+#include <cstring>
 #include <iostream>
-#include <system_error>
+#include <vector>
 
 #include "sat_check.h"
-
-namespace {
-
-// Writes `text` to a temporary name beside `path`, then renames it over
-// `path`: a failed or interrupted run never leaves a half-written report.
-// (A local helper: talus-sat-check does not link the harness, where a
-// shared one is being added.)
-bool WriteTextAtomically(const std::string& path, const std::string& text) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary);
-    file << text;
-    file.close();
-    if (!file) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      return false;
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) std::filesystem::remove(temporary, error);
-  return !error;
-}
-
-}  // namespace
+#include "talus/harness/support/atomic_file.h"
 
 int main(int argc, char** argv) {
+  namespace validation = talus::validation;
   CLI::App app{"talus-sat-check: Talus's SAT against libccd, Bullet and the exact Minkowski truth"};
-  talus::validation::SatCheckSettings settings;
+  validation::SatCheckSettings settings;
   std::string jsonPath;
   std::string markdownPath;
   app.add_option("--pairs", settings.pairs,
-                 "number of random shape pairs (1 to " + std::to_string(talus::validation::kMaxPairs) + ")")
+                 "number of random shape pairs (1 to " + std::to_string(validation::kMaxPairs) + ")")
       ->capture_default_str();
   // Read as text and checked by ParseSeed: read as a number, "-1" and
   // overflowing values went through without a word (issue 14).
@@ -57,30 +34,46 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--json", jsonPath, "write the full report as JSON to this file");
   app.add_option("--markdown", markdownPath, "write the Markdown section to this file (default: stdout)");
-  CLI11_PARSE(app, argc, argv);
-  const auto seed = talus::validation::ParseSeed(seedText);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int status = app.exit(e);
+    return status == 0 ? 0 : validation::kExitUsage;
+  }
+  const auto seed = validation::ParseSeed(seedText);
   if (!seed) {
     std::cerr << "talus-sat-check: " << seed.GetError().message << "\n";
-    return 2;
+    return validation::kExitUsage;
   }
   settings.seed = seed.Value();
 
-  const auto report = talus::validation::RunSatCheck(settings);
+  const auto report = validation::RunSatCheck(settings);
   if (!report) {
     std::cerr << "talus-sat-check: " << report.GetError().message << "\n";
-    return 2;
+    return validation::kExitUsage;
   }
-  if (!jsonPath.empty() && !WriteTextAtomically(jsonPath, talus::validation::ReportToJson(report.Value()))) {
-    std::cerr << "talus-sat-check: cannot write " << jsonPath << "\n";
-    return 2;
-  }
-  const std::string markdown = talus::validation::ReportToMarkdown(report.Value());
+  // Outputs all or nothing (issue 26): stdout first, since it cannot be
+  // taken back, then the files as one set (WriteFilesAtomically: a full
+  // disk, a folder or a full device named as a file leaves none of them).
+  const std::string json = jsonPath.empty() ? std::string() : validation::ReportToJson(report.Value());
+  const std::string markdown = validation::ReportToMarkdown(report.Value());
   if (markdownPath.empty()) {
-    std::cout << markdown;
-  } else if (!WriteTextAtomically(markdownPath, markdown)) {
-    std::cerr << "talus-sat-check: cannot write " << markdownPath << "\n";
-    return 2;
+    errno = 0;
+    std::cout << markdown << std::flush;
+    if (!std::cout) {
+      std::cerr << "talus-sat-check: standard output: cannot write ("
+                << (errno != 0 ? std::strerror(errno) : "write failed") << ")\n";
+      return validation::kExitUsage;
+    }
   }
-  std::cerr << "talus-sat-check: " << talus::validation::SummaryLine(report.Value()) << "\n";
-  return report.Value().failures.empty() ? 0 : 1;
+  std::vector<talus::harness::FileToWrite> files;
+  if (!jsonPath.empty()) files.push_back({jsonPath, json});
+  if (!markdownPath.empty()) files.push_back({markdownPath, markdown});
+  const auto written = talus::harness::WriteFilesAtomically(files);
+  if (!written) {
+    std::cerr << "talus-sat-check: " << written.GetError().message << "; no report written\n";
+    return validation::kExitUsage;
+  }
+  std::cerr << "talus-sat-check: " << validation::SummaryLine(report.Value()) << "\n";
+  return validation::ExitStatus(report.Value());
 }

@@ -92,6 +92,8 @@ const char* ToString(Family family) {
       return "identical";
     case Family::Slab:
       return "slab";
+    case Family::LargeParallel:
+      return "largeParallel";
   }
   return "unknown";
 }
@@ -102,8 +104,12 @@ std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
   pairs.reserve(static_cast<std::size_t>(std::max(count, 0)));
   for (int i = 0; i < count; ++i) {
     const auto family = static_cast<Family>(i % kFamilyCount);
-    const double lo = family == Family::Scaled ? 5e-4 : 0.1;  // half extents, metres
-    const double hi = family == Family::Scaled ? 5.0 : 2.0;
+    double lo = family == Family::Scaled ? 5e-4 : 0.1;  // half extents, metres
+    double hi = family == Family::Scaled ? 5.0 : 2.0;
+    if (family == Family::LargeParallel) {
+      lo = 2.0;
+      hi = 3.0;
+    }
     Shape a = MakeShape(draw, lo, hi);
     Shape b = MakeShape(draw, lo, hi);
     if (family == Family::Identical) {
@@ -115,7 +121,7 @@ std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
     }
     auto placement = static_cast<Placement>(draw.Integer(0, 3));
     auto alignment = static_cast<Alignment>(draw.Integer(0, 2));
-    if (family == Family::Parallel) alignment = Alignment::Face;
+    if (family == Family::Parallel || family == Family::LargeParallel) alignment = Alignment::Face;
     if (family == Family::Identical) {
       alignment = Alignment::Face;
       placement = Placement::Shallow;
@@ -126,6 +132,7 @@ std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
     Quat rotationB = draw.Rotation();
     // n: the direction from B towards A along which the pair is placed.
     Vec3 n = draw.UnitVector();
+    double twist = 0.0;
     if (alignment == Alignment::Face) {
       rotationB = rotationA;
       // A face normal of A (for a box one of its axes), reversed: B sits
@@ -135,8 +142,24 @@ std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
           faces[static_cast<std::size_t>(draw.Integer(0, static_cast<int>(faces.size()) - 1))].plane.normal;
       n = -(rotationA * localNormal);
       // Nearly parallel faces: B turned by 1e-6 rad.
-      if (family == Family::Parallel)
-        rotationB = Quat(Eigen::AngleAxisd(1e-6, draw.UnitVector())) * rotationA;
+      if (family == Family::Parallel) {
+        twist = 1e-6;
+        rotationB = Quat(Eigen::AngleAxisd(twist, draw.UnitVector())) * rotationA;
+      }
+      // Large shapes: a face of B turned to point along n (towards A.s
+      // face), spun about n, then twisted 1e-8 to 1e-6 rad.
+      if (family == Family::LargeParallel) {
+        const auto facesB = b.GetHull().Faces();
+        const Vec3 normalB =
+            facesB[static_cast<std::size_t>(draw.Integer(0, static_cast<int>(facesB.size()) - 1))]
+                .plane.normal;
+        const Quat spin(Eigen::AngleAxisd(draw.Uniform(0.0, 2.0 * std::numbers::pi), n));
+        twist = kLargeParallelTwistMin *
+                std::pow(kLargeParallelTwistMax / kLargeParallelTwistMin, draw.Uniform(0.0, 1.0));
+        rotationB =
+            (Quat(Eigen::AngleAxisd(twist, draw.UnitVector())) * spin * Quat::FromTwoVectors(normalB, n))
+                .normalized();
+      }
     } else if (alignment == Alignment::Edge) {
       const int first = draw.Integer(0, 2);
       const int second = (first + 1 + draw.Integer(0, 1)) % 3;
@@ -184,7 +207,8 @@ std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
                      .alignment = alignment,
                      .family = family,
                      .targetGap = gap,
-                     .size = size});
+                     .size = size,
+                     .twist = twist});
   }
   return pairs;
 }

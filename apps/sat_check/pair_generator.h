@@ -24,7 +24,12 @@
 //   the size along it (every face ties; the truth decides whether a hull's
 //   copy touches);
 // - slab: a thin box (3.4 x 0.004 x 2.8 m at scale 1, scale 0.25-2)
-//   against a 36-point hull, so a deepest vertex can pass through the slab.
+//   against a 36-point hull, so a deepest vertex can pass through the slab;
+// - largeParallel: two large shapes (largest half extent 2-3 m, 4-6 m
+//   across), a face of B turned to face a face of A and then twisted by
+//   1e-8 to 1e-6 rad (log-uniform) about a random axis (issue 26: the
+//   deepest vertex lies beside the reference face, and an independent
+//   qhull check found clipped points up to 1.1 m outside a shape).
 #pragma once
 
 #include <cstdint>
@@ -43,8 +48,14 @@ enum class Placement { Separated, Touching, Shallow, Deep };
 enum class Alignment { Random, Face, Edge };
 
 /// Which family of pairs (see above).
-enum class Family { Standard, Scaled, Far, Parallel, Identical, Slab };
-inline constexpr int kFamilyCount = 6;
+enum class Family { Standard, Scaled, Far, Parallel, Identical, Slab, LargeParallel };
+inline constexpr int kFamilyCount = 7;
+
+/// LargeParallel: the twist between the two faces is log-uniform in
+/// [kLargeParallelTwistMin, kLargeParallelTwistMax] radians, and the
+/// shapes' largest half extent is uniform in [2, 3] m.
+inline constexpr double kLargeParallelTwistMin = 1e-8;
+inline constexpr double kLargeParallelTwistMax = 1e-6;
 
 /// The names used in the JSON and Markdown reports.
 const char* ToString(Placement placement);
@@ -63,6 +74,7 @@ struct ShapePair {
   Family family = Family::Standard;
   double targetGap = 0.0;  ///< metres along the placement direction (< 0: overlap)
   double size = 0.0;       ///< metres: the smaller of the two shapes' largest half extents
+  double twist = 0.0;      ///< radians between the placed faces (Parallel, LargeParallel; else 0)
 };
 
 /// Makes `count` pairs from `seed`. Standard shapes: half boxes, half

@@ -103,11 +103,13 @@ struct MethodReport {
   Distribution timeNs;          ///< time per query (ns)
   // The gate (Talus methods; see docs/collision-validation.md): counts of
   // pairs or points beyond the stated bounds.
-  int depthOverBound = 0;       ///< |depth - true| > preference band + exact + round-off
-  int normalOverBound = 0;      ///< normal excess > the same bound
-  int deepestPointOff = 0;      ///< deepest point's depth != manifold depth beyond round-off
-  int pointsOutsideEither = 0;  ///< points outside either shape beyond tolerance (measured, not gated)
-  int pointsOutsideBoth = 0;    ///< points outside both shapes beyond tolerance (WriteUp: + its 5 mm rule)
+  int depthOverBound = 0;   ///< |depth - true| > preference band + exact + round-off
+  int normalOverBound = 0;  ///< normal excess > the same bound
+  int deepestPointOff = 0;  ///< deepest point's depth != manifold depth beyond round-off
+  /// Points outside either shape beyond round-off; gated for the Clipped
+  /// modes (issue 26: inside both shapes), measured for WriteUp.
+  int pointsOutsideEither = 0;
+  int pointsOutsideBoth = 0;  ///< points outside both shapes beyond tolerance (WriteUp: + its 5 mm rule)
   std::vector<FamilyReport> families;   ///< by Family
   std::vector<CaseRecord> worstDepth;   ///< largest depth errors
   std::vector<CaseRecord> worstNormal;  ///< largest normal excesses
@@ -155,9 +157,24 @@ struct SatCheckReport {
   TruthReport truth;
   std::vector<MethodReport> methods;
   std::vector<PairRecord> pairs;
-  /// One line per Talus method and bound it breaks; empty when all pass.
+  /// One line per Talus method and bound it breaks, or error it returned;
+  /// empty when all pass.
   std::vector<std::string> failures;
+  /// One line per check of the truth itself that failed (qhull against the
+  /// second hull builder, the box closed form); empty when the truth
+  /// holds. A broken truth makes every verdict above meaningless.
+  std::vector<std::string> truthBroken;
 };
+
+/// Exit statuses of talus-sat-check (main.cpp; docs/collision-validation.md).
+inline constexpr int kExitPassed = 0;
+inline constexpr int kExitBoundBroken = 1;  ///< a Talus mode broke a bound or returned an error
+inline constexpr int kExitUsage = 2;        ///< bad arguments, or an output that could not be written
+inline constexpr int kExitTruthBroken = 3;  ///< the truth disagrees with its own checks
+
+/// The exit status for a finished report: truth broken first (nothing
+/// else can be judged then), then a broken bound, else passed.
+int ExitStatus(const SatCheckReport& report);
 
 /// Runs the whole validation. Refuses bad settings (pairs outside
 /// 1..kMaxPairs, negative tolerances or repeats) with a message naming the
@@ -181,7 +198,8 @@ double BoxPairSignedDistance(const Vec3& halfA, const Vec3& halfB, const Vec3& o
 std::string ReportToJson(const SatCheckReport& report);
 /// The report as a Markdown section (level-2 heading "SAT validation").
 std::string ReportToMarkdown(const SatCheckReport& report);
-/// One line: "PASS: ..." or "FAIL: n bounds broken: first failure".
+/// One line: "PASS: ...", "FAIL: n bounds broken: first failure" or
+/// "TRUTH BROKEN: n checks of the truth failed: first".
 std::string SummaryLine(const SatCheckReport& report);
 
 }  // namespace talus::validation

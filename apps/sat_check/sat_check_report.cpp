@@ -111,7 +111,8 @@ std::string ReportToJson(const SatCheckReport& report) {
   }
   json["methods"] = methods;
   json["failures"] = report.failures;
-  json["passed"] = report.failures.empty();
+  json["truthBroken"] = report.truthBroken;
+  json["passed"] = ExitStatus(report) == kExitPassed;
   Json pairs = Json::array();
   for (const PairRecord& p : report.pairs) {
     Json results = Json::array();
@@ -187,6 +188,7 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
     }
   }
   out << "\n### Gate\n\n" << SummaryLine(report) << "\n";
+  for (const std::string& line : report.truthBroken) out << "- truth broken: " << line << "\n";
   for (const std::string& line : report.failures) out << "- " << line << "\n";
   out << "\n### Worst cases\n\n";
   for (const MethodReport& m : report.methods) {
@@ -211,6 +213,11 @@ std::string SummaryLine(const SatCheckReport& report) {
   int talusMethods = 0;
   for (const MethodReport& m : report.methods) talusMethods += m.family == "talus" ? 1 : 0;
   std::ostringstream out;
+  if (!report.truthBroken.empty()) {
+    out << "TRUTH BROKEN: " << report.truthBroken.size() << " checks of the truth failed on "
+        << report.pairCount << " pairs, so no verdict on Talus; first: " << report.truthBroken.front();
+    return out.str();
+  }
   if (report.failures.empty()) {
     out << "PASS: " << talusMethods << " Talus modes on " << report.pairCount
         << " pairs: verdicts, depths, normals and contact points within the stated bounds";

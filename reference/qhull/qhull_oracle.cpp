@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
@@ -39,7 +40,12 @@ class MessageBuffer {
 
 }  // namespace
 
-Result<QhullHull> QhullConvexHull(std::span<const Vec3> points, const QhullOptions& options) {
+namespace {
+
+// Runs qhull with `options` on `points` and hands the finished context to
+// `read`, which fills the answer; frees every qhull allocation after.
+template <typename T, typename Read>
+Result<T> RunQhull(std::span<const Vec3> points, const char* options, Read read) {
   if (points.size() < 4) return Error{"qhull needs at least 4 points, got " + std::to_string(points.size())};
   std::vector<coordT> coordinates;
   coordinates.reserve(3 * points.size());
@@ -49,13 +55,26 @@ Result<QhullHull> QhullConvexHull(std::span<const Vec3> points, const QhullOptio
   qhT context;
   qhT* qh = &context;
   qh_zero(qh, messages.File());
-  char command[] = "qhull";
+  std::string command = options;
   const int exitCode = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(), False,
-                                    command, nullptr, messages.File());
-  Result<QhullHull> result = Error{""};
+                                    command.data(), nullptr, messages.File());
+  Result<T> result = Error{""};
   if (exitCode != 0) {
     result = Error{"qhull failed (exit code " + std::to_string(exitCode) + "): " + messages.Text()};
   } else {
+    result = read(qh);
+  }
+  qh_freeqhull(qh, !qh_ALL);
+  int currentLong = 0;
+  int totalLong = 0;
+  qh_memfreeshort(qh, &currentLong, &totalLong);
+  return result;
+}
+
+}  // namespace
+
+Result<QhullHull> QhullConvexHull(std::span<const Vec3> points, const QhullOptions& options) {
+  return RunQhull<QhullHull>(points, "qhull", [&options](qhT* qh) {
     QhullHull hull;
     vertexT* vertex;
     FORALLvertices { hull.vertexIndices.push_back(qh_pointid(qh, vertex->point)); }
@@ -65,13 +84,34 @@ Result<QhullHull> QhullConvexHull(std::span<const Vec3> points, const QhullOptio
       qh_getarea(qh, qh->facet_list);
       hull.volume = qh->totvol;
     }
-    result = std::move(hull);
-  }
-  qh_freeqhull(qh, !qh_ALL);
-  int currentLong = 0;
-  int totalLong = 0;
-  qh_memfreeshort(qh, &currentLong, &totalLong);
-  return result;
+    return hull;
+  });
+}
+
+Result<std::vector<QhullFacet>> QhullFacets(std::span<const Vec3> points) {
+  return RunQhull<std::vector<QhullFacet>>(
+      points, "qhull Qt", [](qhT* qh) -> Result<std::vector<QhullFacet>> {
+        std::vector<QhullFacet> facets;
+        facetT* facet;
+        FORALLfacets {
+          QhullFacet out;
+          out.normal = Vec3(facet->normal[0], facet->normal[1], facet->normal[2]);
+          out.offset = facet->offset;
+          int corner = 0;
+          vertexT* vertex;
+          vertexT** vertexp;
+          FOREACHvertex_(facet->vertices) {
+            if (corner < 3)
+              out.corners[static_cast<std::size_t>(corner)] =
+                  Vec3(vertex->point[0], vertex->point[1], vertex->point[2]);
+            ++corner;
+          }
+          if (corner != 3)
+            return Error{"qhull gave a facet of " + std::to_string(corner) + " vertices after triangulation"};
+          facets.push_back(out);
+        }
+        return facets;
+      });
 }
 
 }  // namespace talus

@@ -54,17 +54,25 @@ bool Contains(const PosedHull& hull, const Vec3& p, double tolerance) {
 // by a round-off rate would give a garbage bound.
 constexpr double kParallelFaceCosine = 1e-9;
 
-// A clipped point's normal line misses the shapes' intersection only by
-// more than this fraction of the pair's size (the exactness the SAT check
-// asks of positions).
-constexpr double kMissRelative = 1e-9;
-
 // How far world point p lies outside `hull` (metres; <= 0 inside).
 double OutsideDistance(const PosedHull& hull, const Vec3& p) {
   const Vec3 local = hull.rotation.transpose() * (p - hull.position);
   double worst = -std::numeric_limits<double>::infinity();
   for (const HullFace& face : hull.hull->Faces()) worst = std::max(worst, face.plane.SignedDistance(local));
   return worst;
+}
+
+// Round-off of a point's distance to a face plane (metres): the point is a
+// few sums and products of world coordinates of about |p| + size, and is
+// mapped into the hull's frame; each rounds a few ulps of those. 16 ulps
+// of |p| + size is under the 64 ulps of the largest coordinate that the
+// tests and the SAT check allow a point outside a shape (the size is at
+// most sqrt(3) times the largest coordinate of a point of the shapes'
+// boxes), so a point kept here passes there.
+constexpr double kInsideRoundOffUlps = 16.0;
+
+double PointRoundOff(const Vec3& p, double size) {
+  return kInsideRoundOffUlps * std::numeric_limits<double>::epsilon() * (p.cwiseAbs().maxCoeff() + size);
 }
 
 // A contact point's position: `midpoint` (midway between the surfaces
@@ -74,10 +82,20 @@ double OutsideDistance(const PosedHull& hull, const Vec3& p) {
 // overlap the point's depth measures) it meets their intersection; the
 // midway point leaves that intersection when a side face leans over it (a
 // tilted box's corner) or when the incident shape passes through a thin
-// reference shape. If the line misses the intersection (by round-off, when
-// the point sits on an edge or corner of both, or for a point on a
-// non-minimal axis), the point goes midway between the two intervals,
-// where it is least outside either.
+// reference shape.
+//
+// If the two intervals do not meet, the line misses the intersection:
+// either by round-off (a line through a corner or along an edge of both
+// meets them in one point, and a distance divided by a small rate can
+// empty the interval), or truly (a vertex beside the reference face, whose
+// line passes the other shape by up to metres). The point returned is then
+// the one of the line least outside either shape among the mean of the
+// interval ends (the rule before issue 26), the midpoint and the two ends:
+// the farther shape's distance is convex along the line and these bracket
+// its minimum to a factor of 2, while the mean alone could leave a face
+// 1e-9 m behind when the other end's face was nearly parallel to the line.
+// `missed` says whether that point is still outside a shape by more than
+// round-off (PointRoundOff), i.e. the point is not in contact.
 Vec3 InsideBoth(const PosedHull& a, const PosedHull& b, const Vec3& n, const Vec3& midpoint,
                 bool* missed = nullptr) {
   double loA = 0.0;
@@ -90,27 +108,21 @@ Vec3 InsideBoth(const PosedHull& a, const PosedHull& b, const Vec3& n, const Vec
   const double hi = std::min(hiA, hiB);
   if (missed) *missed = false;
   if (lo <= 0.0 && 0.0 <= hi) return midpoint;
-  if (!std::isfinite(lo) || !std::isfinite(hi)) {
-    if (missed) *missed = true;
-    return midpoint;
-  }
-  if (lo > hi) {
-    // A line through a corner or along an edge of both meets them in one
-    // point, which round-off (divided by a small rate) can turn into an
-    // empty interval; so a miss is judged by how far outside the shapes
-    // the best point of the line is: more than 1e-9 of the pair's size
-    // plus round-off of the coordinates.
-    const Vec3 between = midpoint + 0.5 * (lo + hi) * n;
-    if (missed) {
-      const double size = SatLengthScale(*a.hull, *b.hull);
-      const double roundOff = kDepthRoundOffUlps * std::numeric_limits<double>::epsilon() *
-                              (between.cwiseAbs().maxCoeff() + size);
-      *missed = std::max(OutsideDistance(a, between), OutsideDistance(b, between)) >
-                kMissRelative * size + roundOff;
+  if (lo <= hi) return midpoint + std::clamp(0.0, lo, hi) * n;
+  const auto outside = [&](const Vec3& p) { return std::max(OutsideDistance(a, p), OutsideDistance(b, p)); };
+  Vec3 best = midpoint;
+  double bestOutside = std::numeric_limits<double>::infinity();
+  for (const double t : {0.5 * (lo + hi), 0.0, lo, hi}) {
+    if (!std::isfinite(t)) continue;
+    const Vec3 candidate = midpoint + t * n;
+    const double candidateOutside = outside(candidate);
+    if (candidateOutside < bestOutside) {
+      best = candidate;
+      bestOutside = candidateOutside;
     }
-    return between;
   }
-  return midpoint + std::clamp(0.0, lo, hi) * n;
+  if (missed) *missed = bestOutside > PointRoundOff(best, SatLengthScale(*a.hull, *b.hull));
+  return best;
 }
 
 void BuildEdgeContact(const PosedHull& a, const PosedHull& b, const SatResult& sat, ContactManifold* out) {
@@ -120,9 +132,31 @@ void BuildEdgeContact(const PosedHull& a, const PosedHull& b, const SatResult& s
   Vec3 onB = Vec3::Zero();
   ClosestPointsOfSegments(a.Vertex(a.EdgeStart(ea)), a.Vertex(a.EdgeEnd(ea)), b.Vertex(b.EdgeStart(eb)),
                           b.Vertex(b.EdgeEnd(eb)), &onA, &onB);
+  bool missed = false;
+  Vec3 position = InsideBoth(a, b, sat.normal, 0.5 * (onA + onB), &missed);
+  if (missed) {
+    // The line along the normal through the edges' closest points crosses
+    // A and B where each is thinner than the depth, so their stretches on
+    // it do not meet: a pair deeper than the shapes are thick there (a 5 m
+    // hull 1.7 m into another, issue 26's large parallel family). The
+    // shapes still overlap, and a vertex of one inside the other is in the
+    // intersection: the one farthest inside both is taken, when any is
+    // less outside than the line's best point.
+    double best = std::max(OutsideDistance(a, position), OutsideDistance(b, position));
+    for (const PosedHull* hull : {&a, &b}) {
+      for (int v = 0; v < hull->hull->VertexCount(); ++v) {
+        const Vec3 vertex = hull->Vertex(v);
+        const double outside = std::max(OutsideDistance(a, vertex), OutsideDistance(b, vertex));
+        if (outside < best) {
+          best = outside;
+          position = vertex;
+        }
+      }
+    }
+  }
   out->pointCount = 1;
   out->points[0] = {
-      .position = InsideBoth(a, b, sat.normal, 0.5 * (onA + onB)),
+      .position = position,
       .depth = out->depth,
       .featureId = MakeFeatureId(PackFeature(FeatureType::Edge, ea), PackFeature(FeatureType::Edge, eb))};
 }
@@ -216,8 +250,11 @@ void ClipAgainst(const PosedHull& ref, const std::vector<ClipVertex>& in, const 
   }
 }
 
+// Fills `points` and returns their count; `*carriedDepth` (set to `depth`
+// by the caller) is lowered to the deepest point's when the SAT's deepest
+// vertex is not in contact.
 int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double depth, double margin,
-                       ContactPoint* points) {
+                       ContactPoint* points, double* carriedDepth) {
   const PosedHull& ref = *contact.reference;
   const PosedHull& inc = *contact.incident;
   const Vec3& n = contact.plane.normal;
@@ -289,12 +326,28 @@ int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double de
     // manifold carries the SAT's depth and a touching pair has a point.
     // Its depth is the SAT's own measure of that vertex, so the deepest
     // point equals the manifold's depth.
+    //
+    // Unless its normal line misses the intersection of the two shapes:
+    // then the vertex is not in contact, and no point of the intersection
+    // is as deep as the SAT measured. It happens on faces within the
+    // preference band of parallel (issue 26: hulls 5 m across, faces 1e-7
+    // rad apart, the vertex beside the reference face by metres, and the
+    // point it gave up to 1.1 m outside a shape); the kept points then hold
+    // the contact, and the manifold carries the deepest of them
+    // (*carriedDepth), which still bounds the exact minimum from above:
+    // the SAT's depth minus the vertex's lead over it.
     const double s = contact.plane.SignedDistance(deepestVertex);
-    kept.push_back(
-        {.position = InsideBoth(a, b, normal, deepestVertex - 0.5 * s * n),
-         .depth = std::max(-s, depth),
-         .featureId = OrderedFeatureId(contact, PackFeature(FeatureType::Face, contact.referenceFace),
-                                       PackFeature(FeatureType::Vertex, deepest))});
+    bool missed = false;
+    const Vec3 position = InsideBoth(a, b, normal, deepestVertex - 0.5 * s * n, &missed);
+    if (!missed || s >= 0.0 || kept.empty()) {
+      kept.push_back(
+          {.position = position,
+           .depth = std::max(-s, depth),
+           .featureId = OrderedFeatureId(contact, PackFeature(FeatureType::Face, contact.referenceFace),
+                                         PackFeature(FeatureType::Vertex, deepest))});
+    } else {
+      *carriedDepth = deepestKept;
+    }
   }
   return ReduceContactPoints(kept, n, kClippedMaxPoints, points);
 }
@@ -413,7 +466,10 @@ void BuildPolyhedronManifold(const PosedHull& a, const PosedHull& b, const SatRe
     // No vertex qualifies (e.g. two bars crossed face to face): the
     // write-up's rule finds nothing, so use the clipped points instead.
   }
-  out->pointCount = BuildClippedPoints(contact, out->normal, out->depth, margin, out->points.data());
+  double carriedDepth = out->depth;
+  out->pointCount =
+      BuildClippedPoints(contact, out->normal, out->depth, margin, out->points.data(), &carriedDepth);
+  out->depth = carriedDepth;
 }
 
 }  // namespace talus

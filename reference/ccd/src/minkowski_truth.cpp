@@ -3,7 +3,9 @@
 #include "talus/reference/minkowski_truth.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -17,6 +19,33 @@ namespace {
 
 // Plane offsets within this of the minimum count as ties (metres).
 constexpr double kTieTolerance = 1e-9;
+
+// Facets of one plane: the triangles qhull makes of one merged facet keep
+// its normal, so normals this close count once (unitless cosine).
+constexpr double kSamePlaneCosine = 1.0 - 1e-12;
+
+// How many distinct planes the first `count` facets lie on.
+int DistinctPlanes(const std::vector<QhullFacet>& facets, std::size_t count) {
+  std::vector<Vec3> normals;
+  for (std::size_t f = 0; f < count; ++f) {
+    const Vec3& n = facets[f].normal;
+    if (std::none_of(normals.begin(), normals.end(),
+                     [&n](const Vec3& m) { return m.dot(n) > kSamePlaneCosine; }))
+      normals.push_back(n);
+  }
+  return static_cast<int>(normals.size());
+}
+
+// How many distinct corners the facets have (qhull hands out its input
+// points, so equal corners compare equal exactly).
+int DistinctCorners(const std::vector<QhullFacet>& facets) {
+  std::vector<std::array<double, 3>> corners;
+  for (const QhullFacet& facet : facets) {
+    for (const Vec3& c : facet.corners) corners.push_back({c.x(), c.y(), c.z()});
+  }
+  std::sort(corners.begin(), corners.end());
+  return static_cast<int>(std::unique(corners.begin(), corners.end()) - corners.begin());
+}
 
 }  // namespace
 
@@ -64,31 +93,33 @@ Vec3 ClosestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
 Result<PenetrationTruth> ComputePenetrationTruth(const Hull& a, const Transform& xfA, const Hull& b,
                                                  const Transform& xfB) {
   const std::vector<Vec3> points = MinkowskiDifferencePoints(a, xfA, b, xfB);
-  Result<Hull> built = BuildHull(points);
+  Result<std::vector<QhullFacet>> built = QhullFacets(points);
   if (!built) return Error{"Minkowski difference: " + built.GetError().message};
-  const Hull& d = built.Value();
+  const std::vector<QhullFacet>& facets = built.Value();
   PenetrationTruth truth;
-  truth.differenceVertices = d.VertexCount();
-  truth.differenceFaces = d.FaceCount();
+  truth.differenceFaces = DistinctPlanes(facets, facets.size());
+  truth.differenceVertices = DistinctCorners(facets);
 
-  // Largest signed distance of the origin over the face planes: <= 0 when
-  // the origin is inside; then -max is the smallest offset.
+  // Largest signed distance of the origin over the facet planes (qhull's
+  // offset is the signed distance of the origin): <= 0 when the origin is
+  // inside; then -max is the smallest offset.
   double maxDistance = -std::numeric_limits<double>::infinity();
-  int maxFace = 0;
-  for (int f = 0; f < d.FaceCount(); ++f) {
-    const double distance = -d.Faces()[static_cast<std::size_t>(f)].plane.offset;
-    if (distance > maxDistance) {
-      maxDistance = distance;
-      maxFace = f;
+  std::size_t maxFacet = 0;
+  for (std::size_t f = 0; f < facets.size(); ++f) {
+    if (facets[f].offset > maxDistance) {
+      maxDistance = facets[f].offset;
+      maxFacet = f;
     }
   }
   truth.intersecting = maxDistance <= 0.0;
   if (truth.intersecting) {
     truth.signedDistance = maxDistance;
-    truth.normal = -d.Faces()[static_cast<std::size_t>(maxFace)].plane.normal;
-    for (const HullFace& face : d.Faces()) {
-      if (-face.plane.offset >= maxDistance - kTieTolerance) ++truth.minimumFaces;
+    truth.normal = -facets[maxFacet].normal;
+    std::vector<QhullFacet> tied;
+    for (const QhullFacet& facet : facets) {
+      if (facet.offset >= maxDistance - kTieTolerance) tied.push_back(facet);
     }
+    truth.minimumFaces = DistinctPlanes(tied, tied.size());
     return truth;
   }
 
@@ -96,11 +127,8 @@ Result<PenetrationTruth> ComputePenetrationTruth(const Hull& a, const Transform&
   // c = a - b for the closest points, so A lies along +c from B.
   double best = std::numeric_limits<double>::infinity();
   Vec3 closest = Vec3::Zero();
-  const auto vertices = d.Vertices();
-  for (const std::array<int, 3>& t : d.Triangulate()) {
-    const Vec3 q = ClosestPointOnTriangle(Vec3::Zero(), vertices[static_cast<std::size_t>(t[0])],
-                                          vertices[static_cast<std::size_t>(t[1])],
-                                          vertices[static_cast<std::size_t>(t[2])]);
+  for (const QhullFacet& facet : facets) {
+    const Vec3 q = ClosestPointOnTriangle(Vec3::Zero(), facet.corners[0], facet.corners[1], facet.corners[2]);
     if (q.norm() < best) {
       best = q.norm();
       closest = q;
@@ -115,10 +143,12 @@ Result<PenetrationTruth> ComputePenetrationTruth(const Hull& a, const Transform&
 Result<bool> CheckMinkowskiWithQhull(const Hull& a, const Transform& xfA, const Hull& b, const Transform& xfB,
                                      double relativeTolerance) {
   const std::vector<Vec3> points = MinkowskiDifferencePoints(a, xfA, b, xfB);
-  Result<Hull> built = BuildHull(points);
-  if (!built) return Error{"BuildHull: " + built.GetError().message};
+  Result<std::vector<QhullFacet>> facets = QhullFacets(points);
+  if (!facets) return Error{"qhull: " + facets.GetError().message};
   Result<QhullHull> qhull = QhullConvexHull(points);
   if (!qhull) return Error{"qhull: " + qhull.GetError().message};
+  Result<Hull> built = BuildHull(points);
+  if (!built) return Error{"BuildHull: " + built.GetError().message};
   Result<MassProperties> mass = ComputeMassProperties(built.Value(), 1.0);
   if (!mass) return Error{"mass properties: " + mass.GetError().message};
   const double volume = mass.Value().volume;
@@ -127,10 +157,32 @@ Result<bool> CheckMinkowskiWithQhull(const Hull& a, const Transform& xfA, const 
     return Error{"volume " + std::to_string(volume) + " (BuildHull) vs " + std::to_string(qhullVolume) +
                  " (qhull)"};
   }
-  const double tolerance = built.Value().Tolerance();
+  // Both ways, to the second builder's tolerance (its plane fit's bound)
+  // plus the round-off of evaluating a plane at a point (64 ulps of the
+  // largest coordinate; a point qhull found coplanar was 3.5e-15 m out
+  // against a BuildHull tolerance of 3.3e-15 m): every difference point
+  // inside qhull's facets, and every corner of qhull's facets inside the
+  // second hull.
+  double largest = 0.0;
+  for (const Vec3& p : points) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  const double tolerance =
+      built.Value().Tolerance() + 64.0 * std::numeric_limits<double>::epsilon() * largest;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (!ContainsPoint(built.Value(), points[i], tolerance)) {
-      return Error{"difference point " + std::to_string(i) + " lies outside the built hull"};
+    for (const QhullFacet& facet : facets.Value()) {
+      const double outside = facet.normal.dot(points[i]) + facet.offset;
+      if (outside > tolerance) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "difference point %zu lies %.3e m outside qhull's hull (tolerance %.3e m)", i, outside,
+                      tolerance);
+        return Error{text};
+      }
+    }
+  }
+  for (const QhullFacet& facet : facets.Value()) {
+    for (const Vec3& corner : facet.corners) {
+      if (!ContainsPoint(built.Value(), corner, tolerance))
+        return Error{"a corner of qhull's hull lies outside BuildHull's"};
     }
   }
   return true;

@@ -12,9 +12,11 @@
 // i.e. it is the way A must move. Moving A by t*n moves D by t*n, so the
 // origin leaves D through its face of outward normal m when n = -m.
 //
-// D is built with talus::BuildHull and checked against qhull
-// (CheckMinkowskiWithQhull): same volume, and every difference point inside
-// the built hull, so a builder bug cannot pass silently into the truth.
+// D is built with qhull (Barber, Dobkin and Huhdanpaa; reference/qhull),
+// not with the engine's own hull builder, so the truth shares no code with
+// the engine. CheckMinkowskiWithQhull cross-checks it against a second
+// builder (talus::BuildHull): same volume, each hull inside the other, so
+// a bug in either cannot pass silently into the truth.
 #pragma once
 
 #include <vector>
@@ -36,7 +38,7 @@ struct PenetrationTruth {
   /// the direction from B's closest point to A's when separated.
   Vec3 normal = Vec3::UnitY();
   int differenceVertices = 0;  ///< vertices of D
-  int differenceFaces = 0;     ///< faces of D (coplanar triangles merged)
+  int differenceFaces = 0;     ///< faces of D (distinct facet planes)
   /// Faces of D whose plane offset is within 1e-9 m of the minimum: more
   /// than one means the minimum direction is not unique (a tie).
   int minimumFaces = 0;
@@ -49,16 +51,19 @@ struct PenetrationTruth {
 std::vector<Vec3> MinkowskiDifferencePoints(const Hull& a, const Transform& xfA, const Hull& b,
                                             const Transform& xfB);
 
-/// The truth for A at xfA and B at xfB. Fails only if the difference spans
-/// no volume (cannot happen for two valid hulls) or a coordinate is not
-/// finite, with BuildHull's message.
+/// The truth for A at xfA and B at xfB, from qhull's hull of the
+/// difference points. Fails only if the difference spans no volume (cannot
+/// happen for two valid hulls) or a coordinate is not finite, with qhull's
+/// message.
 Result<PenetrationTruth> ComputePenetrationTruth(const Hull& a, const Transform& xfA, const Hull& b,
                                                  const Transform& xfB);
 
-/// Cross-checks the hull BuildHull makes of the difference points against
-/// qhull's: volumes equal to `relativeTolerance` (default 1e-9) and every
-/// difference point inside the built hull to its tolerance. Returns an
-/// error describing the first mismatch.
+/// Cross-checks qhull's hull of the difference points (the truth's) against
+/// BuildHull's: volumes equal to `relativeTolerance` (default 1e-9), every
+/// difference point inside qhull's facets and every corner of those inside
+/// BuildHull's hull, both to BuildHull's tolerance plus 64 ulps of the
+/// largest coordinate. Returns an error
+/// describing the first mismatch.
 Result<bool> CheckMinkowskiWithQhull(const Hull& a, const Transform& xfA, const Hull& b, const Transform& xfB,
                                      double relativeTolerance = 1e-9);
 

@@ -1,5 +1,6 @@
 // The qhull oracle: convex hulls from qhull (Barber, Dobkin and Huhdanpaa),
-// the independent truth Talus's Quickhull is checked and timed against.
+// the independent truth Talus's Quickhull is checked and timed against, and
+// the Minkowski differences of the SAT check's truth (QhullFacets).
 //
 // It wraps qhull's reentrant C API (libqhull_r): each call owns its own qhT,
 // sends qhull's messages to a memory buffer (nothing reaches stdout or
@@ -7,6 +8,7 @@
 // clean under AddressSanitizer and LeakSanitizer.
 #pragma once
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -32,6 +34,21 @@ struct QhullHull {
   /// (the 'C-0' pre-merge), so polygons count once.
   int facetCount = 0;
 };
+
+/// One facet of a triangulated qhull hull: its plane (outward unit
+/// normal, offset such that normal . x + offset is the signed distance of
+/// x, > 0 outside) and its three corners.
+struct QhullFacet {
+  Vec3 normal = Vec3::Zero();
+  double offset = 0.0;
+  std::array<Vec3, 3> corners{};
+};
+
+/// The facets of the convex hull of `points` from qhull ("qhull Qt": the
+/// default coplanar merging, then each merged facet triangulated; the
+/// triangles of one merged facet keep its plane). Fails with qhull's own
+/// message as QhullConvexHull does.
+Result<std::vector<QhullFacet>> QhullFacets(std::span<const Vec3> points);
 
 /// The convex hull of `points` computed by qhull with default options
 /// ("qhull", which merges coplanar facets). Fails with qhull's own message
