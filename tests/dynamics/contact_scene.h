@@ -89,7 +89,7 @@ class ContactScene {
   /// One step of `h` seconds, in World::Step's order.
   void Step(double h) {
     m_stats = StepStatistics{};
-    IntegrateVelocities(m_bodies, m_settings.gravity, m_settings.rotation, h);
+    IntegrateVelocities(m_bodies, m_settings.gravity, h);
     m_previous.swap(m_contacts);
     m_contacts.clear();
     Collide();
@@ -103,10 +103,6 @@ class ContactScene {
     m_solver.Scatter(m_bodies, pseudo);
     m_solver.StoreImpulses(m_contacts);
     IntegratePositions(m_bodies, h, pseudo, m_settings.rotation, m_settings.translation);
-    if (m_settings.positionCorrection == PositionCorrection::NonlinearGaussSeidel) {
-      m_solver.SolveNonlinearPositions(m_bodies, m_settings.positionIterations, m_settings.baumgarte,
-                                       m_settings.positionSlop);
-    }
   }
 
   /// Kinetic plus potential energy of all boxes, J.

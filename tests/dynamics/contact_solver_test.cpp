@@ -241,26 +241,6 @@ TEST(ContactSolver, SplitImpulsesPushOutWithoutLaunching) {
   EXPECT_LT(peakUpwardSpeed(true), 1e-3);
 }
 
-TEST(ContactSolver, NonlinearGaussSeidelPushesOutToThePositionSlopWithoutLaunching) {
-  // The same box 5 cm deep: the position pass re-measures the depth from the
-  // current pose every sweep and moves the box directly, so it leaves no
-  // velocity and ends within the position slop (0.2 mm) of resting height.
-  WorldSettings settings = Settings();
-  settings.positionCorrection = PositionCorrection::NonlinearGaussSeidel;
-  ContactScene scene(settings);
-  scene.AddPlane({});
-  const int box = scene.AddBox({0, 0.45, 0}, Vec3::Constant(0.5), 1.0);
-  double peak = 0.0;
-  for (int n = 0; n < 120; ++n) {
-    scene.Step(kH);
-    peak = std::max(peak, scene.Body(box).linearVelocity.y());
-  }
-  EXPECT_LT(peak, 1e-3);
-  // Resting depth is at most the slop; 1e-5 m for the last sweep's 20 %.
-  EXPECT_NEAR(scene.Body(box).center.y(), 0.5, settings.positionSlop + 1e-5);
-  EXPECT_LT(scene.Body(box).angularVelocity.norm(), 1e-9);
-}
-
 TEST(ContactSolver, BlockSolvedCornersOfAColdBoxShareTheLoadEvenly) {
   // A box landing flat: row by row the first corner takes more of the
   // impulse and the box starts to spin; the 4-point block gives each corner

@@ -62,12 +62,12 @@ TEST(Replay, TalusCountersShowTheBroadPhaseFunnelForFifteenFallingCubes) {
   const harness::Run run = FreeFall15();
   ASSERT_EQ(run.scenario.world.broadPhase, BroadPhaseChoice::UniformGrid);
   RunnerOptions options;
-  // talus-coloured keeps the fixed 2 cm speculative margin, so the spheres
-  // are the shapes' own plus 2 cm; talus grows them by each body's reach
-  // this step (WorldSettings::speculativeMotion, the next test).
-  options.backends = {"talus-coloured"};
+  // talus-writeup keeps the write-up's fixed 2 cm speculative margin, so the
+  // spheres are the shapes' own plus 2 cm; talus grows them by each body's
+  // reach this step (WorldSettings::speculativeMotion, the next test).
+  options.backends = {"talus-writeup"};
   options.replay = {"all"};
-  const RunResult result = RunOne(MakeRegistry(), run, "talus-coloured", options);
+  const RunResult result = RunOne(MakeRegistry(), run, "talus-writeup", options);
   const std::vector<std::string> expected = {"bodies",
                                              "candidate pairs",
                                              "sphere pairs",
@@ -120,9 +120,9 @@ TEST(Replay, AutoBroadPhaseRunsBruteForceOnFifteenCubesWithTheSamePairs) {
   harness::Run run = FreeFall15();
   run.scenario.world.broadPhase = BroadPhaseChoice::Auto;
   RunnerOptions options;
-  options.backends = {"talus-coloured"};  // the fixed margin, as above
+  options.backends = {"talus-writeup"};  // the fixed margin, as above
   options.replay = {"all"};
-  const RunResult result = RunOne(MakeRegistry(), run, "talus-coloured", options);
+  const RunResult result = RunOne(MakeRegistry(), run, "talus-writeup", options);
   EXPECT_EQ(StructureThatRan(result.replay),
             "brute force in all " + std::to_string(result.replay.frames.size() - 1) + " recorded steps");
   const ReplayFrame& last = result.replay.frames.back();

@@ -85,17 +85,17 @@ const BackendRegistry& Registry() {
 TEST(StressSpeed, ASlowBoxStopsAtTheWallAndAFastOneTunnelsThroughAFixedMargin) {
   // At 1 m/s the box moves 1.7 cm per step against a 0.15 m overlap window:
   // it must be stopped. At 600 m/s it moves 10 m per step: with a fixed
-  // 2 cm speculative margin (talus-coloured) the wall is never in a
+  // 2 cm speculative margin (talus-writeup) the wall is never in a
   // manifold and the box must end beyond it; talus grows the margin to the
   // step's reach (WorldSettings::speculativeMotion), so the wall is a
   // speculative contact the step before and the box must end against it,
   // its centre 0.05 + 0.025 m from the wall's, to within 1 mm.
-  for (const char* backend : {"talus", "talus-coloured"}) {
+  for (const char* backend : {"talus", "talus-writeup"}) {
     const EnvelopeProbe slow = ProbeStress(Registry(), backend, StressAxis::Speed, 1.0);
     EXPECT_TRUE(slow.pass) << backend << ": " << slow.detail;
     EXPECT_LT(slow.measure, 0.0) << backend;
   }
-  const EnvelopeProbe fixed = ProbeStress(Registry(), "talus-coloured", StressAxis::Speed, 600.0);
+  const EnvelopeProbe fixed = ProbeStress(Registry(), "talus-writeup", StressAxis::Speed, 600.0);
   EXPECT_FALSE(fixed.pass);
   EXPECT_NE(fixed.detail.find("tunnelled"), std::string::npos) << fixed.detail;
   const EnvelopeProbe reach = ProbeStress(Registry(), "talus", StressAxis::Speed, 600.0);

@@ -247,13 +247,15 @@ TEST(WorldThreads, EverySolverVariantIsBitIdentical) {
   };
   WorldSettings split;
   split.positionCorrection = PositionCorrection::SplitImpulses;
-  split.rotation = RotationIntegrator::ImplicitGyroscopic;
+  split.rotation = RotationIntegrator::MomentumSplitting;
   ExpectSameBitsForEveryThreadCount(build, split, 40);
   WorldSettings writeUp;
   writeUp.narrowPhase.satMode = SatMode::Full;
   writeUp.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
   writeUp.narrowPhase.reuseDistance = 0.0;
-  writeUp.positionCorrection = PositionCorrection::NonlinearGaussSeidel;
+  writeUp.blockSolver = false;  // the write-up's row-by-row solver, friction per point
+  writeUp.frictionSolve = FrictionSolve::PerPoint;
+  writeUp.speculativeMotion = false;  // and its fixed speculative margin
   writeUp.translation = TranslationIntegrator::ExactConstantAcceleration;
   writeUp.broadPhase = BroadPhaseKind::AabbTree;
   ExpectSameBitsForEveryThreadCount(build, writeUp, 40);
@@ -270,6 +272,7 @@ TEST(WorldThreads, ColouredSolverSpreadsColoursWithoutChangingABit) {
   };
   WorldSettings coloured;
   coloured.contactSolver = ContactSolverKind::ColouredWide;
+  coloured.frictionSolve = FrictionSolve::PerPoint;  // the coloured solver has no joint block
   const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, coloured, 12);
   EXPECT_GT(one.manifolds, 2 * 8 * 8);  // several chunks of 8 bundles of 4 pairs
 }
@@ -316,6 +319,7 @@ TEST(WorldThreads, ColouredSolverWithOverflowBouncesAndSplitImpulsesIsBitIdentic
   };
   WorldSettings settings;
   settings.contactSolver = ContactSolverKind::ColouredWide;
+  settings.frictionSolve = FrictionSolve::PerPoint;  // the coloured solver has no joint block
   settings.positionCorrection = PositionCorrection::SplitImpulses;
   const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, settings, 30);
   // The scene reaches what it is here for.

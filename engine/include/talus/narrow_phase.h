@@ -96,6 +96,9 @@ struct NarrowPhaseSettings {
   /// (docs/collision-narrow-phase.md): 2 mm, 5 mm and 1 cm all end at the
   /// slop's depth; 2 cm keeps drifted points and ends at 1.27 cm.
   double persistenceDistance = 0.005;
+
+  /// Field by field (WorldSettings compares its narrow phase with it).
+  friend bool operator==(const NarrowPhaseSettings&, const NarrowPhaseSettings&) = default;
 };
 
 /// Counters accumulated by the narrow phase (add-only; the world resets

@@ -17,14 +17,13 @@ namespace talus {
 /// WorldSettings::timeStages is on.
 struct StageTimes {
   double updateBroadPhase = 0.0;         ///< bounding spheres in, the structure rebuilt or refitted
-  double integrateVelocities = 0.0;      ///< forces, gravity, gyroscopic term
+  double integrateVelocities = 0.0;      ///< forces, gravity, torques
   double findContacts = 0.0;             ///< broad-phase pairs, narrow phase, contacts gathered in pair order
   double prepareContacts = 0.0;          ///< warm-start matching and constraint rows
   double solveVelocities = 0.0;          ///< sequential impulses
   double solveSplitImpulses = 0.0;       ///< split-impulse pseudo-velocities (0 unless selected)
   double scatterAndStoreImpulses = 0.0;  ///< velocities back to the bodies, impulses into the contacts
   double integratePositions = 0.0;       ///< positions and orientations
-  double correctPositions = 0.0;         ///< non-linear Gauss-Seidel position sweeps (0 unless selected)
   double sleep = 0.0;                    ///< islands and sleep timers
   double total = 0.0;                    ///< the whole step
 };
@@ -56,7 +55,7 @@ struct StepStatistics {
   std::int64_t velocitySweeps = 0;        ///< Gauss-Seidel velocity sweeps run (see maxVelocityIterations)
   std::int64_t solverColours = 0;     ///< colours of the coloured solver (ContactSolverKind::ColouredWide)
   std::int64_t overflowPairs = 0;     ///< pairs it solved one by one after the colours
-  std::int64_t positionSweeps = 0;    ///< position sweeps run (split impulses or non-linear Gauss-Seidel)
+  std::int64_t positionSweeps = 0;    ///< position sweeps run (split impulses, timed bounces' position rows)
   BroadPhaseStats broadPhase = {};    ///< the broad phase's own counters
   NarrowPhaseStats narrowPhase = {};  ///< the narrow phase's own counters
 };

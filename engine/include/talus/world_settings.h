@@ -1,10 +1,13 @@
 // WorldSettings: every tunable of the dynamics in one place, each with its
 // unit, default, valid range and the reason for its default. The defaults
-// follow the original write-up (fixed-iteration sequential impulses with
-// Baumgarte stabilisation) with the measured improvements (warm starting,
-// block-solved normal rows, extra sweeps for new contacts) switched on;
-// every improvement can be turned off so the testbed can measure what it
-// buys.
+// follow the original write-up (docs/write-up.md: sequential impulses with
+// Baumgarte stabilisation) with the measured improvements switched on, and
+// WorldSettings{} is the configuration the testbed validates: its `talus`
+// row runs it unchanged but for what a scenario states (gravity,
+// iterations, combine rules, sleeping, the gyroscopic term, the broad
+// phase; docs/testbed-backends.md, "The Talus rows"). Every improvement can
+// be turned off so the testbed can measure what it buys; combinations in
+// which a setting would do nothing are refused by World::Create.
 #pragma once
 
 #include <string>
@@ -35,7 +38,9 @@ enum class RestitutionCombine {
 };
 
 /// How penetration is removed. Every scheme keeps the speculative target
-/// of the velocity rows (a gap may close this step, no further).
+/// of the velocity rows (a gap may close this step, no further). A third
+/// scheme, non-linear Gauss-Seidel position sweeps, was measured and
+/// retired (docs/dynamics.md, "Retired options").
 enum class PositionCorrection {
   /// The write-up's: a Baumgarte bias beta/h max(depth - slop, 0) in the
   /// velocity rows. The correction becomes velocity, so it adds kinetic
@@ -45,32 +50,20 @@ enum class PositionCorrection {
   /// and are thrown away (Bullet's split impulses). The depth is not updated
   /// during the sweeps.
   SplitImpulses,
-  /// After the position update, sweeps that recompute every point's depth
-  /// from the bodies' current poses and move the bodies directly
-  /// (non-linear Gauss-Seidel, Box2D v2.4 / Jolt). Adds no velocity, so the
-  /// slop can be small. Measured: a box 5 cm deep leaves with no velocity,
-  /// but the 1240-cube pyramid drifts 0.3 m with it (2.9 mm with
-  /// Baumgarte), so it is not the default.
-  NonlinearGaussSeidel,
 };
 
 /// How orientations and angular velocities advance over a step. Every
 /// scheme applies torques as w += h I_world^-1 tau before the contact solve;
 /// they differ in the torque-free part, Euler's equation
-/// I dw/dt + w x (I w) = 0 (the gyroscopic term).
+/// I dw/dt + w x (I w) = 0 (the gyroscopic term). An implicit gyroscopic
+/// step (Catto 2015, Bullet's) was measured and retired: it loses 1 to 11%
+/// of the angular momentum (docs/dynamics.md, "Retired options").
 enum class RotationIntegrator {
   /// The write-up's: w constant in the world over the step, the
   /// orientation turned by the exact exponential of h w. No gyroscopic
   /// term: a tumbling asymmetric body keeps w, not L, constant (its L turns
   /// with the body) and never turns over about its intermediate axis.
   ConstantRate,
-  /// The constant-rate drift after one implicit Newton step on Euler's
-  /// equation in body axes (Catto, GDC 2015; Bullet's
-  /// BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY). Backward Euler damps: energy
-  /// never grows, but |L| is lost (measured 1.2% in 10 s at 60 Hz on a box
-  /// spun about its major axis, 11% turned through each flip about the
-  /// intermediate axis).
-  ImplicitGyroscopic,
   /// The free rigid body splitting of Dullweber, Leimkuhler and McLachlan
   /// (J. Chem. Phys. 107, 1997): the solved w becomes the world angular
   /// momentum L = I_world w, held fixed over the drift, which is a
@@ -165,8 +158,9 @@ enum class FrictionSolve {
   /// lifting) the normal block and the per-point rows run as PerPoint. At a
   /// sticking solution the block asks for no change, so the answer is the
   /// per-point rows' fixed point, reached in fewer sweeps. Edge contacts
-  /// keep the per-point rows (measured worse on tipping boxes).
-  /// SequentialImpulses only.
+  /// keep the per-point rows (measured worse on tipping boxes). Needs
+  /// blockSolver on and contactSolver = SequentialImpulses: World::Create
+  /// refuses it with either of the others, where it would do nothing.
   JointBlock,
 };
 
@@ -188,7 +182,7 @@ enum class StepSolver {
   /// are graph-coloured, so the result is the same bits for any thread
   /// count. Unused by it: velocityIterations, maxVelocityIterations,
   /// velocityTolerance, blockSolver, contactSolver, positionIterations,
-  /// baumgarte, slop, positionSlop, positionCorrection, bounceTiming and
+  /// baumgarte, slop, positionCorrection, bounceTiming and
   /// frictionSolve.
   SoftStep,
 };
@@ -214,6 +208,8 @@ struct SoftStepSettings {
   /// m/s, finite and > 0. Default 3, Box2D v3's contactSpeed: a deep
   /// overlap is undone over several steps instead of launching the bodies.
   double pushOutSpeed = 3.0;
+
+  friend bool operator==(const SoftStepSettings&, const SoftStepSettings&) = default;
 };
 
 struct WorldSettings {
@@ -227,14 +223,20 @@ struct WorldSettings {
   /// means velocityIterations, the write-up's fixed count). In a step with
   /// new pairs (not touching last step, so no impulses to warm start from),
   /// sweeps past velocityIterations go on while the last one changed a row
-  /// of a new pair by more than velocityTolerance. Default 200: a 10-box column whose contacts are all
-  /// new needs ~150 sweeps in its first step not to sag by more than 1 mm;
-  /// later steps are warm started and stop at velocityIterations.
+  /// of a new pair by more than velocityTolerance. Default 200: a 10-box
+  /// column whose contacts are all new needs ~150 sweeps in its first step
+  /// not to sag by more than 1 mm; later steps are warm started and stop at
+  /// velocityIterations.
   int maxVelocityIterations = 200;
   /// Convergence test of the extra sweeps, m/s, >= 0: the largest change a
-  /// sweep made to a row of a new pair (its relative velocity). Default 1e-3 (0.6 % of the
-  /// velocity gravity adds in one 60 Hz step; 17 um of position per step).
-  double velocityTolerance = 1e-3;
+  /// sweep made to a row of a new pair (its relative velocity). Default
+  /// 1e-9: the residual of a new contact's first solve is never corrected
+  /// afterwards (the rest sits inside the slop), so it stays as an offset of
+  /// about velocityTolerance h per contact. 1e-3 left a 5e-5 rad tilt on a
+  /// tall box and a 0.1 mm sag of a 5-box column at 1/30 s, where a direct
+  /// solver is exact (docs/testbed-sweeps.md, "Run time against error").
+  /// The extra sweeps run only in steps with new pairs.
+  double velocityTolerance = 1e-9;
   /// Solve the normal rows of a pair with 2 to 4 points as one block (the
   /// least-norm solution of the pair's 4x4 system, Box2D v2.4's two-point
   /// block solver extended to four), falling back to row by row when that
@@ -251,13 +253,11 @@ struct WorldSettings {
   /// split across threads with bit-identical results.
   ContactSolverKind contactSolver = ContactSolverKind::SequentialImpulses;
   /// Position iterations, [1, 1000]: sweeps of the split-impulse
-  /// pseudo-velocity rows, or at most this many non-linear Gauss-Seidel
-  /// sweeps (they stop early once no point is deeper than 3 positionSlop).
-  /// Unused by Baumgarte. Default 10, the same budget as velocities.
+  /// pseudo-velocity rows (and of timed bounces' position rows). Default 10,
+  /// the same budget as velocities.
   int positionIterations = 10;
   /// Baumgarte factor beta, unitless in [0, 1]: the fraction of the
-  /// penetration beyond the slop removed per step (per sweep for non-linear
-  /// Gauss-Seidel). Default 0.2: larger values correct faster but add
+  /// penetration beyond the slop removed per step. Default 0.2: larger values correct faster but add
   /// energy and jitter (Catto 2005; Box2D and Jolt use 0.2 for their
   /// position sweeps too).
   double baumgarte = 0.2;
@@ -270,12 +270,7 @@ struct WorldSettings {
   /// the velocity bias into rocking (1 mm: a 10-box column falls at 10
   /// iterations; 3 mm: one hull pile repeat of three ended at 0.04 J).
   double slop = 0.004;
-  /// Penetration left uncorrected by the non-linear Gauss-Seidel pass,
-  /// metres, [0, 1]. Default 0.0002: that pass adds no velocity, so it can be
-  /// tight; a 10-box column then rests within 0.5 mm of its analytic height.
-  double positionSlop = 0.0002;
-  /// Scheme that removes penetration. Default Baumgarte, the write-up's
-  /// (see NonlinearGaussSeidel for why it is not the default).
+  /// Scheme that removes penetration. Default Baumgarte, the write-up's.
   PositionCorrection positionCorrection = PositionCorrection::Baumgarte;
   /// Closing speed below which restitution is ignored, m/s, >= 0. Default
   /// 0.5: resting bodies stop micro-bouncing under gravity (g h = 0.16 m/s
@@ -286,21 +281,29 @@ struct WorldSettings {
   /// Carry accumulated impulses over from last step by feature id. Default
   /// on: stacks converge in a few iterations instead of hundreds.
   bool warmStarting = true;
-  /// Rotation scheme (see RotationIntegrator). Default MomentumSplitting:
-  /// it keeps a free body's angular momentum to round-off where
-  /// ImplicitGyroscopic loses 1 to 11% of it, and the testbed measured it
-  /// better or equal on every scenario (docs/dynamics.md). ConstantRate is
-  /// the write-up's (no gyroscopic term).
-  RotationIntegrator rotation = RotationIntegrator::MomentumSplitting;
+  /// Rotation scheme (see RotationIntegrator). Default
+  /// MomentumSplittingFourthOrder: the splitting keeps a free body's angular
+  /// momentum to round-off where an implicit step loses 1 to 11% of it, and
+  /// its fourth-order composition makes the energy error fall as
+  /// O((h |w|)^4): on gazebo_boxes 36 times smaller than the second-order
+  /// step's at 1/30 s and 140 times at 1/60 s, for about 25% more time on
+  /// a one-body step (docs/dynamics.md, "Rotation"). ConstantRate is the write-up's (no
+  /// gyroscopic term).
+  RotationIntegrator rotation = RotationIntegrator::MomentumSplittingFourthOrder;
   /// Translation scheme (see TranslationIntegrator). Default
   /// ExactConstantAcceleration: free flight follows the parabola to
   /// round-off where SymplecticEuler lags it by g h t / 2, and the testbed
   /// measured it better or equal on every truth (docs/dynamics.md).
   /// SymplecticEuler is the write-up's.
   TranslationIntegrator translation = TranslationIntegrator::ExactConstantAcceleration;
-  /// How friction rows are solved (see FrictionSolve). Default PerPoint,
-  /// the write-up's.
-  FrictionSolve frictionSolve = FrictionSolve::PerPoint;
+  /// How friction rows are solved (see FrictionSolve). Default JointBlock:
+  /// a sticking face contact stops in one sweep instead of keeping about 0.6
+  /// of its slip per sweep; over the testbed's time-step sweep it was more
+  /// accurate at 440 of 1,056 points and less at none, for about 1.2 times
+  /// the step of a large pyramid (docs/dynamics.md, "Joint block").
+  /// PerPoint is the write-up's, and the only one the coloured solver and
+  /// the row-by-row normals (blockSolver off) have.
+  FrictionSolve frictionSolve = FrictionSolve::JointBlock;
   /// Friction combine rule. Default GeometricMean.
   FrictionCombine frictionCombine = FrictionCombine::GeometricMean;
   /// Restitution combine rule. Default Max.
@@ -315,7 +318,7 @@ struct WorldSettings {
   /// structure ran); true is for figures and tests that must show the
   /// selected structure at work on a small scene.
   bool forceBroadPhase = false;
-  /// Time each stage of the step into StepStatistics::seconds (11 clock
+  /// Time each stage of the step into StepStatistics::seconds (10 clock
   /// reads a step). Default off, the fields then stay 0: the reads cost
   /// about 0.25 us a step, a fifth of a two-body step (a ball on a floor,
   /// measured with perf), for figures only a profile asks for.
@@ -333,8 +336,13 @@ struct WorldSettings {
   /// sphere) by how far the bodies can move this step, h (|v| + |w| rho +
   /// g h), rho the farthest point's distance from the centre of mass, so a
   /// feature that can reach the other shape this step is in the manifold
-  /// before it lands. Default off (the fixed margin above).
-  bool speculativeMotion = false;
+  /// before it lands. Default on: a corner landing within the step is
+  /// caught at the surface instead of sinking in and being pushed out (a
+  /// tipping box at 1/30 s 0.18 -> 4.4e-4 tolerances, a hull landing 0.54 ->
+  /// 4e-14), a fast box stops at a thin wall it tunnelled through above
+  /// 7.3 m/s, and where the reach is below the fixed margin nothing changes
+  /// (docs/dynamics.md, "Tunables"). Off is the write-up's fixed margin.
+  bool speculativeMotion = true;
   /// Let islands at rest fall asleep and cost nothing. Default on.
   bool sleeping = true;
   /// A body is at rest while its linear speed stays below this, m/s, >= 0.
@@ -359,6 +367,10 @@ struct WorldSettings {
   StepSolver stepSolver = StepSolver::SequentialImpulses;
   /// The soft step's tunables (read only with StepSolver::SoftStep).
   SoftStepSettings softStep = {};
+
+  /// Field by field (the testbed's test that its `talus` row is these
+  /// defaults compares whole settings, so a new field is covered at once).
+  friend bool operator==(const WorldSettings&, const WorldSettings&) = default;
 };
 
 /// The most threads a World may use (WorldSettings::threads): far above the

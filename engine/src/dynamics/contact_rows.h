@@ -31,7 +31,8 @@ struct FrictionRow {
   double impulse = 0.0;  ///< N s, accumulated
 };
 
-/// Per point, read only by the position passes and the split impulses.
+/// Per point, read only by the split impulses, the timed bounces and the
+/// wide solver's packing.
 struct PointCold {
   double positionTarget = 0.0;  ///< m/s, split-impulse pseudo target
   double pseudoImpulse = 0.0;   ///< N s, accumulated split impulse
@@ -39,10 +40,8 @@ struct PointCold {
   /// pseudo row is an equality that puts it on the reflected flight's end
   /// gap (the impulse may pull), and its impulses are not carried over.
   bool timedBounce = false;
-  Vec3 localAnchorA = Vec3::Zero();  ///< A's surface point, A's axes, from its centre of mass
-  Vec3 localAnchorB = Vec3::Zero();  ///< B's surface point, B's axes, from its centre of mass
-  Vec3 armA = Vec3::Zero();          ///< rA = p - cA, world, metres (the wide solver's input)
-  Vec3 armB = Vec3::Zero();          ///< rB = p - cB
+  Vec3 armA = Vec3::Zero();  ///< rA = p - cA, world, metres (the wide solver's input)
+  Vec3 armB = Vec3::Zero();  ///< rB = p - cB
 };
 
 /// A friction impulse pattern of FrictionSolve::JointBlock as the sweep

@@ -1,6 +1,6 @@
 // Sequential Impulses on contact and friction rows: building the rows and
-// the solver bodies (Prepare), warm start, split impulses, the non-linear
-// position pass and the impulses stored back. The constraint derivations
+// the solver bodies (Prepare), warm start, split impulses and the impulses
+// stored back. The constraint derivations
 // and the data layout are in dynamics/contact_solver.h; the velocity sweeps
 // in contact_solver_sweep.cpp.
 #include "dynamics/contact_solver.h"
@@ -18,11 +18,6 @@ namespace {
 // of the normal instead of the sliding direction: a direction computed from
 // round-off would only add noise.
 constexpr double kSlidingSpeed = 1e-9;
-
-// Most a non-linear Gauss-Seidel sweep moves one point, metres (Box2D's
-// b2_maxLinearCorrection): a deep overlap is pushed out over several steps
-// instead of launched.
-constexpr double kMaxCorrection = 0.2;
 
 // A unit vector orthogonal to the unit `n`, from the world axis least
 // aligned with it (deterministic and well conditioned).
@@ -47,15 +42,6 @@ const Vec3& StartVelocity(const BodySim& body) {
 Vec3 RelativeVelocity(const Vec3& vA, const Vec3& wA, const Vec3& rA, const Vec3& vB, const Vec3& wB,
                       const Vec3& rB) {
   return (vA + wA.cross(rA)) - (vB + wB.cross(rB));
-}
-
-// 1 / (J M^-1 J^T) of a row along `axis` (the effective mass).
-double EffectiveMass(const Vec3& axis, const Vec3& rA, const Vec3& rB, double invMassA, double invMassB,
-                     const Mat3& invInertiaA, const Mat3& invInertiaB) {
-  const Vec3 ra = rA.cross(axis);
-  const Vec3 rb = rB.cross(axis);
-  const double k = invMassA + invMassB + ra.dot(invInertiaA * ra) + rb.dot(invInertiaB * rb);
-  return k > 0.0 ? 1.0 / k : 0.0;
 }
 
 }  // namespace
@@ -206,12 +192,6 @@ void ContactSolver::PreparePair(std::span<const BodySim> bodies, const Contact& 
     cold.armB = rB;
     const bool split = settings.positionCorrection == PositionCorrection::SplitImpulses;
     cold.positionTarget = split && cp.depth > 0.0 ? correction : 0.0;
-    if (settings.positionCorrection == PositionCorrection::NonlinearGaussSeidel) {
-      // The surface points of A and B the midpoint stands for, half the
-      // depth either side along n, kept in body axes for the position pass.
-      cold.localAnchorA = a.orientation.conjugate() * (rA - 0.5 * cp.depth * n);
-      cold.localAnchorB = b.orientation.conjugate() * (rB + 0.5 * cp.depth * n);
-    }
     if (contact.restitution > 0.0) {
       const double vn = n.dot(
           RelativeVelocity(a.linearVelocity, a.angularVelocity, rA, b.linearVelocity, b.angularVelocity, rB));
@@ -266,13 +246,6 @@ void ContactSolver::PreparePair(std::span<const BodySim> bodies, const Contact& 
     m_cold[static_cast<std::size_t>(pair.firstPoint + i)] = cold;
   }
   if (pair.block >= 0) PrepareBlock(pair);
-  if (m_jointBuild == JointBlockBuild::AtPrepare && UsesJointBlock(pair)) {
-    // The reference build (SetJointBlockBuild): every face pair's operator
-    // now, from the same rows and impulses its first try would read.
-    const std::size_t slot = static_cast<std::size_t>(pair.block);
-    m_jointBlocks[slot] = BuildJointBlock(pair);
-    m_jointState[slot] = m_jointBlocks[slot].usable ? kJointUntried : kJointRefused;
-  }
 }
 
 // Warm start: each point's accumulated impulse lambda_n n + lambda_1 t1 +
@@ -352,54 +325,6 @@ void ContactSolver::SolveSplitImpulses(int iterations) {
       }
     }
   }
-}
-
-namespace {
-
-// Turns `q` by the small rotation vector `theta` (radians): q + (theta, 0)
-// q / 2, normalised (the first-order exponential map, as Box2D and Jolt).
-void Turn(Quat& q, const Vec3& theta) {
-  const Quat dq(0.0, 0.5 * theta.x(), 0.5 * theta.y(), 0.5 * theta.z());
-  q.coeffs() += (dq * q).coeffs();
-  q.normalize();
-}
-
-}  // namespace
-
-int ContactSolver::SolveNonlinearPositions(std::span<BodySim> bodies, int iterations, double beta,
-                                           double slop) {
-  int sweeps = 0;
-  for (; sweeps < iterations;) {
-    double deepest = 0.0;
-    for (const PairRows& pair : m_pairs) {
-      BodySim& a = bodies[static_cast<std::size_t>(m_bodies.BodyIndex(pair.bodyA))];
-      BodySim& b = bodies[static_cast<std::size_t>(m_bodies.BodyIndex(pair.bodyB))];
-      const Mat3& invInertiaA = m_bodies.InvInertia(pair.bodyA);
-      const Mat3& invInertiaB = m_bodies.InvInertia(pair.bodyB);
-      const Vec3& n = pair.normal;
-      for (int i = 0; i < pair.pointCount; ++i) {
-        const PointCold& row = m_cold[static_cast<std::size_t>(pair.firstPoint + i)];
-        const Vec3 rA = a.orientation * row.localAnchorA;
-        const Vec3 rB = b.orientation * row.localAnchorB;
-        const double depth = n.dot((b.center + rB) - (a.center + rA));
-        deepest = std::max(deepest, depth);
-        const double correction = std::clamp(beta * (depth - slop), 0.0, kMaxCorrection);
-        if (correction <= 0.0) continue;
-        const double mass = EffectiveMass(n, rA, rB, pair.invMassA, pair.invMassB, invInertiaA, invInertiaB);
-        const Vec3 impulse = (mass * correction) * n;
-        a.center += pair.invMassA * impulse;
-        b.center -= pair.invMassB * impulse;
-        if (pair.invMassA > 0.0) Turn(a.orientation, invInertiaA * rA.cross(impulse));
-        if (pair.invMassB > 0.0) Turn(b.orientation, -(invInertiaB * rB.cross(impulse)));
-      }
-    }
-    ++sweeps;
-    if (deepest <= 3.0 * slop) break;
-  }
-  for (int i = 0; i < m_bodies.Count(); ++i) {
-    if (m_bodies.Moves(i)) bodies[static_cast<std::size_t>(m_bodies.BodyIndex(i))].UpdateWorldInertia();
-  }
-  return sweeps;
 }
 
 void ContactSolver::StoreImpulses(std::span<Contact> contacts) const {

@@ -50,7 +50,7 @@
 //   Accumulated impulse clamped to [-mu lambda_n, mu lambda_n] with the
 //   point's current lambda_n, re-read every time after the normal row moved.
 //
-// Joint block (FrictionSolve::JointBlock, an option; face contacts of 3-4
+// Joint block (FrictionSolve::JointBlock, the default; face contacts of 3-4
 //   points with a normal block). With weights
 //   w_i = lambda_n,i / sum lambda_n, three friction impulse patterns over the
 //   pair's points: P1_i = w_i t1, P2_i = w_i t2 (a force through the centre
@@ -75,19 +75,8 @@
 //   move it to pseudo-velocities: the same normal row on (pv, pw) with
 //   target beta/h max(depth - slop, 0), solved after the velocities and
 //   added only to the position update, so position correction cannot add
-//   kinetic energy. Non-linear Gauss-Seidel (an option; Catto's Box2D
-//   v2.4 b2ContactSolver::SolvePositionConstraints, Jolt's position
-//   solve) leaves the velocity target of a touching point at 0 and, after
-//   the positions are integrated, sweeps the points again on positions:
-//     each point keeps the surface points it started from on A and on B as
-//     body-frame anchors; a sweep rebuilds them from the current poses,
-//     depth d = (pB - pA) . n (n fixed for the step), C = clamp(beta (d -
-//     positionSlop), 0, kMaxCorrection), and moves the bodies by the
-//     impulse P = C m_n n (m_n at the current arms, inertia of the step's
-//     start): cA += P / mA, qA turned by IA^-1 (rA x P), B the opposite.
-//   Because the depth is re-measured after every move, a stack's contacts
-//   agree on the positions instead of each fixing a stale depth, and no
-//   velocity is left behind, so the slop can be 0.2 mm.
+//   kinetic energy. (Non-linear Gauss-Seidel position sweeps were measured
+//   and retired: docs/dynamics.md, "Retired options".)
 //
 // Data (the layout the sweeps walk; see docs/dynamics.md). Prepare()
 //   gathers the velocities of every body a row touches into SolverBodies
@@ -103,8 +92,7 @@
 //       Cdot = d.(vA - vB) + (rA x d).wA - (rB x d).wB     (two dot products)
 //       vA += mA^-1 dl d, wA += dl IA^-1 (rA x d), B the opposite (axpys),
 //     no cross product and no matrix product inside the sweep;
-//   * cold per-point data (anchors for the position pass, split-impulse
-//     target and impulse) and the block pseudo-inverses apart.
+//   * cold per-point data (split-impulse target and impulse, arms) and the block pseudo-inverses apart.
 //   The iterations never allocate. After the sweeps Scatter() writes the
 //   solver bodies' velocities back. Pairs where neither body can move under
 //   contact (static, kinematic, asleep) build no rows; mu == 0 builds no
@@ -165,12 +153,6 @@ class ContactSolver {
   /// `bodies` (the array handed to Prepare), with `pseudo` the split-impulse
   /// pseudo velocities too. Bodies without rows are not touched.
   void Scatter(std::span<BodySim> bodies, bool pseudo) const;
-  /// Non-linear Gauss-Seidel on the bodies' poses after the position update:
-  /// at most `iterations` sweeps, stopping after the first sweep that found
-  /// no point deeper than 3 `slop`; `beta` in [0, 1], `slop` in metres.
-  /// Refreshes the world inverse inertia of the bodies it turned. Returns the
-  /// number of sweeps run.
-  int SolveNonlinearPositions(std::span<BodySim> bodies, int iterations, double beta, double slop);
   /// Writes the accumulated impulses back for next step's warm start.
   void StoreImpulses(std::span<Contact> contacts) const;
 
@@ -179,13 +161,6 @@ class ContactSolver {
   /// The coloured solver of the last Prepare (empty unless ColouredWide).
   [[nodiscard]] const WideContactSolver& Wide() const { return m_wide; }
 
-  /// When FrictionSolve::JointBlock builds a face pair's operator: at the
-  /// pair's first try of the step (the default: a pair refused there, most
-  /// box-box pairs of a pyramid, never stores it), or at Prepare for every
-  /// face pair, the reference the first try must match bit for bit (the
-  /// same rows and warm-started impulses; tests compare the two).
-  enum class JointBlockBuild { AtFirstTry, AtPrepare };
-  void SetJointBlockBuild(JointBlockBuild when) { m_jointBuild = when; }
   /// FrictionSolve::JointBlock's tries in the last step's sweeps.
   struct JointBlockCounts {
     std::int64_t accepted = 0;  ///< the pair stuck: normals and friction solved as one block
@@ -273,7 +248,6 @@ class ContactSolver {
   bool m_useWide = false;     ///< ColouredWide selected at the last Prepare
   bool m_split = false;       ///< SplitImpulses selected at the last Prepare
   bool m_jointBlock = false;  ///< FrictionSolve::JointBlock selected at the last Prepare
-  JointBlockBuild m_jointBuild = JointBlockBuild::AtFirstTry;
   JointBlockCounts m_jointCounts;
   PhaseRunner m_runner;
   std::vector<JobPhase> m_phases;  ///< scratch: the chain of the coloured passes

@@ -1,5 +1,5 @@
-// Symplectic Euler with a choice of rotation scheme (constant rate, implicit
-// gyroscopic step, free rigid body splitting) and of translation scheme; see
+// Symplectic Euler with a choice of rotation scheme (constant rate, free
+// rigid body splitting of second or fourth order) and of translation scheme; see
 // dynamics/integrator.h for the schemes and their sources.
 #include "dynamics/integrator.h"
 
@@ -9,12 +9,6 @@
 
 namespace talus {
 namespace {
-
-Mat3 Skew(const Vec3& a) {
-  Mat3 s;
-  s << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-  return s;
-}
 
 // q turned by the exact exponential of a constant rate w over h (world
 // axes): a rotation by |w| h about w, unit by construction; the normalise
@@ -80,18 +74,6 @@ constexpr AxisFlow kTripleJumpFlows[] = {
 
 }  // namespace
 
-Vec3 GyroscopicStep(const BodySim& body, double h) {
-  // Work in body axes where the inertia is constant.
-  const Quat& q = body.orientation;
-  const Vec3 w1 = q.conjugate() * body.angularVelocity;
-  const Mat3& inertia = body.inertiaLocal;
-  const Vec3 iw = inertia * w1;
-  const Vec3 residual = h * w1.cross(iw);
-  const Mat3 jacobian = inertia + h * (Skew(w1) * inertia - Skew(iw));
-  const Vec3 w2 = w1 - jacobian.inverse() * residual;
-  return q * w2;
-}
-
 PrincipalAxes ComputePrincipalAxes(const Mat3& inertia) {
   PrincipalAxes axes;
   const bool diagonal = inertia(0, 1) == 0.0 && inertia(0, 2) == 0.0 && inertia(1, 2) == 0.0 &&
@@ -152,8 +134,7 @@ FreeRotation SplitFreeRotation(const Quat& orientation, const PrincipalAxes& pri
   return out;
 }
 
-int IntegrateVelocities(std::span<BodySim> bodies, const Vec3& gravity, RotationIntegrator rotation,
-                        double h) {
+int IntegrateVelocities(std::span<BodySim> bodies, const Vec3& gravity, double h) {
   int integrated = 0;
   for (BodySim& body : bodies) {
     if (body.type != BodyType::Dynamic || !body.awake) {
@@ -166,7 +147,6 @@ int IntegrateVelocities(std::span<BodySim> bodies, const Vec3& gravity, Rotation
     body.startLinearVelocity = body.linearVelocity;
     body.linearVelocity += h * (gravity + body.invMass * body.force);
     body.freeLinearVelocity = body.linearVelocity;
-    if (rotation == RotationIntegrator::ImplicitGyroscopic) body.angularVelocity = GyroscopicStep(body, h);
     body.angularVelocity += h * (body.invInertiaWorld * body.torque);
     body.force.setZero();
     body.torque.setZero();

@@ -3,9 +3,9 @@
 // rotation and translation schemes (talus/world_settings.h).
 //
 //   v(n+1) = v(n) + h (g + F / m)           IntegrateVelocities
-//   w(n+1) = w(n) + h I_world^-1 tau        (+ implicit gyroscopic term)
+//   w(n+1) = w(n) + h I_world^-1 tau
 //   x(n+1) = x(n) + h v(n+1)                IntegratePositions
-//   q(n+1) = exp(h w(n+1) / 2) q(n)         (ConstantRate, ImplicitGyroscopic)
+//   q(n+1) = exp(h w(n+1) / 2) q(n)         (ConstantRate)
 //
 // Velocities first, positions with the new velocities: that ordering is what
 // makes the scheme symplectic (energy oscillates, it does not drift) and lets
@@ -52,24 +52,11 @@
 namespace talus {
 
 /// Applies gravity and accumulated forces and torques to awake dynamic
-/// bodies over `h` seconds, adds the implicit gyroscopic term when
-/// `rotation` is ImplicitGyroscopic, records the start and free linear
-/// velocities, and clears the accumulators. Returns the number of bodies
+/// bodies over `h` seconds, records the start and free linear velocities,
+/// and clears the accumulators (the gyroscopic term, when selected, is in
+/// the rotation drift of IntegratePositions). Returns the number of bodies
 /// integrated.
-int IntegrateVelocities(std::span<BodySim> bodies, const Vec3& gravity, RotationIntegrator rotation,
-                        double h);
-
-/// The angular velocity after `h` seconds of torque-free motion under
-/// Euler's equation I dw/dt + w x (I w) = 0, by one Newton step on the
-/// backward-Euler residual (Catto, "Numerical Methods", GDC 2015):
-///
-///   f(w2) = I (w2 - w1) + h w2 x (I w2) = 0, in body axes,
-///   J = df/dw2 = I + h (skew(w2) I - skew(I w2)),
-///   w2 = w1 - J(w1)^-1 f(w1) = w1 - J(w1)^-1 h w1 x (I w1).
-///
-/// Backward Euler damps rather than amplifies, so a tumbling body never gains
-/// energy; the explicit version blows up. Returns world-space rad/s.
-Vec3 GyroscopicStep(const BodySim& body, double h);
+int IntegrateVelocities(std::span<BodySim> bodies, const Vec3& gravity, double h);
 
 /// The principal axes of a symmetric positive definite inertia (kg m^2,
 /// body axes): `frame` maps principal-axes vectors to body axes (a proper

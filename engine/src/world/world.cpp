@@ -108,14 +108,11 @@ std::string ValidateSettings(const WorldSettings& s) {
            " is outside [1, 1000]";
   }
   if (s.positionCorrection != PositionCorrection::Baumgarte &&
-      s.positionCorrection != PositionCorrection::SplitImpulses &&
-      s.positionCorrection != PositionCorrection::NonlinearGaussSeidel) {
+      s.positionCorrection != PositionCorrection::SplitImpulses) {
     return "WorldSettings.positionCorrection = " + std::to_string(static_cast<int>(s.positionCorrection)) +
            " is not a PositionCorrection";
   }
-  if (s.rotation != RotationIntegrator::ConstantRate &&
-      s.rotation != RotationIntegrator::ImplicitGyroscopic &&
-      s.rotation != RotationIntegrator::MomentumSplitting &&
+  if (s.rotation != RotationIntegrator::ConstantRate && s.rotation != RotationIntegrator::MomentumSplitting &&
       s.rotation != RotationIntegrator::MomentumSplittingFourthOrder) {
     return "WorldSettings.rotation = " + std::to_string(static_cast<int>(s.rotation)) +
            " is not a RotationIntegrator";
@@ -129,10 +126,18 @@ std::string ValidateSettings(const WorldSettings& s) {
     return "WorldSettings.frictionSolve = " + std::to_string(static_cast<int>(s.frictionSolve)) +
            " is not a FrictionSolve";
   }
+  // The joint block is a pair's normal block with its friction: without
+  // either it would silently be the per-point rows.
   if (s.frictionSolve == FrictionSolve::JointBlock &&
       s.contactSolver != ContactSolverKind::SequentialImpulses) {
-    return "WorldSettings.frictionSolve = JointBlock needs contactSolver = SequentialImpulses "
-           "(the coloured wide solver has no joint block)";
+    return "WorldSettings.frictionSolve = JointBlock (the default) needs contactSolver = "
+           "SequentialImpulses: the coloured wide solver has no joint block; select "
+           "frictionSolve = PerPoint with it";
+  }
+  if (s.frictionSolve == FrictionSolve::JointBlock && !s.blockSolver) {
+    return "WorldSettings.frictionSolve = JointBlock (the default) needs blockSolver = true: the "
+           "joint block extends a pair's normal block, which blockSolver = false turns off; select "
+           "frictionSolve = PerPoint with it";
   }
   if (s.translation != TranslationIntegrator::SymplecticEuler &&
       s.translation != TranslationIntegrator::ExactConstantAcceleration) {
@@ -177,7 +182,6 @@ std::string ValidateSettings(const WorldSettings& s) {
   constexpr double kHuge = 1e300;
   for (const std::string& error :
        {CheckRange("baumgarte", s.baumgarte, 0.0, 1.0), CheckRange("slop", s.slop, 0.0, 1.0),
-        CheckRange("positionSlop", s.positionSlop, 0.0, 1.0),
         CheckRange("velocityTolerance", s.velocityTolerance, 0.0, kHuge),
         CheckRange("restitutionThreshold", s.restitutionThreshold, 0.0, kHuge),
         CheckRange("sleepLinearVelocity", s.sleepLinearVelocity, 0.0, kHuge),

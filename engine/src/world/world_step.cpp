@@ -4,7 +4,7 @@
 //
 //   0. UpdateBroadPhase         bounding spheres in (the only stage that may
 //                               refuse, so it runs before anything changes)
-//   1. IntegrateVelocities      gravity, forces, torques (+ implicit gyroscopic term)
+//   1. IntegrateVelocities      gravity, forces, torques
 //   2. FindContacts             sorted pairs; per pair kept, rebuilt (manifold
 //                               reuse) or collided (SAT, manifold, persistent
 //                               points); one persistent contact per touching pair
@@ -16,8 +16,7 @@
 //                               row's impulse into its contact (next warm start)
 //   7. IntegratePositions       x += h v, q = exp(h w / 2) q (or the schemes of
 //                               WorldSettings::rotation and ::translation)
-//   8. CorrectPositions         non-linear Gauss-Seidel (when selected)
-//   9. UpdateSleep              islands at rest fall asleep
+//   8. UpdateSleep              islands at rest fall asleep
 //
 // With WorldSettings::stepSolver = SoftStep the stages after the broad
 // phase are StepSoft's instead: contacts, soft rows, the sub-steps (each
@@ -116,14 +115,6 @@ void ScatterAndStoreImpulses(WorldData& d) {
   d.solver.StoreImpulses(d.contacts);
 }
 
-// Non-linear Gauss-Seidel works on the poses the position update produced.
-void CorrectPositions(WorldData& d, StepStatistics& stats) {
-  const WorldSettings& s = d.settings;
-  if (s.positionCorrection != PositionCorrection::NonlinearGaussSeidel) return;
-  stats.positionSweeps =
-      d.solver.SolveNonlinearPositions(d.sims, s.positionIterations, s.baumgarte, s.positionSlop);
-}
-
 // Bodies per ParallelFor chunk of the integration: a body's update is
 // 50-300 ns, so a chunk is tens of microseconds, far above the cost of
 // claiming it. The boundaries depend on the body count only, never on the
@@ -137,7 +128,7 @@ int IntegrateVelocitiesOnThreads(WorldData& d, double h) {
   std::atomic<int> integrated{0};
   d.jobs->ParallelFor(static_cast<int>(d.sims.size()), kBodyGrain, [&d, &integrated, h](int begin, int end) {
     const std::span<BodySim> bodies(d.sims.data() + begin, static_cast<std::size_t>(end - begin));
-    integrated.fetch_add(IntegrateVelocities(bodies, d.settings.gravity, d.settings.rotation, h));
+    integrated.fetch_add(IntegrateVelocities(bodies, d.settings.gravity, h));
   });
   return integrated.load();
 }
@@ -230,16 +221,13 @@ Result<StepStatistics> World::Step(double dt) {
   IntegratePositionsOnThreads(d, dt);
   stats.seconds.integratePositions = clock.Lap();
 
-  CorrectPositions(d, stats);
-  stats.seconds.correctPositions = clock.Lap();
-
   UpdateSleep(d, dt, stats);
   stats.seconds.sleep = clock.Lap();
 
   const StageTimes& t = stats.seconds;
   stats.seconds.total = t.updateBroadPhase + t.integrateVelocities + t.findContacts + t.prepareContacts +
                         t.solveVelocities + t.solveSplitImpulses + t.scatterAndStoreImpulses +
-                        t.integratePositions + t.correctPositions + t.sleep;
+                        t.integratePositions + t.sleep;
   return stats;
 }
 

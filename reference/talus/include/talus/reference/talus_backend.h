@@ -1,39 +1,43 @@
-// The Talus engine behind the harness's Backend interface, in three
-// variants that separate the write-up's choices from the improvements:
+// The Talus engine behind the harness's Backend interface, in rows that
+// separate the engine's defaults from the write-up's choices and from the
+// other options:
 //
-//   "talus"          the engine's defaults: Gauss-map-pruned SAT with the
-//                    SAT cache, clipped manifolds reduced to 4 points, warm
-//                    starting, Baumgarte stabilisation.
-//   "talus-writeup"  the seed write-up's choices: full SAT (every face and
-//                    edge pair), the write-up's manifolds, no SAT cache, no
-//                    warm starting, Baumgarte stabilisation.
-//   "talus-split"    the defaults plus split impulses (position correction
+//   "talus"          WorldSettings{} unchanged but for what the scenario
+//                    states (below): the configuration a user of the
+//                    library gets, and the one the testbed validates.
+//   "talus-writeup"  the seed write-up's choices (docs/write-up.md) in place
+//                    of every improvement: full SAT, its manifolds, no SAT
+//                    cache, reuse or persistent points, a fixed speculative
+//                    margin, no warm starting, row-by-row normals and
+//                    per-point friction at a fixed sweep count, symplectic
+//                    Euler, bounces at the step's boundary, the
+//                    second-order rotation step when the scenario asks for
+//                    the gyroscopic term.
+//   "talus-split"    the defaults with split impulses (position correction
 //                    that adds no kinetic energy).
 //   "talus-coloured" the defaults with the coloured wide solver
 //                    (ContactSolverKind::ColouredWide: pairs coloured, four
-//                    per SIMD bundle) instead of the scalar pair order.
+//                    per SIMD bundle) and the per-point friction it has.
 //
-// Common to all: double precision; one World::Step(h) per Step(); mass,
-// centre of mass and inertia from talus::reference::ComputeBodyMass (the
-// same numbers the peers get), so the body frame is the scenario's frame
-// and the centre of mass sits at its centroid, with no re-centring;
-// sleeping off (the peers never sleep, and a sleeping body would hide
-// jitter); the gyroscopic term as the scenario says (on:
-// WorldSettings::rotation = MomentumSplittingFourthOrder, which keeps L
-// with an O(h^4) energy error, MomentumSplitting (second order) for
-// talus-writeup; off: ConstantRate); new contacts converged to 1e-9 m/s
-// (WorldSettings::velocityTolerance; the engine's 1e-3 for talus-writeup,
-// which has no extra sweeps anyway); position update exact for constant acceleration
-// (WorldSettings::translation = ExactConstantAcceleration; symplectic Euler
-// for talus-writeup); bounces timed as the scenario's world.bounceTiming
-// says (auto: inside the step, the engine's default; at the step's
-// boundary for talus-writeup); combine
-// rules from the scenario (restitution "sqrt" has no engine rule and is
-// refused); iterations from the run (0 = the engine's default, 10); threads
-// from TalusBackendOptions (default 1).
+// What a scenario states, common to all: gravity; iterations from the run
+// (0 = the engine's default, 10); the combine rules (restitution "sqrt" has
+// no engine rule and is refused); sleeping off (the peers never sleep, and
+// a sleeping body would hide jitter); the gyroscopic term (off:
+// WorldSettings::rotation = ConstantRate); world.broadPhase (auto keeps the
+// engine's); world.bounceTiming (auto keeps the row's). Threads come from
+// TalusBackendOptions (default 1). Each row's departures from the engine's
+// default are listed in its settings (engineDefault and effect) and in
+// docs/testbed-backends.md, "The Talus rows". Mass, centre of mass and
+// inertia come from talus::reference::ComputeBodyMass (the same numbers the
+// peers get), so the body frame is the scenario's frame and the centre of
+// mass sits at its centroid, with no re-centring.
 #pragma once
 
+#include <string_view>
+
 #include "talus/harness/backend/backend.h"
+#include "talus/result.h"
+#include "talus/world_settings.h"
 
 namespace talus::reference {
 
@@ -49,5 +53,12 @@ struct TalusBackendOptions {
 /// "talus-coloured". A thread count
 /// outside [1, kMaxThreads] is refused by every backend's Create, naming it.
 void RegisterTalusBackends(harness::BackendRegistry& registry, TalusBackendOptions options = {});
+
+/// The WorldSettings the Talus row named `row` ("talus", "talus-writeup",
+/// "talus-split", "talus-coloured") runs `run` with, as its backend hands
+/// them to World::Create; an Error naming an unknown row, or a scenario the
+/// engine cannot pose (a restitution combine rule it lacks).
+Result<WorldSettings> TalusRowSettings(const harness::Run& run, std::string_view row,
+                                       const TalusBackendOptions& options = {});
 
 }  // namespace talus::reference
