@@ -171,17 +171,18 @@ TEST(CompareFamilies, EveryFamilyAgainstEveryOtherWithTalusFirst) {
 // ---- Issue 24's cases, through a results file ----
 
 TEST(FamilyVerdictIssue24, AnUnstableTalusIsNotBetterThanAStablePeer) {
-  // Talus's unperturbed run is 0.9 tolerances off, its copies 1.7 and 1.3
-  // (spread 0.8); the peer is 0.1 in every copy. The old floor (margin 0.8
-  // within the spread 0.8) called this "at or below"; every Talus copy is
-  // worse than every peer copy.
+  // Talus's unperturbed run is 0.75 tolerances off, its copies 1.25 and 1
+  // (spread 0.5); the peer is 0.25 in every copy. The old floor (margin
+  // 0.5 within the spread 0.5; every number exact in binary) called this
+  // "at or below"; every Talus copy is worse than every peer copy.
   FileBuilder b;
-  FileBuilder::WithCopies(b.Add("talus", "Talus (double)", 0.01, 1.0, 0.9), {0.9, 1.7, 1.3});
-  FileBuilder::WithCopies(b.Add("bullet", "Bullet 324", 0.01, 1.0, 0.1), {0.1, 0.1, 0.1});
+  FileBuilder::WithCopies(b.Add("talus", "Talus (double)", 0.01, 1.0, 0.75), {0.75, 1.25, 1.0});
+  FileBuilder::WithCopies(b.Add("bullet", "Bullet 324", 0.01, 1.0, 0.25), {0.25, 0.25, 0.25});
   EXPECT_EQ(OnlyPair(b.Analyse()).outcome, PairOutcome::kSecondBetter);
 
-  // Copies on both sides of the peer (0.1 to 0.9): Talus sometimes matches
-  // it, sometimes not: a tie, never a win.
+  // Issue 24's numbers: Talus 0.9 against the peer's 0.1, its copies
+  // spread 0.8 on both sides of the peer (0.1 to 0.9). Talus sometimes
+  // matches it, sometimes not: a tie, never "at or below" counted as a win.
   FileBuilder overlap;
   FileBuilder::WithCopies(overlap.Add("talus", "Talus (double)", 0.01, 1.0, 0.9), {0.9, 0.1, 0.5});
   FileBuilder::WithCopies(overlap.Add("bullet", "Bullet 324", 0.01, 1.0, 0.1), {0.1, 0.1, 0.1});
@@ -189,6 +190,11 @@ TEST(FamilyVerdictIssue24, AnUnstableTalusIsNotBetterThanAStablePeer) {
   EXPECT_EQ(tie.outcome, PairOutcome::kTie);
   EXPECT_EQ(tie.firstBest, 0.1);
   EXPECT_EQ(tie.firstWorst, 0.9);
+  // Copies all above the peer (0.9 to 1.7): worse.
+  FileBuilder above;
+  FileBuilder::WithCopies(above.Add("talus", "Talus (double)", 0.01, 1.0, 0.9), {0.9, 1.7, 1.3});
+  FileBuilder::WithCopies(above.Add("bullet", "Bullet 324", 0.01, 1.0, 0.1), {0.1, 0.1, 0.1});
+  EXPECT_EQ(OnlyPair(above.Analyse()).outcome, PairOutcome::kSecondBetter);
 }
 
 TEST(FamilyVerdictIssue24, AFailedCopyCountsAgainstTheSideThatHadIt) {
@@ -263,6 +269,25 @@ TEST(FamilyVerdictIssue24, ACheapCrashStaysInTheFrontAsInfinitelyBad) {
   b.Add("talus", "Talus (double)", 0.01, 10.0, 0.5);
   b.Add("bullet", "Bullet 324", 0.1, 1.0, 0.5);
   EXPECT_EQ(OnlyPair(b.Analyse()).outcome, PairOutcome::kSecondBetter);
+}
+
+TEST(FamilyVerdictIssue24, ACostDifferenceWithinTheRunsTimingNoiseIsNoWin) {
+  // Equal errors; Talus's median total 1.00 s (runs 0.95 to 1.05), the
+  // peer's 1.01 s (0.96 to 1.06). At the 1.00 s budget one of the peer's
+  // runs was that cheap, so it is not "nothing that cheap": a tie. A peer
+  // whose cheapest run took 1.2 s has nothing at 1 s: Talus is better.
+  const auto verdict = [](std::vector<double> peerSeconds) {
+    FileBuilder b;
+    RunResult& talus = b.Add("talus", "Talus (double)", 0.01, 1.00, 0.1);
+    FileBuilder::WithCopies(talus, {0.1, 0.1, 0.1});
+    talus.perturbed.runSeconds = {1.00, 0.95, 1.05};
+    RunResult& peer = b.Add("bullet", "Bullet 324", 0.01, peerSeconds[0], 0.1);
+    FileBuilder::WithCopies(peer, {0.1, 0.1, 0.1});
+    peer.perturbed.runSeconds = peerSeconds;
+    return OnlyPair(b.Analyse()).outcome;
+  };
+  EXPECT_EQ(verdict({1.01, 0.96, 1.06}), PairOutcome::kTie);
+  EXPECT_EQ(verdict({1.25, 1.2, 1.3}), PairOutcome::kFirstBetter);
 }
 
 // ---- The analysis of a file ----

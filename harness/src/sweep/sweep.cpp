@@ -134,10 +134,14 @@ std::vector<int> ParetoFront(const std::vector<CostErrorPoint>& points) {
   return front;
 }
 
+double AffordableCost(const CostErrorPoint& point) {
+  return std::isnan(point.cheapestRun) ? point.cost : std::min(point.cost, point.cheapestRun);
+}
+
 const CostErrorPoint* FrontPointAt(const std::vector<CostErrorPoint>& points, double budget) {
   const CostErrorPoint* chosen = nullptr;
   for (const CostErrorPoint& point : points) {
-    if (!(point.cost <= budget)) continue;
+    if (!(AffordableCost(point) <= budget)) continue;
     const bool better = chosen == nullptr || WorstError(point) < WorstError(*chosen) ||
                         (WorstError(point) == WorstError(*chosen) && BestError(point) < BestError(*chosen));
     if (better) chosen = &point;
@@ -406,6 +410,10 @@ std::vector<SweepGroup> AnalyseSweep(const ResultsFile& file, const std::vector<
                          .error = error,
                          .spread = result.perturbed.errorSpread,
                          .longestStep = result.wallSecondsLongestStep};
+    if (!result.perturbed.runSeconds.empty()) {
+      point.cheapestRun =
+          *std::min_element(result.perturbed.runSeconds.begin(), result.perturbed.runSeconds.end());
+    }
     if (!result.perturbed.errors.empty()) {
       point.best = kInfinity;
       point.worst = 0.0;

@@ -57,7 +57,16 @@ struct CostErrorPoint {
   double best = std::numeric_limits<double>::quiet_NaN();
   double worst = std::numeric_limits<double>::quiet_NaN();
   double longestStep = 0.0;  ///< seconds: the run's longest step (NaN when not recorded)
+  /// Seconds: the cheapest of the run's and its copies' totals; NaN means
+  /// "no copies": `cost`.
+  double cheapestRun = std::numeric_limits<double>::quiet_NaN();
 };
+
+/// The cost at which a point counts as affordable: the cheapest of its runs
+/// (its cost without copies). A budget buys a point when one of its runs
+/// was that cheap, so a difference of costs within the points' own timing
+/// noise never makes one side "have nothing that cheap".
+double AffordableCost(const CostErrorPoint& point);
 
 /// A point's best and worst error (its `error` when it has no copies); a NaN
 /// error counts as +infinity (nothing measured).
@@ -69,7 +78,7 @@ double WorstError(const CostErrorPoint& point);
 /// cost, of equal points the first kept. Infinite worsts are never on it.
 std::vector<int> ParetoFront(const std::vector<CostErrorPoint>& points);
 
-/// The point a budget buys: among the points with cost <= budget, the one
+/// The point a budget buys: among the points with AffordableCost <= budget, the one
 /// of smallest worst error, then smallest best error, then the first;
 /// nullptr when none is that cheap. A failed run's point is chosen only
 /// when nothing within the budget did better, so a crash stands at its cost.
