@@ -68,8 +68,12 @@ int main(int argc, char** argv) {
   CheckOptions check;
   CLI::App* checkCommand =
       app.add_subcommand("check", "check every Talus variant's metrics against the scenario tolerances");
-  checkCommand->add_option("scenarios", check.scenarios, "scenario files or folders (default: scenarios/)");
-  checkCommand->add_option("-r,--results", check.results, "check this results.json instead of running");
+  checkCommand->add_option(
+      "scenarios", check.scenarios,
+      "scenario files or folders the verdicts are re-derived from (default: scenarios/)");
+  checkCommand->add_option(
+      "-r,--results", check.results,
+      "check this results.json instead of running (it must hold exactly the scenarios' runs)");
   checkCommand
       ->add_option(
           "-b,--backend", check.backends,

@@ -184,12 +184,15 @@ int ReportCommand(const ReportOptions& options) {
 
 int CheckCommand(const CheckOptions& options) {
   std::vector<std::string> backends = options.backends;
+  // The checkout's scenarios (or those named): what every verdict is
+  // re-derived from, whether the results are read or run here.
+  auto runs = harness::LoadScenarios(ScenarioPaths(options.scenarios));
+  if (!runs) {
+    std::cerr << "talus-testbed: " << runs.GetError().message << "\n";
+    return kExitBadInput;
+  }
   ResultsFile file;
   if (!options.results.empty()) {
-    if (!options.scenarios.empty()) {
-      std::cerr << "talus-testbed: check takes either scenario paths or --results, not both\n";
-      return kExitBadInput;
-    }
     auto read = harness::ReadResultsFile(options.results);
     if (!read) {
       std::cerr << "talus-testbed: " << read.GetError().message << "\n";
@@ -209,18 +212,25 @@ int CheckCommand(const CheckOptions& options) {
     std::cerr << "talus-testbed: no Talus variant to check (name one with --backend)\n";
     return kExitBadInput;
   }
+  auto outcomes = harness::RecheckResults(file, runs.Value(), backends, reference::AllBackends());
+  if (!outcomes) {
+    std::cerr << "talus-testbed: check refused " << (options.results.empty() ? "the run" : options.results)
+              << ": " << outcomes.GetError().message << "\n";
+    return kExitBadInput;
+  }
   // Every backend is checked and reported, so one failing variant does not
   // hide another's verdict.
   bool ok = true;
-  for (const std::string& backend : backends) {
-    const harness::CheckOutcome outcome = harness::CheckResults(file, backend);
+  for (std::size_t b = 0; b < backends.size(); ++b) {
+    const std::string& backend = backends[b];
+    const harness::CheckOutcome& outcome = outcomes.Value()[b];
     if (!outcome.Ok()) {
       ok = false;
       std::cout << "check FAILED for " << backend << ": " << outcome.problems.size() << " problem(s)\n";
       for (const std::string& problem : outcome.problems) std::cout << "  " << problem << "\n";
     } else {
       std::cout << "check passed for " << backend << ": " << outcome.checkedMetrics << " metrics in "
-                << outcome.runs << " runs within tolerance\n";
+                << outcome.runs << " runs within tolerance (verdicts recomputed from the scenarios)\n";
     }
     if (!outcome.ungated.empty()) {
       std::cout << "  " << outcome.ungated.size() << " metric(s) of " << backend << " outside the gate:\n";

@@ -33,15 +33,29 @@ ScenarioRun LoadRun(const std::string& relative, const std::string& id) {
   return {};
 }
 
-// The gate's verdict on `run` with the Talus default backend.
-CheckOutcome Check(const ScenarioRun& run) {
+// The gate's verdict on `backend` in `file`, re-derived from `run`.
+CheckOutcome Recheck(const ResultsFile& file, const ScenarioRun& run, const std::string& backend) {
+  auto outcomes = RecheckResults(file, {run}, {backend}, reference::AllBackends());
+  EXPECT_TRUE(outcomes) << outcomes.GetError().message;
+  if (!outcomes) {
+    CheckOutcome refused;
+    refused.problems = {"refused"};
+    return refused;
+  }
+  return outcomes.Value().at(0);
+}
+
+ResultsFile RunOn(const ScenarioRun& run, const std::vector<std::string>& backends) {
   RunnerOptions options;
-  options.backends = {"talus"};
+  options.backends = backends;
   options.deterministic = true;
   auto results = RunAll(reference::AllBackends(), {run}, options);
   EXPECT_TRUE(results) << results.GetError().message;
-  return CheckResults(ResultsFile{options.backends, true, results.Value()}, "talus");
+  return ResultsFile{options.backends, true, results ? results.Value() : std::vector<RunResult>{}};
 }
+
+// The gate's verdict on `run` with the Talus default backend.
+CheckOutcome Check(const ScenarioRun& run) { return Recheck(RunOn(run, {"talus"}), run, "talus"); }
 
 std::string FirstProblem(const CheckOutcome& outcome) {
   return outcome.problems.empty() ? std::string("(none)") : outcome.problems[0];
@@ -60,36 +74,27 @@ TEST(Gates, EveryTalusVariantIsGatedByDefault) {
 }
 
 TEST(Gates, AnUngatedTruthIsJudgedAndShownButFailsOnlyTheBackendsNotListed) {
-  Truth truth{RestHeightTruth{0.5, 0.001}, 1, Tolerance{0.01, 0.0}};
-  truth.toleranceReason = "one slop";
-  truth.ungated = {{"talus-writeup", "topples: measured 4.5 m"}};
-  MetricResult failing = MakeMetric("rest_height.height", "m");
-  failing.measured = 0.2;
-  failing.truth = 0.5;
-  Judge(failing, truth.tolerance);
-  ASSERT_TRUE(failing.checked);
-  ASSERT_FALSE(failing.pass);
-  ResultsFile file;
-  for (const char* backend : {"talus", "talus-writeup"}) {
-    std::vector<MetricResult> metrics = {failing};
-    ApplyGate(truth, backend, metrics);
-    RunResult result;
-    result.runId = "column";
-    result.backend = backend;
-    result.metrics = metrics;
-    file.results.push_back(result);
-    EXPECT_EQ(metrics[0].reason, "one slop");
-  }
-  const CheckOutcome writeup = CheckResults(file, "talus-writeup");
+  ScenarioRun run = LoadRun("stacking/box_rest.json", "box_rest");
+  ResultsFile file = RunOn(run, {"talus", "talus-writeup"});
+  // Both backends' rest height measured 0.3 m off: a failure for each.
+  for (RunResult& result : file.results) result.metrics.at(0).measured += 0.3;
+  run.scenario.truths.at(0).ungated = {{"talus-writeup", "topples: measured 4.5 m"}};
+  const CheckOutcome writeup = Recheck(file, run, "talus-writeup");
   EXPECT_TRUE(writeup.Ok()) << FirstProblem(writeup);
-  ASSERT_EQ(writeup.ungated.size(), 1u);
-  EXPECT_NE(writeup.ungated[0].find("FAIL (ungated: topples: measured 4.5 m)"), std::string::npos)
+  // Both of the truth's metrics (height and jitter) are listed; the height's
+  // verdict is recomputed from the doctored measurement.
+  ASSERT_EQ(writeup.ungated.size(), 2u);
+  EXPECT_NE(writeup.ungated[0].find("rest_height.height: FAIL (ungated: topples: measured 4.5 m)"),
+            std::string::npos)
       << writeup.ungated[0];
-  const CheckOutcome talus = CheckResults(file, "talus");
+  const CheckOutcome talus = Recheck(file, run, "talus");
   EXPECT_FALSE(talus.Ok());
   EXPECT_TRUE(talus.ungated.empty());
   // gate false ungates every backend, with a reason pointing at the description.
+  Truth truth = run.scenario.truths.at(0);
   truth.gate = false;
+  MetricResult failing = file.results[0].metrics.at(0);
+  Judge(failing, truth.tolerance);
   std::vector<MetricResult> metrics = {failing};
   ApplyGate(truth, "talus", metrics);
   EXPECT_FALSE(metrics[0].checked);

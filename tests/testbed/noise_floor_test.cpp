@@ -1,10 +1,10 @@
-// The sweep's noise floor (harness sweep/perturbed_copies.h and the floor
-// in sweep.h's comparisons): a margin no larger than the two compared
-// points' larger spread is a tie, a larger one a loss; the spread that
-// applies is that of the point the front takes its value from at that
-// budget. A perturbed copy really moves every dynamic body, by at most the
-// amount; copies are bit-identical whatever the thread count; 0 copies is
-// today's sweep exactly; files without spreads load as spread 0.
+// The sweep's noise floor (harness sweep/perturbed_copies.h and the range
+// in sweep.h's comparisons): overlapping ranges of best and worst copy are
+// a tie; the range that applies is that of the point the budget buys. A
+// perturbed copy really moves every dynamic body, by at most the amount,
+// and is judged against the truth of its own start; copies are
+// bit-identical whatever the thread count; 0 copies is today's sweep
+// exactly; files without spreads load as spread 0.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -32,67 +32,46 @@ FamilyPoints Family(std::string name, std::vector<CostErrorPoint> points) {
   return {std::move(name), {}, std::move(points)};
 }
 
-// ---- The floor in the comparisons (hand-made fronts) ----
+// ---- The copies' range in the comparisons (hand-made fronts) ----
 
-TEST(NoiseFloor, AMarginWithinTheLargerSpreadIsATieAndAboveItALoss) {
-  // Talus 1.00 against Bullet 0.95 at one budget: margin 0.05.
-  FamilyVerdict tie =
-      CompareFamilies({Family("Talus", {{1.0, 1.00, 0.10}}), Family("Bullet", {{1.0, 0.95, 0.02}})});
-  ASSERT_EQ(tie.peers.size(), 1u);
-  EXPECT_EQ(tie.outcome, FamilyOutcome::kAtOrBelow);  // 0.05 <= max(0.10, 0.02)
-  EXPECT_DOUBLE_EQ(tie.peers[0].floor, 0.10);
-  EXPECT_NEAR(tie.peers[0].margin, 0.05, 1e-15);
-
-  // The peer's spread counts as much as Talus's: the larger decides.
-  FamilyVerdict peerSpread =
-      CompareFamilies({Family("Talus", {{1.0, 1.00, 0.0}}), Family("Bullet", {{1.0, 0.95, 0.06}})});
-  EXPECT_EQ(peerSpread.outcome, FamilyOutcome::kAtOrBelow);
-
-  FamilyVerdict loss =
-      CompareFamilies({Family("Talus", {{1.0, 1.00, 0.01}}), Family("Bullet", {{1.0, 0.95, 0.02}})});
-  EXPECT_EQ(loss.outcome, FamilyOutcome::kAbove);  // 0.05 > 0.02
-  EXPECT_DOUBLE_EQ(loss.peers[0].floor, 0.02);
+TEST(NoiseFloor, TheRangeOfThePointTheBudgetBuysApplies) {
+  // Talus's cheap point is noisy ([1.5, 2.5] over its copies), its dear one
+  // is not; at the cheap budget it overlaps Bullet's 1.8 (a tie), at the
+  // dear budget 1.0 against 0.9 is worse. A floor taken from the noisiest
+  // point would hide that loss.
+  const FamilyPair pair = CompareFamilyPair(
+      Family("Talus", {{.cost = 1.0, .error = 2.0, .spread = 1.0, .best = 1.5, .worst = 2.5}, {4.0, 1.0}}),
+      Family("Bullet", {{1.0, 1.8}, {4.0, 0.9}}));
+  EXPECT_EQ(pair.outcome, PairOutcome::kSecondBetter);
+  EXPECT_EQ(pair.firstWins, 0);
+  EXPECT_EQ(pair.secondWins, 1);
+  EXPECT_DOUBLE_EQ(pair.budget, 4.0);
 }
 
-TEST(NoiseFloor, TheSpreadOfThePointTheFrontReadsAtThatBudgetApplies) {
-  // Talus's cheap point is noisy (spread 0.5), its dear one is not; at the
-  // cheap budget the 0.2 margin is a tie, at the dear budget the 0.1
-  // margin is measured against spread 0 and loses. A floor taken from the
-  // front's noisiest point would hide that loss.
-  FamilyVerdict verdict = CompareFamilies({Family("Talus", {{1.0, 2.0, 0.5}, {4.0, 1.0, 0.0}}),
-                                           Family("Bullet", {{1.0, 1.8, 0.0}, {4.0, 0.9, 0.0}})});
-  ASSERT_EQ(verdict.peers.size(), 1u);
-  EXPECT_EQ(verdict.outcome, FamilyOutcome::kAbove);
-  EXPECT_DOUBLE_EQ(verdict.peers[0].budget, 4.0);
-  EXPECT_DOUBLE_EQ(verdict.peers[0].floor, 0.0);
-  EXPECT_NEAR(verdict.peers[0].margin, 0.1, 1e-15);
-
-  // The reverse: the noisy point is the dear one, read at budget 4 only.
-  FamilyVerdict reverse = CompareFamilies({Family("Talus", {{1.0, 1.8, 0.0}, {4.0, 1.0, 0.5}}),
-                                           Family("Bullet", {{1.0, 1.8, 0.0}, {4.0, 0.9, 0.0}})});
-  EXPECT_EQ(reverse.outcome, FamilyOutcome::kAtOrBelow);
+TEST(NoiseFloor, WithoutCopiesTheComparisonIsExact) {
+  // Round-off-sized margins decide when nothing measured a range.
+  const FamilyPair pair =
+      CompareFamilyPair(Family("Talus", {{1.0, 8e-10}}), Family("Bullet", {{1.0, 2e-11}}));
+  EXPECT_EQ(pair.outcome, PairOutcome::kSecondBetter);
+  const CostErrorPoint a{1.0, 1.0};
+  const CostErrorPoint b{1.0, std::nextafter(1.0, 2.0)};
+  EXPECT_EQ(CompareAtBudget(&a, &b), BudgetOutcome::kFirst);
 }
 
-TEST(NoiseFloor, WithoutSpreadsTheComparisonIsExact) {
-  // Round-off-sized margins are losses when nothing measured a floor.
-  FamilyVerdict verdict =
-      CompareFamilies({Family("Talus", {{1.0, 8e-10}}), Family("Bullet", {{1.0, 2e-11}})});
-  EXPECT_EQ(verdict.outcome, FamilyOutcome::kAbove);
-  EXPECT_DOUBLE_EQ(verdict.peers[0].floor, 0.0);
-  EXPECT_TRUE(ErrorsTie(kInf, kInf, 0.0));
-  EXPECT_FALSE(ErrorsTie(1.0, std::nextafter(1.0, 2.0), 0.0));
-}
-
-TEST(NoiseFloor, CompareFrontsGivesNoWinToADifferenceWithinTheFloor) {
-  // Backend 0 is better by 0.05 at both budgets.
-  const std::vector<CostErrorPoint> a{{1.0, 0.95, 0.1}, {2.0, 0.5, 0.1}};
-  const std::vector<CostErrorPoint> b{{1.0, 1.00, 0.0}, {2.0, 0.55, 0.0}};
+TEST(NoiseFloor, CompareFrontsGivesNoWinToOverlappingRanges) {
+  // Backend 0 is better by 0.05 at both budgets, but its copies range 0.1.
+  const std::vector<CostErrorPoint> a{
+      {.cost = 1.0, .error = 0.95, .spread = 0.1, .best = 0.9, .worst = 1.0},
+      {.cost = 2.0, .error = 0.5, .spread = 0.1, .best = 0.45, .worst = 0.55}};
+  const std::vector<CostErrorPoint> b{{1.0, 1.00}, {2.0, 0.55}};
   const FrontComparison tied = CompareFronts({a, b});
   EXPECT_EQ(tied.winner, -1);
   EXPECT_EQ(tied.wins, (std::vector<int>{0, 0}));
   EXPECT_DOUBLE_EQ(tied.spreadAtMatched[0], 0.1);
 
-  const std::vector<CostErrorPoint> quiet{{1.0, 0.95, 0.01}, {2.0, 0.5, 0.01}};
+  const std::vector<CostErrorPoint> quiet{
+      {.cost = 1.0, .error = 0.95, .spread = 0.01, .best = 0.94, .worst = 0.95},
+      {.cost = 2.0, .error = 0.5, .spread = 0.01, .best = 0.5, .worst = 0.51}};
   const FrontComparison won = CompareFronts({quiet, b});
   EXPECT_EQ(won.winner, 0);
   EXPECT_EQ(won.wins, (std::vector<int>{2, 0}));
@@ -203,6 +182,31 @@ TEST(PerturbedCopies, AreBitIdenticalWithOneThreadAndTwo) {
   EXPECT_EQ(text[0], text[1]);
 }
 
+TEST(PerturbedCopies, EachCopyIsJudgedAgainstTheTruthOfItsOwnStart) {
+  // box_free_fall's truth has a 1e-9 m tolerance; judged against the
+  // unperturbed start, the copies' 1e-9 m offsets alone were an error of
+  // 0.67 at every point, for every engine. Against their own starts only
+  // round-off over 60 steps of a 10 m fall remains (about 1e-14 m, the
+  // file's reason), so the spread is far below 0.01.
+  auto loaded = LoadScenarios({std::string(TALUS_SCENARIO_DIR) + "/tumbling/box_free_fall.json"});
+  ASSERT_TRUE(loaded) << loaded.GetError().message;
+  auto copies = WithPerturbedCopies(loaded.Value(), 2, 1e-9);
+  ASSERT_TRUE(copies) << copies.GetError().message;
+  const auto& fall = std::get<FreeFallTruth>(copies.Value()[1].scenario.truths[0].kind);
+  EXPECT_EQ(fall.y0 - 10.0, copies.Value()[1].scenario.bodies[0].position.y() - 10.0);
+  EXPECT_NE(fall.y0, 10.0);
+  RunnerOptions options;
+  options.backends = {"talus"};
+  options.deterministic = true;
+  auto results = RunAll(reference::AllBackends(), copies.Value(), options);
+  ASSERT_TRUE(results);
+  auto folded = FoldPerturbedCopies(results.Value(), {1}, 2, 1e-9);
+  ASSERT_TRUE(folded) << folded.GetError().message;
+  const PerturbedRuns& p = folded.Value().at(0).perturbed;
+  EXPECT_LT(p.errorSpread, 0.01);
+  for (double error : p.errors) EXPECT_LT(error, 0.01);
+}
+
 TEST(PerturbedCopies, ResultsThatDoNotMatchTheCountsAreRefused) {
   std::vector<RunResult> results(5);
   for (RunResult& r : results) r.backend = "talus";
@@ -226,7 +230,7 @@ RunResult PointResult(double error, double seconds) {
 
 TEST(PerturbedCopies, SpreadsSurviveTheResultsFileAndOldFilesLoadWithSpreadZero) {
   RunResult withCopies = PointResult(0.5, 1.0);
-  withCopies.perturbed = {2, 1e-9, kInf, {1.0, 1.1, 0.9}};  // infinite: written as null
+  withCopies.perturbed = {2, 1e-9, kInf, {1.0, 1.1, 0.9}, {0.5, kInf, 0.4}};  // infinite: written as null
   RunResult old = PointResult(0.4, 1.0);
   old.backend = "bullet";
   old.settings = {{"engine", "Bullet 324"}};
@@ -235,19 +239,44 @@ TEST(PerturbedCopies, SpreadsSurviveTheResultsFileAndOldFilesLoadWithSpreadZero)
   ASSERT_TRUE(back) << back.GetError().message;
   EXPECT_EQ(back.Value().results[0].perturbed.errorSpread, kInf);
   EXPECT_EQ(back.Value().results[0].perturbed.runSeconds, (std::vector<double>{1.0, 1.1, 0.9}));
+  EXPECT_EQ(back.Value().results[0].perturbed.errors, (std::vector<double>{0.5, kInf, 0.4}));
+  EXPECT_EQ(back.Value().results[0].wallSeconds, 1.0);
   EXPECT_EQ(back.Value().results[1].perturbed.copies, 0);
   EXPECT_EQ(back.Value().results[1].perturbed.errorSpread, 0.0);
 
-  // A file written before the noise floor (no "perturbed" anywhere) is
-  // analysed exactly as before: Talus 0.5 against Bullet 0.4 is above.
+  // With the copies' errors, Talus's failed copy makes it worse than Bullet.
+  const std::vector<SweepGroup> withErrors = AnalyseSweep(back.Value(), {});
+  ASSERT_EQ(withErrors.size(), 1u);
+  ASSERT_EQ(withErrors[0].families.pairs.size(), 1u);
+  EXPECT_EQ(withErrors[0].families.pairs[0].outcome, PairOutcome::kSecondBetter);
+  EXPECT_EQ(withErrors[0].families.pairs[0].firstWorst, kInf);
+
+  // A file written before the noise floor (no "perturbed" anywhere, no
+  // total wall time) is compared exactly: Talus 0.5 against Bullet 0.4 is
+  // worse; its cost is the mean step times the steps.
   nlohmann::ordered_json json = nlohmann::ordered_json::parse(text);
   json["results"][0].erase("perturbed");
+  json["results"][0].erase("wallSeconds");
   auto older = ResultsFromJson(json.dump());
   ASSERT_TRUE(older) << older.GetError().message;
+  EXPECT_EQ(older.Value().results[0].wallSeconds, 0.1 * 10);
+  EXPECT_TRUE(std::isnan(older.Value().results[0].wallSecondsLongestStep));
   const std::vector<SweepGroup> groups = AnalyseSweep(older.Value(), {});
   ASSERT_EQ(groups.size(), 1u);
-  EXPECT_EQ(groups[0].families.outcome, FamilyOutcome::kAbove);
-  EXPECT_EQ(groups[0].families.peers[0].floor, 0.0);
+  ASSERT_EQ(groups[0].families.pairs.size(), 1u);
+  EXPECT_EQ(groups[0].families.pairs[0].outcome, PairOutcome::kSecondBetter);
+  EXPECT_EQ(groups[0].families.pairs[0].firstWorst, 0.5);
+
+  // A file with the spread but not the copies' errors takes the widest
+  // range the spread allows: 0.5 +- 0.3 against 0.4 is a tie.
+  json = nlohmann::ordered_json::parse(text);
+  json["results"][0]["perturbed"].erase("errors");
+  json["results"][0]["perturbed"]["errorSpread"] = 0.3;
+  auto spreadOnly = ResultsFromJson(json.dump());
+  ASSERT_TRUE(spreadOnly) << spreadOnly.GetError().message;
+  const std::vector<SweepGroup> wide = AnalyseSweep(spreadOnly.Value(), {});
+  EXPECT_EQ(wide.at(0).families.pairs.at(0).outcome, PairOutcome::kTie);
+  EXPECT_DOUBLE_EQ(wide.at(0).families.pairs.at(0).firstWorst, 0.8);
 
   // A malformed block is refused at its place.
   json = nlohmann::ordered_json::parse(text);

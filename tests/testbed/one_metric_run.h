@@ -1,6 +1,6 @@
 // A hand-made run of one sweep instance whose error scalar is exactly
 // `error`: one checked metric of truth 1 with an absolute tolerance of 1,
-// and wall time `seconds` over 10 steps. The sweep analysis tests build
+// and a total wall time of `seconds` over 10 steps (its cost, sweep.h). The sweep analysis tests build
 // their fronts from these, so every answer can be read off the numbers.
 #pragma once
 
@@ -21,6 +21,9 @@ inline RunResult OneMetricRun(const std::string& backend, const std::string& hLa
   run.timeStep = h;
   run.steps = 10;
   run.wallSecondsPerStepMedian = seconds / 10.0;
+  run.wallSecondsPerStepMean = seconds / 10.0;
+  run.wallSeconds = seconds;
+  run.wallSecondsLongestStep = seconds / 10.0;
   MetricResult metric = MakeMetric("m", "m");
   metric.error = error;
   metric.truth = 1.0;

@@ -4,6 +4,7 @@
 // report files are written and well formed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -25,23 +26,67 @@ namespace talus::harness {
 namespace {
 
 namespace fs = std::filesystem;
+// gtest's Test::Run hides harness::Run inside TEST bodies.
+using ScenarioRun = Run;
+
+const std::string kBoxRest = std::string(TALUS_SCENARIO_DIR) + "/stacking/box_rest.json";
+const std::string kBoxSlide = std::string(TALUS_SCENARIO_DIR) + "/sliding/box_slide.json";
+
+const BackendRegistry& TalusRegistry() {
+  static const BackendRegistry registry = [] {
+    BackendRegistry r;
+    reference::RegisterTalusBackends(r);
+    return r;
+  }();
+  return registry;
+}
+
+// The checkout's runs of the box rest and sliding scenarios.
+const std::vector<Run>& SmallRuns() {
+  static const std::vector<Run> runs = [] {
+    auto loaded = LoadScenarios({kBoxRest, kBoxSlide});
+    EXPECT_TRUE(loaded);
+    return loaded ? loaded.Value() : std::vector<Run>{};
+  }();
+  return runs;
+}
 
 // A small real results file: Talus on the box rest and sliding scenarios.
 const ResultsFile& SmallResults() {
   static const ResultsFile file = [] {
-    BackendRegistry registry;
-    reference::RegisterTalusBackends(registry);
-    auto runs = LoadScenarios({std::string(TALUS_SCENARIO_DIR) + "/stacking/box_rest.json",
-                               std::string(TALUS_SCENARIO_DIR) + "/sliding/box_slide.json"});
-    EXPECT_TRUE(runs);
     RunnerOptions options;
     options.backends = {"talus", "talus-writeup"};
     options.deterministic = true;
-    auto results = RunAll(registry, runs.Value(), options);
+    auto results = RunAll(TalusRegistry(), SmallRuns(), options);
     EXPECT_TRUE(results);
     return ResultsFile{options.backends, true, results.Value()};
   }();
   return file;
+}
+
+// The gate's verdict on one backend of `file` against the small runs; a
+// refusal is a failed expectation.
+CheckOutcome Recheck(const ResultsFile& file, const std::string& backend) {
+  auto outcomes = RecheckResults(file, SmallRuns(), {backend}, TalusRegistry());
+  EXPECT_TRUE(outcomes) << outcomes.GetError().message;
+  if (!outcomes) {
+    CheckOutcome refused;
+    refused.problems = {"refused"};
+    return refused;
+  }
+  return outcomes.Value().at(0);
+}
+
+// The first checked metric of the first result of `backend`.
+MetricResult& FirstChecked(ResultsFile& file, const std::string& backend) {
+  for (RunResult& r : file.results) {
+    if (r.backend != backend) continue;
+    for (MetricResult& m : r.metrics) {
+      if (m.checked) return m;
+    }
+  }
+  ADD_FAILURE() << "no checked metric";
+  return file.results.at(0).metrics.at(0);
 }
 
 // A copy whose first checked Talus metric measured 10% (and 1 cm) off.
@@ -111,26 +156,122 @@ TEST(ResultsFile, MalformedFilesAreRefusedWithThePlace) {
 }
 
 TEST(RegressionCheck, PassingResultsPassAndADoctoredMetricIsNamedWithItsNumbers) {
-  const CheckOutcome good = CheckResults(SmallResults(), "talus");
+  const CheckOutcome good = Recheck(SmallResults(), "talus");
   EXPECT_TRUE(good.Ok()) << (good.problems.empty() ? "" : good.problems[0]);
   EXPECT_GT(good.checkedMetrics, 6);
-  const CheckOutcome bad = CheckResults(Doctored(), "talus");
+  const CheckOutcome bad = Recheck(Doctored(), "talus");
   ASSERT_EQ(bad.problems.size(), 1u);
   EXPECT_EQ(bad.failedMetrics, 1);
   EXPECT_NE(bad.problems[0].find("measured"), std::string::npos);
   EXPECT_NE(bad.problems[0].find("beyond the tolerance"), std::string::npos);
   // The doctored Talus metric does not affect another backend's check.
-  EXPECT_TRUE(CheckResults(Doctored(), "talus-writeup").Ok());
+  EXPECT_TRUE(Recheck(Doctored(), "talus-writeup").Ok());
 }
 
-TEST(RegressionCheck, AFailedRunOrAMissingBackendIsAProblem) {
+TEST(RegressionCheck, AForgedPassFlagIsRecomputedFromTheMeasuredValue) {
+  // Issue 24: a metric measured 42 m off but stored with "pass": true and
+  // an error of 0 passed the old check. The verdict comes from the measured
+  // value, never from the file's flags.
+  ResultsFile forged = SmallResults();
+  MetricResult& m = FirstChecked(forged, "talus");
+  m.measured += 42.0;
+  m.error = 0.0;
+  m.pass = true;
+  auto reread = ResultsFromJson(ResultsToJson(forged));
+  ASSERT_TRUE(reread) << reread.GetError().message;
+  const CheckOutcome outcome = Recheck(reread.Value(), "talus");
+  ASSERT_EQ(outcome.problems.size(), 1u);
+  EXPECT_NE(outcome.problems[0].find("off by 42"), std::string::npos) << outcome.problems[0];
+  // Marking it ungated in the file does not take it out of the gate either.
+  MetricResult& hidden = FirstChecked(forged, "talus");
+  hidden.checked = false;
+  hidden.ungated = "says the file";
+  EXPECT_FALSE(Recheck(forged, "talus").Ok());
+}
+
+TEST(RegressionCheck, AFileThatIsNotTheCheckoutsIsRefusedNamingTheDifference) {
+  // A tolerance widened in the file.
+  ResultsFile widened = SmallResults();
+  FirstChecked(widened, "talus").tolerance.absolute *= 10.0;
+  auto refused = RecheckResults(widened, SmallRuns(), {"talus"}, TalusRegistry());
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.GetError().message.find("in the checkout's scenario"), std::string::npos)
+      << refused.GetError().message;
+  EXPECT_NE(refused.GetError().message.find("tolerance absolute"), std::string::npos)
+      << refused.GetError().message;
+
+  // A run of the checkout missing for a gated variant.
+  ResultsFile missing = SmallResults();
+  std::erase_if(missing.results,
+                [](const RunResult& r) { return r.backend == "talus" && r.runId == "box_rest"; });
+  auto absent = RecheckResults(missing, SmallRuns(), {"talus", "talus-writeup"}, TalusRegistry());
+  ASSERT_FALSE(absent);
+  EXPECT_NE(
+      absent.GetError().message.find("run box_rest (" + kBoxRest + ") on talus is missing from the file"),
+      std::string::npos)
+      << absent.GetError().message;
+
+  // A run the checkout does not have (the file's scenario set differs).
+  auto extra = RecheckResults(SmallResults(), {SmallRuns().at(0)}, {"talus"}, TalusRegistry());
+  ASSERT_FALSE(extra);
+  EXPECT_NE(extra.GetError().message.find("which the checkout's scenarios do not have"), std::string::npos)
+      << extra.GetError().message;
+}
+
+TEST(RegressionCheck, AScenarioWithoutATruthIsRefused) {
+  // box_rest with its truth removed: the gate would pass it on 0 metrics.
+  std::vector<ScenarioRun> runs = SmallRuns();
+  runs.at(0).scenario.truths.clear();
+  ResultsFile file = SmallResults();
+  for (RunResult& r : file.results) {
+    if (r.runId == runs[0].id) std::erase_if(r.metrics, [](const MetricResult& m) { return m.checked; });
+  }
+  auto refused = RecheckResults(file, runs, {"talus"}, TalusRegistry());
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.GetError().message.find("box_rest (" + kBoxRest + "): the scenario has no truth"),
+            std::string::npos)
+      << refused.GetError().message;
+}
+
+TEST(RegressionCheck, EveryRecomputedVerdictMatchesTheRunnersOnARealRun) {
+  // The recomputation (RecomputedPass, ExpectedMetrics) and the evaluators
+  // must agree on every metric of an honest file, the tipping threshold
+  // test included, or the gate would judge by other rules than the report.
+  auto runs = LoadScenarios({std::string(TALUS_SCENARIO_DIR) + "/sliding/tall_box_tipping.json", kBoxSlide,
+                             std::string(TALUS_SCENARIO_DIR) + "/tumbling/box_toss.json"});
+  ASSERT_TRUE(runs) << runs.GetError().message;
+  RunnerOptions options;
+  options.backends = {"talus", "talus-writeup"};
+  options.deterministic = true;
+  auto results = RunAll(TalusRegistry(), runs.Value(), options);
+  ASSERT_TRUE(results);
+  int compared = 0;
+  for (const RunResult& r : results.Value()) {
+    const auto run = std::find_if(runs.Value().begin(), runs.Value().end(),
+                                  [&](const ScenarioRun& candidate) { return candidate.id == r.runId; });
+    ASSERT_NE(run, runs.Value().end());
+    const std::vector<ExpectedMetric> expected = ExpectedMetrics(*run, r.backend);
+    ASSERT_LE(expected.size(), r.metrics.size()) << r.runId;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      const MetricResult& m = r.metrics[i];
+      EXPECT_EQ(m.name, expected[i].name) << r.runId;
+      EXPECT_EQ(m.tolerance, expected[i].tolerance) << r.runId << " " << m.name;
+      EXPECT_EQ(m.checked, expected[i].checked) << r.runId << " " << m.name;
+      EXPECT_EQ(RecomputedPass(m, expected[i].tolerance), m.pass)
+          << r.runId << " " << r.backend << " " << m.name;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 20);
+}
+
+TEST(RegressionCheck, AFailedRunIsAProblem) {
   ResultsFile file = SmallResults();
   file.results[0].error = "talus: body \"box\": bad hull";
   file.results[0].metrics.clear();
-  const CheckOutcome failed = CheckResults(file, "talus");
+  const CheckOutcome failed = Recheck(file, "talus");
   ASSERT_FALSE(failed.Ok());
   EXPECT_NE(failed.problems[0].find("the run failed"), std::string::npos);
-  EXPECT_FALSE(CheckResults(SmallResults(), "bullet").Ok());
 }
 
 TEST(Report, FilesAreWrittenAndWellFormed) {
@@ -199,10 +340,15 @@ TEST(TestbedCommand, CheckExitsNonZeroOnARegressionAndZeroWhenPassing) {
   ASSERT_TRUE(WriteResultsFile(dir / "good.json", SmallResults()));
   ASSERT_TRUE(WriteResultsFile(dir / "bad.json", Doctored()));
   const std::string binary = TALUS_TESTBED_BINARY;
-  EXPECT_EQ(Shell(binary + " check --results " + (dir / "good.json").string()), 0);
-  EXPECT_EQ(Shell(binary + " check --results " + (dir / "bad.json").string()), 1);
-  EXPECT_EQ(Shell(binary + " check --results " + (dir / "none.json").string()), 2);
-  EXPECT_EQ(Shell(binary + " check --backend bullet --results " + (dir / "good.json").string()), 1);
+  const std::string scenarios = " " + kBoxRest + " " + kBoxSlide;
+  EXPECT_EQ(Shell(binary + " check --results " + (dir / "good.json").string() + scenarios), 0);
+  EXPECT_EQ(Shell(binary + " check --results " + (dir / "bad.json").string() + scenarios), 1);
+  EXPECT_EQ(Shell(binary + " check --results " + (dir / "none.json").string() + scenarios), 2);
+  // No bullet results in the file: refused as missing runs.
+  EXPECT_EQ(Shell(binary + " check --backend bullet --results " + (dir / "good.json").string() + scenarios),
+            2);
+  // Against the whole suite (the default) the two-scenario file is refused.
+  EXPECT_EQ(Shell(binary + " check --results " + (dir / "good.json").string() + " " + TALUS_SCENARIO_DIR), 2);
 }
 
 TEST(TestbedCommand, RunWritesDeterministicResultsAndRefusesBadArguments) {

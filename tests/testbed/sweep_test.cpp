@@ -171,6 +171,7 @@ TEST(AnalyseSweep, GroupsStepsIntoCurvesPerBackendAndIterations) {
     r.iterations = iterations;
     r.steps = 10;
     r.wallSecondsPerStepMedian = seconds / 10.0;
+    r.wallSeconds = seconds;
     r.metrics = {Metric(error, 1.0, 1.0, 0.0, true)};
     file.results.push_back(r);
   };

@@ -1,50 +1,217 @@
-// The accuracy gate (regression_check.h): walks a backend's results and
-// words every failure with the numbers a reader needs to judge it.
+// The accuracy gate (regression_check.h): re-derives what the checkout's
+// scenarios expect of each run, refuses a results file that is not the
+// checkout's, recomputes every verdict from the measured values and words
+// every failure with the numbers a reader needs to judge it.
 #include "talus/harness/report/regression_check.h"
 
 #include <cmath>
+#include <map>
+#include <set>
+#include <utility>
 
 #include "support/text_util.h"
+#include "talus/harness/backend/trajectory.h"
+#include "talus/harness/run/run_metrics.h"
+#include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
+namespace {
 
-CheckOutcome CheckResults(const ResultsFile& file, std::string_view backend) {
-  CheckOutcome outcome;
+// Refusals beyond this many are counted, not listed: one wrong checkout
+// can differ in every run.
+constexpr std::size_t kMostRefusalsListed = 20;
+
+// The run standing still at its initial state, sampled as the runner
+// samples it: what the evaluators need to name their metrics and size
+// their tolerances (which depend on the run's step and sampling, never on
+// the motion).
+Trajectory StandIn(const Run& run) {
+  Trajectory trajectory;
+  trajectory.timeStep = run.timeStep;
+  trajectory.stride = SampleStride(run.steps, RunnerOptions{}.maxSamples);
+  Sample still;
+  for (const BodySpec& body : run.scenario.bodies) {
+    BodyReading reading;
+    reading.centerOfMass = body.position;
+    reading.origin = body.position;
+    reading.orientation = body.orientation;
+    reading.linearVelocity = body.linearVelocity;
+    reading.angularVelocity = body.angularVelocity;
+    reading.mass = body.motion == Motion::Dynamic ? 1.0 : 0.0;
+    reading.worldInertia = body.motion == Motion::Dynamic ? Mat3(Mat3::Identity()) : Mat3(Mat3::Zero());
+    still.bodies.push_back(reading);
+  }
+  for (int step = 0; step <= run.steps; ++step) {
+    if (step > 0 && !IsSampled(step, run.steps, trajectory.stride)) continue;
+    still.step = step;
+    still.time = step * run.timeStep;
+    trajectory.samples.push_back(still);
+  }
+  return trajectory;
+}
+
+std::string ToleranceText(const Tolerance& tolerance) {
+  return Concat(
+      {"absolute ", FormatNumber(tolerance.absolute), ", relative ", FormatNumber(tolerance.relative)});
+}
+
+double Reference(const MetricResult& metric) {
+  return std::isnan(metric.truthIntegrator) ? metric.truth : metric.truthIntegrator;
+}
+
+}  // namespace
+
+std::vector<ExpectedMetric> ExpectedMetrics(const Run& run, std::string_view backend) {
+  const Trajectory still = StandIn(run);
+  std::vector<ExpectedMetric> expected;
+  for (const Truth& truth : run.scenario.truths) {
+    // The runner's own order and gating (runner.cpp RunOne).
+    std::vector<MetricResult> metrics = std::holds_alternative<ConvergedReferenceTruth>(truth.kind)
+                                            ? CompareWithReference(truth, still, still)
+                                            : EvaluateTruth(run, truth, still);
+    ApplyGate(truth, backend, metrics);
+    for (const MetricResult& metric : metrics) {
+      expected.push_back({metric.name, metric.tolerance, metric.checked, metric.ungated});
+    }
+  }
+  return expected;
+}
+
+bool RecomputedPass(const MetricResult& metric, const Tolerance& tolerance) {
+  // incline_tip.cpp's outcome test: tipped means turned beyond the bound.
+  if (metric.name.starts_with("incline_tip.tilt.")) {
+    return metric.name == "incline_tip.tilt.tips" ? metric.measured > tolerance.absolute
+                                                  : metric.measured < tolerance.absolute;
+  }
+  // Written so that a NaN measured, truth or tolerance fails.
+  return std::abs(metric.measured - Reference(metric)) <=
+         tolerance.absolute + tolerance.relative * std::abs(metric.truth);
+}
+
+Result<std::vector<CheckOutcome>> RecheckResults(const ResultsFile& file, const std::vector<Run>& runs,
+                                                 const std::vector<std::string>& backends,
+                                                 const BackendRegistry& registry) {
+  std::vector<std::string> refusals;
+  std::size_t refused = 0;
+  const auto refuse = [&](std::string line) {
+    if (refused++ < kMostRefusalsListed) refusals.push_back(std::move(line));
+  };
+  std::map<std::string, const Run*> byId;
+  for (const Run& run : runs) {
+    byId.try_emplace(run.id, &run);
+    if (run.scenario.truths.empty()) {
+      refuse(Concat({run.id, " (", run.scenario.file,
+                     "): the scenario has no truth, so the gate would pass it on 0 metrics"}));
+    }
+  }
+  std::set<std::pair<std::string, std::string>> present;
   for (const RunResult& result : file.results) {
-    if (result.backend != backend) continue;
-    ++outcome.runs;
-    if (!result.error.empty()) {
-      outcome.problems.push_back(Concat({result.runId, ": the run failed: ", result.error}));
-      continue;
+    if (!byId.contains(result.runId)) {
+      refuse(Concat({"the file has run ", result.runId, " (", result.file, ") on ", result.backend,
+                     ", which the checkout's scenarios do not have"}));
     }
-    for (const MetricResult& m : result.metrics) {
-      if (!m.ungated.empty()) {
-        outcome.ungated.push_back(
-            Concat({result.runId, " ", m.name, ": ", m.pass ? "ok" : "FAIL", " (ungated: ", m.ungated, ")"}));
-        continue;
-      }
-      if (!m.checked) continue;
-      ++outcome.checkedMetrics;
-      if (m.pass) continue;
-      ++outcome.failedMetrics;
-      const double allowed = m.tolerance.absolute + m.tolerance.relative * std::abs(m.truth);
-      const double expected = std::isnan(m.truthIntegrator) ? m.truth : m.truthIntegrator;
-      const std::string unit = m.unit.empty() ? "" : Concat({" ", m.unit});
-      if (std::isnan(m.measured)) {
-        outcome.problems.push_back(Concat(
-            {result.runId, " ", m.name, ": not measured (expected ", FormatNumber(expected), unit, ")"}));
-        continue;
-      }
-      outcome.problems.push_back(Concat(
-          {result.runId, " ", m.name, ": measured ", FormatNumber(m.measured), unit, ", expected ",
-           FormatNumber(expected), unit, " (+- ", FormatNumber(allowed), "), off by ", FormatNumber(m.error),
-           unit, ", ", FormatNumber(std::abs(m.error) - allowed), unit, " beyond the tolerance"}));
+    if (!present.insert({result.runId, result.backend}).second) {
+      refuse(Concat({"the file has run ", result.runId, " on ", result.backend, " twice"}));
     }
   }
-  if (outcome.runs == 0) {
-    outcome.problems.push_back(Concat({"no results for backend \"", backend, "\""}));
+  for (const std::string& backend : backends) {
+    for (const Run& run : runs) {
+      auto ranOn = BackendsForRun(registry, run, {backend});
+      if (!ranOn) {
+        refuse(ranOn.GetError().message);
+        continue;
+      }
+      if (!ranOn.Value().empty() && !present.contains({run.id, backend})) {
+        refuse(
+            Concat({"run ", run.id, " (", run.scenario.file, ") on ", backend, " is missing from the file"}));
+      }
+    }
   }
-  return outcome;
+
+  std::vector<CheckOutcome> outcomes;
+  for (const std::string& backend : backends) {
+    CheckOutcome outcome;
+    for (const RunResult& result : file.results) {
+      if (result.backend != backend) continue;
+      ++outcome.runs;
+      const auto found = byId.find(result.runId);
+      if (found == byId.end()) continue;  // refused above
+      const Run& run = *found->second;
+      if (run.steps != result.steps || run.timeStep != result.timeStep) {
+        refuse(Concat({result.runId, " on ", backend, ": ", std::to_string(result.steps), " steps of ",
+                       FormatNumber(result.timeStep), " s in the file, ", std::to_string(run.steps), " of ",
+                       FormatNumber(run.timeStep), " s in the checkout's scenario"}));
+        continue;
+      }
+      if (!result.error.empty()) {
+        outcome.problems.push_back(Concat({result.runId, ": the run failed: ", result.error}));
+        continue;
+      }
+      const std::vector<ExpectedMetric> expected = ExpectedMetrics(run, backend);
+      for (std::size_t i = 0; i < result.metrics.size(); ++i) {
+        const MetricResult& m = result.metrics[i];
+        if (i >= expected.size()) {
+          // The runner's reported-only quantities (drift, penetration,
+          // contacts) follow the truths and have no tolerance.
+          if (m.tolerance.absolute != 0.0 || m.tolerance.relative != 0.0) {
+            refuse(Concat({result.runId, " on ", backend, ": metric ", m.name,
+                           " has a tolerance that no truth of the checkout's scenario gives"}));
+          }
+          continue;
+        }
+        const ExpectedMetric& e = expected[i];
+        if (m.name != e.name) {
+          refuse(Concat({result.runId, " on ", backend, ": metric ", std::to_string(i), " is ", m.name,
+                         " in the file, ", e.name, " in the checkout's scenario"}));
+          continue;
+        }
+        if (!(m.tolerance == e.tolerance)) {
+          refuse(
+              Concat({result.runId, " on ", backend, " ", m.name, ": tolerance ", ToleranceText(m.tolerance),
+                      " in the file, ", ToleranceText(e.tolerance), " in the checkout's scenario"}));
+          continue;
+        }
+        const bool pass = RecomputedPass(m, e.tolerance);
+        if (!e.ungated.empty()) {
+          outcome.ungated.push_back(
+              Concat({result.runId, " ", m.name, ": ", pass ? "ok" : "FAIL", " (ungated: ", e.ungated, ")"}));
+          continue;
+        }
+        if (!e.checked) continue;
+        ++outcome.checkedMetrics;
+        if (pass) continue;
+        ++outcome.failedMetrics;
+        const double allowed = e.tolerance.absolute + e.tolerance.relative * std::abs(m.truth);
+        const double error = m.measured - Reference(m);
+        const std::string unit = m.unit.empty() ? "" : Concat({" ", m.unit});
+        if (std::isnan(m.measured)) {
+          outcome.problems.push_back(Concat({result.runId, " ", m.name, ": not measured (expected ",
+                                             FormatNumber(Reference(m)), unit, ")"}));
+          continue;
+        }
+        outcome.problems.push_back(
+            Concat({result.runId, " ", m.name, ": measured ", FormatNumber(m.measured), unit, ", expected ",
+                    FormatNumber(Reference(m)), unit, " (+- ", FormatNumber(allowed), "), off by ",
+                    FormatNumber(error), unit, ", ", FormatNumber(std::abs(error) - allowed), unit,
+                    " beyond the tolerance"}));
+      }
+      if (result.metrics.size() < expected.size()) {
+        refuse(Concat({result.runId, " on ", backend, ": ", std::to_string(result.metrics.size()),
+                       " metrics in the file, but the checkout's truths give ",
+                       std::to_string(expected.size())}));
+      }
+    }
+    outcomes.push_back(std::move(outcome));
+  }
+  if (refused > 0) {
+    std::string message = "the results file does not match this checkout's scenarios:";
+    for (const std::string& line : refusals) message.append("\n  ").append(line);
+    if (refused > refusals.size()) {
+      message.append("\n  (and ").append(std::to_string(refused - refusals.size())).append(" more)");
+    }
+    return Error{message};
+  }
+  return outcomes;
 }
 
 std::vector<std::string> TalusVariants(const std::vector<std::string>& registered) {

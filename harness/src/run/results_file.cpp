@@ -20,6 +20,12 @@ using Json = nlohmann::ordered_json;
 
 Json Number(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
 
+Json NumbersOrNull(const std::vector<double>& values) {
+  Json array = Json::array();
+  for (double value : values) array.push_back(Number(value));
+  return array;
+}
+
 Json MetricToJson(const MetricResult& m) {
   Json j;
   j["name"] = m.name;
@@ -65,6 +71,7 @@ Json ResultToJson(const RunResult& r) {
   j["metrics"] = Json::array();
   for (const MetricResult& m : r.metrics) j["metrics"].push_back(MetricToJson(m));
   j["wallSecondsPerStep"] = {{"median", r.wallSecondsPerStepMedian}, {"mean", r.wallSecondsPerStepMean}};
+  j["wallSeconds"] = {{"total", r.wallSeconds}, {"longestStep", Number(r.wallSecondsLongestStep)}};
   // Only sweep points run with perturbed copies carry this, so files of
   // other runs (and sweeps with --perturb-copies 0) are unchanged. An
   // infinite spread (some copies unmeasured) is written as null.
@@ -72,7 +79,8 @@ Json ResultToJson(const RunResult& r) {
     j["perturbed"] = {{"copies", r.perturbed.copies},
                       {"amount", r.perturbed.amount},
                       {"errorSpread", Number(r.perturbed.errorSpread)},
-                      {"runSeconds", r.perturbed.runSeconds}};
+                      {"runSeconds", r.perturbed.runSeconds},
+                      {"errors", NumbersOrNull(r.perturbed.errors)}};
   }
   Json series;
   series["time"] = r.series.time;
@@ -205,6 +213,16 @@ RunResult ResultFromJson(const Json& j, const std::string& where) {
   const Json& wall = Field(j, "wallSecondsPerStep", where);
   r.wallSecondsPerStepMedian = GetNumber(wall, "median", Place(where, "wallSecondsPerStep"));
   r.wallSecondsPerStepMean = GetNumber(wall, "mean", Place(where, "wallSecondsPerStep"));
+  if (j.contains("wallSeconds")) {
+    const Json& total = Field(j, "wallSeconds", where);
+    r.wallSeconds = GetNumber(total, "total", Place(where, "wallSeconds"));
+    r.wallSecondsLongestStep = GetNumber(total, "longestStep", Place(where, "wallSeconds"));
+  } else {
+    // Files written before the total was recorded: the mean over the timed
+    // steps times the steps estimates it; the longest step is unknown.
+    r.wallSeconds = r.wallSecondsPerStepMean * r.steps;
+    r.wallSecondsLongestStep = std::numeric_limits<double>::quiet_NaN();
+  }
   if (j.contains("perturbed")) {
     // Files written before the noise floor have none: spread 0, exact.
     const Json& perturbed = Field(j, "perturbed", where);
@@ -214,6 +232,16 @@ RunResult ResultFromJson(const Json& j, const std::string& where) {
     const double spread = GetNumber(perturbed, "errorSpread", place);
     r.perturbed.errorSpread = std::isnan(spread) ? std::numeric_limits<double>::infinity() : spread;
     r.perturbed.runSeconds = GetNumbers(perturbed, "runSeconds", place);
+    if (perturbed.contains("errors")) {
+      // null: a run that failed or was not measured, an infinite error.
+      r.perturbed.errors = GetNumbers(perturbed, "errors", place);
+      for (double& error : r.perturbed.errors) {
+        if (std::isnan(error)) error = std::numeric_limits<double>::infinity();
+      }
+      if (r.perturbed.errors.size() != r.perturbed.runSeconds.size()) {
+        throw ParseFailure{Concat({place, ": need one error per run (copies + 1)"})};
+      }
+    }
     if (r.perturbed.copies < 1 ||
         r.perturbed.runSeconds.size() != static_cast<std::size_t>(r.perturbed.copies) + 1 ||
         !(r.perturbed.errorSpread >= 0.0)) {

@@ -1,6 +1,7 @@
 // Drift, penetration, contact and converged-reference metrics (see
 // run_metrics.h for the definitions and where each applies).
 #include "talus/harness/run/run_metrics.h"
+#include "talus/harness/support/nan_extremes.h"
 
 #include <algorithm>
 #include <cassert>
@@ -43,7 +44,7 @@ SystemState System(const Sample& sample) {
 
 // The rotation angle (rad, in [0, pi]) between two unit quaternions.
 double AngleBetween(const Quat& a, const Quat& b) {
-  const double dot = std::min(1.0, std::abs(a.coeffs().dot(b.coeffs())));
+  const double dot = MinKeepingNaN(1.0, std::abs(a.coeffs().dot(b.coeffs())));
   return 2.0 * std::acos(dot);
 }
 
@@ -59,7 +60,8 @@ std::vector<MetricResult> EnergyDrift(const Trajectory& trajectory) {
   const auto energy = [](const Sample& s) { return s.measures.kineticEnergy + s.measures.potentialEnergy; };
   const double initial = energy(trajectory.samples.front());
   double drift = 0.0;
-  for (const Sample& sample : trajectory.samples) drift = std::max(drift, std::abs(energy(sample) - initial));
+  for (const Sample& sample : trajectory.samples)
+    drift = MaxKeepingNaN(drift, std::abs(energy(sample) - initial));
   return {Reported("energy.drift", "J", drift),
           Reported("energy.drift_relative", "", initial != 0.0 ? drift / std::abs(initial) : kNaN)};
 }
@@ -73,8 +75,8 @@ std::vector<MetricResult> MomentumDrift(const Run& run, const Trajectory& trajec
   double angular = 0.0;
   for (const Sample& sample : trajectory.samples) {
     const Vec3 expected = first.measures.linearMomentum + initial.mass * gravity * (sample.time - first.time);
-    linear = std::max(linear, (sample.measures.linearMomentum - expected).norm());
-    angular = std::max(angular, (System(sample).angularMomentum - initial.angularMomentum).norm());
+    linear = MaxKeepingNaN(linear, (sample.measures.linearMomentum - expected).norm());
+    angular = MaxKeepingNaN(angular, (System(sample).angularMomentum - initial.angularMomentum).norm());
   }
   return {Reported("momentum.linear_drift", "N s", linear),
           Reported("momentum.angular_drift", "kg m^2/s", angular)};
@@ -82,7 +84,7 @@ std::vector<MetricResult> MomentumDrift(const Run& run, const Trajectory& trajec
 
 MetricResult MaxPenetration(const Trajectory& trajectory) {
   double deepest = 0.0;
-  for (const Sample& sample : trajectory.samples) deepest = std::max(deepest, sample.maxPenetration);
+  for (const Sample& sample : trajectory.samples) deepest = MaxKeepingNaN(deepest, sample.maxPenetration);
   return Reported("penetration.max", "m", deepest);
 }
 
@@ -105,8 +107,8 @@ std::vector<MetricResult> CompareWithReference(const Truth& truth, const Traject
     ++matched;
     for (std::size_t b = 0; b < sample.bodies.size(); ++b) {
       if (truth.body >= 0 && static_cast<int>(b) != truth.body) continue;
-      position = std::max(position, (sample.bodies[b].origin - other.bodies[b].origin).norm());
-      angle = std::max(angle, AngleBetween(sample.bodies[b].orientation, other.bodies[b].orientation));
+      position = MaxKeepingNaN(position, (sample.bodies[b].origin - other.bodies[b].origin).norm());
+      angle = MaxKeepingNaN(angle, AngleBetween(sample.bodies[b].orientation, other.bodies[b].orientation));
     }
   }
   MetricResult positionMetric = MakeMetric("converged_reference.position", "m");

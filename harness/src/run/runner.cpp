@@ -17,6 +17,7 @@
 #include "support/text_util.h"
 #include "talus/harness/run/run_metrics.h"
 #include "talus/harness/scenario/scenario_limits.h"
+#include "talus/harness/support/nan_extremes.h"
 
 namespace talus::harness {
 namespace {
@@ -196,7 +197,7 @@ Result<std::vector<Run>> ExpandStepping(const std::vector<Run>& runs, const std:
 
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
                   const std::function<bool(int)>& record, std::vector<double>* stepSeconds, bool detail,
-                  const std::function<std::string(int)>& tick) {
+                  const std::function<std::string(int)>& tick, StepWallTimes* wall) {
   Trajectory trajectory;
   trajectory.timeStep = timeStep;
   const auto sample = [&](int step) {
@@ -208,7 +209,7 @@ Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
     if (step > 0) {
       for (const ContactReading& contact : backend.GetContacts()) {
         ++s.contactCount;
-        s.maxPenetration = std::max(s.maxPenetration, contact.depth);
+        s.maxPenetration = MaxKeepingNaN(s.maxPenetration, contact.depth);
         if (detail) s.contacts.push_back(contact);
       }
       if (detail) s.counters = backend.StepCounters();
@@ -224,6 +225,12 @@ Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
     const auto start = std::chrono::steady_clock::now();
     backend.Step();
     const auto end = std::chrono::steady_clock::now();
+    if (wall != nullptr) {
+      // Every step, the failing one included: a run's cost is all it spent.
+      const double seconds = std::chrono::duration<double>(end - start).count();
+      wall->total += seconds;
+      wall->longest = std::max(wall->longest, seconds);
+    }
     std::string failure = backend.StepFailure();
     if (failure.empty()) failure = NonFiniteBody(backend, run);
     if (!failure.empty()) {
@@ -272,6 +279,7 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
   result.settings = backend.Settings();
   const int stride = SampleStride(run.steps, options.maxSamples);
   std::vector<double> stepSeconds;
+  StepWallTimes wall;
   const bool replay = IsReplaySelected(run, options.replay);
   // Long jobs say how far they are, every options.progressSeconds.
   const auto begun = std::chrono::steady_clock::now();
@@ -292,7 +300,11 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
   };
   const Trajectory trajectory = Record(
       backend, run, run.steps, run.timeStep, [&](int step) { return IsSampled(step, run.steps, stride); },
-      &stepSeconds, replay, tick);
+      &stepSeconds, replay, tick, &wall);
+  if (!options.deterministic) {
+    result.wallSeconds = wall.total;
+    result.wallSecondsLongestStep = wall.longest;
+  }
   if (!trajectory.failure.empty()) {
     // The run stops at its first failed step: no metrics, but the plot up
     // to that step and the reason, which the report and the check show.

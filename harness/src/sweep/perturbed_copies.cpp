@@ -10,6 +10,7 @@
 #include "talus/harness/scenario/position_perturbation.h"
 #include "talus/harness/support/number_text.h"
 #include "talus/harness/sweep/sweep.h"
+#include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
 namespace {
@@ -18,6 +19,24 @@ double Median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// The truths of `moved` (a copy of `run` with its bodies moved) made those
+// of its own start: a truth that names where a body starts (free fall's y0,
+// the projectile's x0, the bounce's drop height above the floor it infers
+// from the start) moves with that body, so the copy is judged on how it
+// moved from where it began, not on the offset the copy injected (1e-9 m
+// against free fall's 1e-9 m tolerance would be an error of 0.7).
+void MoveTruthsWithTheirBodies(const Run& run, Run& moved) {
+  const Vec3 up = UpAxis(run);
+  for (Truth& truth : moved.scenario.truths) {
+    if (truth.body < 0) continue;
+    const auto body = static_cast<std::size_t>(truth.body);
+    const Vec3 offset = moved.scenario.bodies[body].position - run.scenario.bodies[body].position;
+    if (auto* fall = std::get_if<FreeFallTruth>(&truth.kind)) fall->y0 += offset.dot(up);
+    if (auto* projectile = std::get_if<ProjectileTruth>(&truth.kind)) projectile->x0 += offset;
+    if (auto* bounce = std::get_if<BounceHeightsTruth>(&truth.kind)) bounce->h += offset.dot(up);
+  }
 }
 
 }  // namespace
@@ -53,6 +72,7 @@ Result<std::vector<Run>> WithPerturbedCopies(const std::vector<Run>& runs, int c
       if (!scene) return scene.GetError();
       Run copy = run;
       copy.scenario = std::move(scene).Value();
+      MoveTruthsWithTheirBodies(run, copy);
       copy.id = Concat({run.id, " perturbed copy ", std::to_string(k)});
       all.push_back(std::move(copy));
     }
@@ -94,7 +114,7 @@ Result<std::vector<RunResult>> FoldPerturbedCopies(std::vector<RunResult> result
     for (std::size_t b = 0; b < backends; ++b) {
       RunResult kept = std::move(results[next + b]);
       std::vector<double> errors;
-      std::vector<double> perStep;
+      std::vector<double> totals;
       PerturbedRuns& perturbed = kept.perturbed;
       perturbed.copies = copies;
       perturbed.amount = amount;
@@ -104,12 +124,20 @@ Result<std::vector<RunResult>> FoldPerturbedCopies(std::vector<RunResult> result
           return Error{Concat({"perturbed copies: ", kept.runId, ": copy ", std::to_string(c), " ran on ",
                                run.backend, ", not ", kept.backend})};
         }
-        errors.push_back(RunErrorScalar(run));
-        perStep.push_back(run.wallSecondsPerStepMedian);
-        perturbed.runSeconds.push_back(RunCost(run));
+        const double error = RunErrorScalar(run);
+        errors.push_back(error);
+        // A failed or unmeasured run is an error never measured: infinite.
+        perturbed.errors.push_back(std::isnan(error) ? std::numeric_limits<double>::infinity() : error);
+        totals.push_back(run.wallSeconds);
+        perturbed.runSeconds.push_back(run.wallSeconds);
+        // The longest step seen in any of them, NaN (unknown) kept.
+        if (!(run.wallSecondsLongestStep <= kept.wallSecondsLongestStep))
+          kept.wallSecondsLongestStep = run.wallSecondsLongestStep;
       }
       perturbed.errorSpread = ErrorSpread(errors);
-      kept.wallSecondsPerStepMedian = Median(perStep);
+      // A median across repeated runs (never across one run's steps): one
+      // noisy timing among three does not move the cost.
+      kept.wallSeconds = Median(totals);
       folded.push_back(std::move(kept));
     }
     next += runs * backends;

@@ -52,49 +52,50 @@ nlohmann::ordered_json JsonNumber(double value) {
   return value;
 }
 
+nlohmann::ordered_json FamilyPairJson(const FamilyPair& pair) {
+  return {{"first", pair.first},
+          {"second", pair.second},
+          {"outcome", PairOutcomeName(pair.outcome)},
+          {"split", pair.split},
+          {"budgets", pair.budgets},
+          {"firstWins", pair.firstWins},
+          {"secondWins", pair.secondWins},
+          {"budget", pair.budget},
+          {"firstBest", JsonNumber(pair.firstBest)},
+          {"firstWorst", JsonNumber(pair.firstWorst)},
+          {"secondBest", JsonNumber(pair.secondBest)},
+          {"secondWorst", JsonNumber(pair.secondWorst)},
+          {"firstCostRatio", JsonNumber(pair.firstCostRatio)},
+          {"secondCostRatio", JsonNumber(pair.secondCostRatio)}};
+}
+
 nlohmann::ordered_json FamilyVerdictJson(const FamilyVerdict& verdict) {
   nlohmann::ordered_json out;
-  out["outcome"] = FamilyOutcomeName(verdict.outcome);
-  out["matchedCost"] = verdict.matchedCost;
-  out["budgets"] = verdict.budgets;
   out["members"] = nlohmann::ordered_json::array();
   for (const FamilyPoints& family : verdict.families)
     out["members"].push_back({{"family", family.family}, {"backends", family.backends}});
-  out["peers"] = nlohmann::ordered_json::array();
-  for (const FamilyMargin& peer : verdict.peers) {
-    out["peers"].push_back({{"family", peer.family},
-                            {"atOrBelow", peer.atOrBelow},
-                            {"worstBudget", peer.budget},
-                            {"talusError", JsonNumber(peer.talusError)},
-                            {"peerError", JsonNumber(peer.peerError)},
-                            {"margin", JsonNumber(peer.margin)},
-                            {"floor", JsonNumber(peer.floor)}});
-  }
+  out["pairs"] = nlohmann::ordered_json::array();
+  for (const FamilyPair& pair : verdict.pairs) out["pairs"].push_back(FamilyPairJson(pair));
   return out;
 }
 
-// How many instances the family verdict judged (Talus and a peer both have
-// results) and in how many Talus's family was at or below every peer.
-struct FamilyCount {
-  int atOrBelow = 0;
-  int judged = 0;
-  int notJudged = 0;
-};
-FamilyCount CountFamilyVerdicts(const std::vector<SweepGroup>& groups) {
-  FamilyCount count;
-  for (const SweepGroup& group : groups) {
-    const FamilyOutcome outcome = group.families.outcome;
-    if (outcome == FamilyOutcome::kNoTalus || outcome == FamilyOutcome::kNoPeer) {
-      ++count.notJudged;
-      continue;
-    }
-    ++count.judged;
-    if (outcome == FamilyOutcome::kAtOrBelow) ++count.atOrBelow;
-  }
-  return count;
+// A point's error range: "0.5" without copies or when they agree, else
+// "0.5 [0.4, 0.9]" (the unperturbed run's, then best and worst copy).
+std::string RangeText(double best, double worst) {
+  return best == worst ? Number(worst) : Concat({"[", Number(best), ", ", Number(worst), "]"});
 }
 
 }  // namespace
+
+double BestError(const CostErrorPoint& point) {
+  const double value = std::isnan(point.best) ? point.error : point.best;
+  return std::isnan(value) ? kInfinity : value;
+}
+
+double WorstError(const CostErrorPoint& point) {
+  const double value = std::isnan(point.worst) ? point.error : point.worst;
+  return std::isnan(value) ? kInfinity : value;
+}
 
 double RunErrorScalar(const RunResult& result) {
   if (!result.error.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -111,50 +112,67 @@ double RunErrorScalar(const RunResult& result) {
   return worst;
 }
 
-double RunCost(const RunResult& result) { return result.wallSecondsPerStepMedian * result.steps; }
+double RunCost(const RunResult& result) { return result.wallSeconds; }
 
-// Sort by (cost, error, index), then keep each point whose error is below
-// every cheaper point's: the classic staircase sweep, O(n log n).
+// Sort by (cost, worst, index), then keep each point whose worst error is
+// below every cheaper point's: the classic staircase sweep, O(n log n).
 std::vector<int> ParetoFront(const std::vector<CostErrorPoint>& points) {
   std::vector<int> order(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) order[i] = static_cast<int>(i);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
     if (points[a].cost != points[b].cost) return points[a].cost < points[b].cost;
-    return points[a].error < points[b].error;
+    return WorstError(points[a]) < WorstError(points[b]);
   });
   std::vector<int> front;
   double best = kInfinity;
   for (int i : order) {
-    if (points[i].error < best) {
+    if (WorstError(points[i]) < best) {
       front.push_back(i);
-      best = points[i].error;
+      best = WorstError(points[i]);
     }
   }
   return front;
 }
 
+double AffordableCost(const CostErrorPoint& point) {
+  return std::isnan(point.cheapestRun) ? point.cost : std::min(point.cost, point.cheapestRun);
+}
+
 const CostErrorPoint* FrontPointAt(const std::vector<CostErrorPoint>& points, double budget) {
-  const CostErrorPoint* best = nullptr;
+  const CostErrorPoint* chosen = nullptr;
   for (const CostErrorPoint& point : points) {
-    if (point.cost <= budget && (best == nullptr || point.error < best->error)) best = &point;
+    if (!(AffordableCost(point) <= budget)) continue;
+    const bool better = chosen == nullptr || WorstError(point) < WorstError(*chosen) ||
+                        (WorstError(point) == WorstError(*chosen) && BestError(point) < BestError(*chosen));
+    if (better) chosen = &point;
   }
-  return best;
+  return chosen;
 }
 
 double FrontErrorAt(const std::vector<CostErrorPoint>& points, double budget) {
   const CostErrorPoint* point = FrontPointAt(points, budget);
-  return point != nullptr ? point->error : kInfinity;
+  return point != nullptr ? WorstError(*point) : kInfinity;
 }
 
-double NoiseFloor(const CostErrorPoint* a, const CostErrorPoint* b) {
-  // The larger spread, not their sum: a difference one of the two points
-  // already showed between round-off copies of itself is no evidence, and
-  // the larger of the two is the smallest floor that says so. The sum
-  // (both moving apart at once) would be a worst case never observed.
-  return std::max(a != nullptr ? a->spread : 0.0, b != nullptr ? b->spread : 0.0);
+BudgetOutcome CompareAtBudget(const CostErrorPoint* first, const CostErrorPoint* second) {
+  const double firstBest = first != nullptr ? BestError(*first) : kInfinity;
+  const double firstWorst = first != nullptr ? WorstError(*first) : kInfinity;
+  const double secondBest = second != nullptr ? BestError(*second) : kInfinity;
+  const double secondWorst = second != nullptr ? WorstError(*second) : kInfinity;
+  // A failure in any draw is no round-off difference: it counts against
+  // the side that had it, however good its other copies were.
+  const bool firstFailed = firstWorst == kInfinity;
+  const bool secondFailed = secondWorst == kInfinity;
+  if (firstFailed || secondFailed) {
+    if (firstFailed == secondFailed) return BudgetOutcome::kTie;
+    return firstFailed ? BudgetOutcome::kSecond : BudgetOutcome::kFirst;
+  }
+  // Worst against the other's best: instability widens a side's own range
+  // and so can only cost it wins, never buy it one.
+  if (firstWorst < secondBest) return BudgetOutcome::kFirst;
+  if (secondWorst < firstBest) return BudgetOutcome::kSecond;
+  return BudgetOutcome::kTie;
 }
-
-bool ErrorsTie(double a, double b, double floor) { return a == b || std::abs(a - b) <= floor; }
 
 std::vector<double> ComparedBudgets(const std::vector<std::vector<CostErrorPoint>>& fronts,
                                     double& matchedCost) {
@@ -195,26 +213,15 @@ FrontComparison CompareFronts(const std::vector<std::vector<CostErrorPoint>>& fr
   }
   std::vector<const CostErrorPoint*> at(fronts.size());
   for (double budget : budgets) {
-    // The smallest error wins the budget unless another front's value ties
-    // with it under the two points' noise floor.
-    int best = -1;
-    double bestError = kInfinity;
+    for (std::size_t f = 0; f < fronts.size(); ++f) at[f] = FrontPointAt(fronts[f], budget);
+    // A backend wins the budget only when it is better than every other.
     for (std::size_t f = 0; f < fronts.size(); ++f) {
-      at[f] = FrontPointAt(fronts[f], budget);
-      const double error = at[f] != nullptr ? at[f]->error : kInfinity;
-      if (best < 0 || error < bestError) {
-        best = static_cast<int>(f);
-        bestError = error;
+      bool beatsAll = true;
+      for (std::size_t g = 0; g < fronts.size() && beatsAll; ++g) {
+        if (g != f) beatsAll = CompareAtBudget(at[f], at[g]) == BudgetOutcome::kFirst;
       }
+      if (beatsAll && fronts.size() > 1) ++comparison.wins[f];
     }
-    bool tie = false;
-    for (std::size_t f = 0; f < fronts.size(); ++f) {
-      if (static_cast<int>(f) == best) continue;
-      const double error = at[f] != nullptr ? at[f]->error : kInfinity;
-      tie = tie || ErrorsTie(error, bestError, NoiseFloor(at[f], at[best]));
-    }
-    // An infinite error never wins (nothing was measured).
-    if (best >= 0 && !tie && bestError < kInfinity) ++comparison.wins[best];
   }
   int mostWins = 0;
   for (std::size_t f = 0; f < fronts.size(); ++f) {
@@ -239,98 +246,146 @@ std::string EngineFamily(const RunResult& result) {
   return result.backend;
 }
 
-std::string_view FamilyOutcomeName(FamilyOutcome outcome) {
+std::string_view PairOutcomeName(PairOutcome outcome) {
   switch (outcome) {
-    case FamilyOutcome::kAtOrBelow:
-      return "at or below every peer";
-    case FamilyOutcome::kAbove:
-      return "above a peer";
-    case FamilyOutcome::kNoTalus:
-      return "no Talus result";
-    case FamilyOutcome::kNoPeer:
-      return "no peer result";
+    case PairOutcome::kFirstBetter:
+      return "better";
+    case PairOutcome::kTie:
+      return "tie";
+    case PairOutcome::kSecondBetter:
+      return "worse";
   }
   return "?";
 }
 
-FamilyVerdict CompareFamilies(std::vector<FamilyPoints> families, std::string_view talus) {
+namespace {
+
+// The cost `mine` needs to reach `theirs`' most accurate point, over that
+// point's cost (sweep.h FamilyPair::firstCostRatio).
+double CostRatio(const std::vector<CostErrorPoint>& mine, const std::vector<CostErrorPoint>& theirs) {
+  const CostErrorPoint* target = FrontPointAt(theirs, kInfinity);
+  if (target == nullptr) return std::numeric_limits<double>::quiet_NaN();
+  // The cheapest of their most accurate points.
+  for (const CostErrorPoint& point : theirs) {
+    if (WorstError(point) == WorstError(*target) && point.cost < target->cost) target = &point;
+  }
+  double needed = kInfinity;
+  for (const CostErrorPoint& point : mine) {
+    if (WorstError(point) <= WorstError(*target)) needed = std::min(needed, point.cost);
+  }
+  if (WorstError(*target) == kInfinity || target->cost <= 0.0)
+    return std::numeric_limits<double>::quiet_NaN();
+  return needed / target->cost;
+}
+
+}  // namespace
+
+FamilyPair CompareFamilyPair(const FamilyPoints& first, const FamilyPoints& second) {
+  FamilyPair pair;
+  pair.first = first.family;
+  pair.second = second.family;
+  std::vector<double> budgets;
+  for (const CostErrorPoint& point : first.points) budgets.push_back(point.cost);
+  for (const CostErrorPoint& point : second.points) budgets.push_back(point.cost);
+  std::sort(budgets.begin(), budgets.end());
+  budgets.erase(std::unique(budgets.begin(), budgets.end()), budgets.end());
+  pair.budgets = static_cast<int>(budgets.size());
+  double firstWon = kInfinity;
+  double secondWon = kInfinity;
+  for (double budget : budgets) {
+    switch (CompareAtBudget(FrontPointAt(first.points, budget), FrontPointAt(second.points, budget))) {
+      case BudgetOutcome::kFirst:
+        ++pair.firstWins;
+        firstWon = std::min(firstWon, budget);
+        break;
+      case BudgetOutcome::kSecond:
+        ++pair.secondWins;
+        secondWon = std::min(secondWon, budget);
+        break;
+      case BudgetOutcome::kTie:
+        break;
+    }
+  }
+  pair.split = pair.firstWins > 0 && pair.secondWins > 0;
+  if (pair.firstWins > 0 && pair.secondWins == 0) pair.outcome = PairOutcome::kFirstBetter;
+  if (pair.secondWins > 0 && pair.firstWins == 0) pair.outcome = PairOutcome::kSecondBetter;
+  pair.budget = pair.outcome == PairOutcome::kFirstBetter    ? firstWon
+                : pair.outcome == PairOutcome::kSecondBetter ? secondWon
+                                                             : std::min(firstWon, secondWon);
+  if (pair.budget == kInfinity) pair.budget = budgets.empty() ? 0.0 : budgets.front();
+  const CostErrorPoint* a = FrontPointAt(first.points, pair.budget);
+  const CostErrorPoint* b = FrontPointAt(second.points, pair.budget);
+  pair.firstBest = a != nullptr ? BestError(*a) : kInfinity;
+  pair.firstWorst = a != nullptr ? WorstError(*a) : kInfinity;
+  pair.secondBest = b != nullptr ? BestError(*b) : kInfinity;
+  pair.secondWorst = b != nullptr ? WorstError(*b) : kInfinity;
+  pair.firstCostRatio = CostRatio(first.points, second.points);
+  pair.secondCostRatio = CostRatio(second.points, first.points);
+  return pair;
+}
+
+FamilyVerdict CompareFamilies(std::vector<FamilyPoints> families, std::string_view first) {
   FamilyVerdict verdict;
+  // A family without points had no run of this instance with a truth.
+  std::erase_if(families, [](const FamilyPoints& family) { return family.points.empty(); });
+  std::stable_partition(families.begin(), families.end(),
+                        [&](const FamilyPoints& family) { return family.family == first; });
   verdict.families = std::move(families);
-  std::vector<std::vector<CostErrorPoint>> fronts;
-  int talusIndex = -1;
-  for (std::size_t f = 0; f < verdict.families.size(); ++f) {
-    const FamilyPoints& family = verdict.families[f];
-    // A family without points (every run failed or had no truth) has no
-    // front and is not a peer that anything could be compared with.
-    if (family.points.empty()) continue;
-    if (family.family == talus) talusIndex = static_cast<int>(fronts.size());
-    std::vector<CostErrorPoint> front;
-    for (int i : ParetoFront(family.points)) front.push_back(family.points[i]);
-    if (front.empty()) {
-      // Every error infinite (never measured): the family still ran, so its
-      // cheapest run stands for it, infinite at every budget, rather than
-      // leaving no front and no budget to compare at.
-      front.push_back(*std::min_element(
-          family.points.begin(), family.points.end(),
-          [](const CostErrorPoint& a, const CostErrorPoint& b) { return a.cost < b.cost; }));
+  for (std::size_t i = 0; i < verdict.families.size(); ++i) {
+    for (std::size_t j = i + 1; j < verdict.families.size(); ++j) {
+      verdict.pairs.push_back(CompareFamilyPair(verdict.families[i], verdict.families[j]));
     }
-    fronts.push_back(std::move(front));
-  }
-  if (talusIndex < 0) return verdict;  // kNoTalus
-  if (fronts.size() < 2) {
-    verdict.outcome = FamilyOutcome::kNoPeer;
-    return verdict;
-  }
-  const std::vector<double> budgets = ComparedBudgets(fronts, verdict.matchedCost);
-  verdict.budgets = static_cast<int>(budgets.size());
-  verdict.outcome = FamilyOutcome::kAtOrBelow;
-  int front = 0;
-  for (const FamilyPoints& family : verdict.families) {
-    if (family.points.empty()) continue;
-    const int index = front++;
-    if (index == talusIndex) continue;
-    FamilyMargin margin;
-    margin.family = family.family;
-    margin.margin = -kInfinity;
-    double worstExcess = -kInfinity;
-    bool first = true;
-    for (double budget : budgets) {
-      const CostErrorPoint* talusPoint = FrontPointAt(fronts[talusIndex], budget);
-      const CostErrorPoint* peerPoint = FrontPointAt(fronts[index], budget);
-      const double mine = talusPoint != nullptr ? talusPoint->error : kInfinity;
-      const double theirs = peerPoint != nullptr ? peerPoint->error : kInfinity;
-      // Equal errors (inf against inf included) are a tie, which the
-      // criterion counts as at or below; so is a difference within the
-      // noise floor (excess <= 0). Floor 0: the exact comparison.
-      const double difference = mine == theirs ? 0.0 : mine - theirs;
-      const double floor = NoiseFloor(talusPoint, peerPoint);
-      const double excess = std::isnan(difference - floor) ? 0.0 : difference - floor;  // inf - inf: a tie
-      if (first || excess > worstExcess) {
-        first = false;
-        worstExcess = excess;
-        margin.margin = difference;
-        margin.floor = floor;
-        margin.budget = budget;
-        margin.talusError = mine;
-        margin.peerError = theirs;
-      }
-    }
-    // The largest excess over the floor decides: above at some budget
-    // exactly when it is positive (no budgets: -inf, nothing to be above at).
-    margin.atOrBelow = worstExcess <= 0.0;
-    if (!margin.atOrBelow) verdict.outcome = FamilyOutcome::kAbove;
-    verdict.peers.push_back(std::move(margin));
   }
   return verdict;
 }
 
+std::vector<FamilyTally> TallyFamilies(const std::vector<SweepGroup>& groups) {
+  std::vector<FamilyTally> tallies;
+  for (const SweepGroup& group : groups) {
+    for (const FamilyPair& pair : group.families.pairs) {
+      auto tally = std::find_if(tallies.begin(), tallies.end(), [&](const FamilyTally& t) {
+        return (t.first == pair.first && t.second == pair.second) ||
+               (t.first == pair.second && t.second == pair.first);
+      });
+      if (tally == tallies.end()) {
+        tallies.push_back({pair.first, pair.second});
+        tally = tallies.end() - 1;
+      }
+      // Oriented as the tally was first met (Talus's pairs have Talus first
+      // in every group, so theirs never turn round).
+      const bool same = tally->first == pair.first;
+      if (pair.outcome == PairOutcome::kTie) {
+        ++tally->ties;
+        if (pair.split) ++tally->splits;
+      } else if ((pair.outcome == PairOutcome::kFirstBetter) == same) {
+        ++tally->firstBetter;
+      } else {
+        ++tally->secondBetter;
+      }
+    }
+  }
+  return tallies;
+}
+
 std::vector<SweepGroup> AnalyseSweep(const ResultsFile& file, const std::vector<std::string>& singleSetting) {
+  // The instances with a truth: some run of them measured one. A failed run
+  // of such an instance stays in as an infinitely bad point at its cost; a
+  // run of an instance without a truth has nothing to be judged on.
+  std::map<std::string, bool> hasTruth;
+  for (const RunResult& result : file.results) {
+    if (!std::isnan(RunErrorScalar(result))) hasTruth[InstanceId(result)] = true;
+  }
   std::vector<SweepGroup> groups;
   std::map<std::string, std::size_t> groupIndex;
   for (const RunResult& result : file.results) {
-    const double error = RunErrorScalar(result);
-    if (std::isnan(error)) continue;
     const std::string id = InstanceId(result);
+    if (!hasTruth.contains(id)) continue;
+    double error = RunErrorScalar(result);
+    if (std::isnan(error)) {
+      // A run of the same scenario that measured nothing: failed, or its
+      // truths' metrics all missing (a run refused before stepping).
+      error = kInfinity;
+    }
     auto [found, added] = groupIndex.try_emplace(id, groups.size());
     if (added) {
       groups.emplace_back();
@@ -351,8 +406,30 @@ std::vector<SweepGroup> AnalyseSweep(const ResultsFile& file, const std::vector<
       group.curves.push_back({result.backend, result.iterations, {}, {}, {}, EngineFamily(result)});
       curve = &group.curves.back();
     }
+    CostErrorPoint point{.cost = RunCost(result),
+                         .error = error,
+                         .spread = result.perturbed.errorSpread,
+                         .longestStep = result.wallSecondsLongestStep};
+    if (!result.perturbed.runSeconds.empty()) {
+      point.cheapestRun =
+          *std::min_element(result.perturbed.runSeconds.begin(), result.perturbed.runSeconds.end());
+    }
+    if (!result.perturbed.errors.empty()) {
+      point.best = kInfinity;
+      point.worst = 0.0;
+      for (double e : result.perturbed.errors) {
+        const double value = std::isnan(e) ? kInfinity : e;
+        point.best = std::min(point.best, value);
+        point.worst = std::max(point.worst, value);
+      }
+    } else if (result.perturbed.copies > 0) {
+      // A file from before the copies' errors were kept: only the spread is
+      // known, so the range is taken as wide as it could have been.
+      point.best = std::max(0.0, error - result.perturbed.errorSpread);
+      point.worst = error + result.perturbed.errorSpread;
+    }
     curve->timeSteps.push_back(result.timeStep);
-    curve->points.push_back({RunCost(result), error, result.perturbed.errorSpread});
+    curve->points.push_back(point);
   }
   for (SweepGroup& group : groups) {
     // Backend-major in the file's backend order (stable: iterations stay in
@@ -384,11 +461,16 @@ std::vector<SweepGroup> AnalyseSweep(const ResultsFile& file, const std::vector<
         where[i].first->onFront[where[i].second] = true;
         front.push_back(all[i]);
       }
+      if (front.empty() && !all.empty()) {
+        // Every run failed: its cheapest stands for it, infinitely bad.
+        front.push_back(*std::min_element(all.begin(), all.end(),
+                                          [](const auto& a, const auto& b) { return a.cost < b.cost; }));
+      }
       fronts.push_back(std::move(front));
     }
     group.comparison = CompareFronts(fronts);
     // Families in the order their first backend appears; each holds the
-    // union of its variants' points.
+    // union of its variants' points, failed runs included.
     std::vector<FamilyPoints> families;
     for (const SweepCurve& curve : group.curves) {
       auto family = std::find_if(families.begin(), families.end(),
@@ -409,7 +491,7 @@ std::vector<SweepGroup> AnalyseSweep(const ResultsFile& file, const std::vector<
 std::string SweepToJson(const std::vector<SweepGroup>& groups) {
   nlohmann::ordered_json out;
   out["format"] = "talus-testbed-sweep";
-  out["version"] = 1;
+  out["version"] = 2;
   out["groups"] = nlohmann::ordered_json::array();
   for (const SweepGroup& group : groups) {
     nlohmann::ordered_json g;
@@ -429,10 +511,14 @@ std::string SweepToJson(const std::vector<SweepGroup>& groups) {
     for (const SweepCurve& curve : group.curves) {
       nlohmann::ordered_json points = nlohmann::ordered_json::array();
       for (std::size_t k = 0; k < curve.points.size(); ++k) {
+        const CostErrorPoint& p = curve.points[k];
         points.push_back({{"timeStep", curve.timeSteps[k]},
-                          {"cost", curve.points[k].cost},
-                          {"error", JsonNumber(curve.points[k].error)},
-                          {"spread", JsonNumber(curve.points[k].spread)},
+                          {"cost", p.cost},
+                          {"longestStep", JsonNumber(p.longestStep)},
+                          {"error", JsonNumber(p.error)},
+                          {"spread", JsonNumber(p.spread)},
+                          {"best", JsonNumber(BestError(p))},
+                          {"worst", JsonNumber(WorstError(p))},
                           {"front", static_cast<bool>(curve.onFront[k])}});
       }
       g["curves"].push_back({{"backend", curve.backend},
@@ -442,11 +528,15 @@ std::string SweepToJson(const std::vector<SweepGroup>& groups) {
     }
     out["groups"].push_back(g);
   }
-  const FamilyCount count = CountFamilyVerdicts(groups);
-  out["familyVerdict"] = {{"talusFamily", kTalusFamily},
-                          {"atOrBelowEveryPeer", count.atOrBelow},
-                          {"judged", count.judged},
-                          {"notJudged", count.notJudged}};
+  out["familyVerdict"] = nlohmann::ordered_json::array();
+  for (const FamilyTally& t : TallyFamilies(groups)) {
+    out["familyVerdict"].push_back({{"first", t.first},
+                                    {"second", t.second},
+                                    {"firstBetter", t.firstBetter},
+                                    {"ties", t.ties},
+                                    {"secondBetter", t.secondBetter},
+                                    {"splits", t.splits}});
+  }
   return out.dump(2) + "\n";
 }
 
@@ -454,11 +544,11 @@ std::string SweepMarkdown(const std::vector<SweepGroup>& groups) {
   std::ostringstream out;
   out << "## Run time against error\n\n"
       << "Error: the largest |error| / tolerance over a run's metrics with a tolerance (1 = at the "
-         "tolerance, inf = "
-         "not measured). Cost: wall seconds of the run. Most accurate at equal cost: most wins over the "
-         "budgets at or above the matched cost (docs/testbed-sweeps.md). Spread: the noise floor, max - min "
-         "of a point's error over its run and its perturbed copies (initial positions moved by round-off); "
-         "two errors closer than the larger spread tie.\n\n"
+         "tolerance, inf = not measured or failed). Cost: total wall seconds of the run (every step "
+         "summed; with perturbed copies the median over the run and its copies). Spread: max - min of a "
+         "point's error over its run and its perturbed copies (initial positions moved by round-off, each "
+         "copy judged against the truth of its own start). Most accurate at equal cost: most budgets won "
+         "from the matched cost up (docs/testbed-sweeps.md).\n\n"
       << "| scenario | most accurate at equal cost | matched cost (s) | error at matched cost | wins |\n"
       << "|---|---|---|---|---|\n";
   for (const SweepGroup& group : groups) {
@@ -476,44 +566,35 @@ std::string SweepMarkdown(const std::vector<SweepGroup>& groups) {
         << " | " << Number(c.matchedCost) << " | " << errors << " | " << wins << " of " << c.budgets
         << " |\n";
   }
-  const FamilyCount count = CountFamilyVerdicts(groups);
-  out << "\n### Talus's engine family against every peer family\n\n"
-      << "A family is every variant of one engine (talus, talus-split...; bullet, bullet-f32...); its "
-         "front is the Pareto front of all its variants' points. Talus is at or below a peer family when "
-         "at every budget from the matched cost up Talus's best error <= the peer's or ties with it: a "
-         "margin "
-         "(Talus - peer) no larger than the floor (the larger spread of the two points compared; 0 without "
-         "perturbed copies, then the comparison is exact) is a tie. Worst budget: where margin - floor is "
-         "largest (<= 0 everywhere means at or below).\n\n"
-      << "Talus at or below every peer family: " << count.atOrBelow << " of " << count.judged << " instances";
-  if (count.notJudged > 0) out << " (" << count.notJudged << " more without both Talus and a peer result)";
-  out << ".\n\n| scenario | verdict | budgets | peer family: worst budget s, Talus error, peer error, "
-         "margin, floor "
-         "|\n"
-      << "|---|---|---|---|\n";
-  for (const SweepGroup& group : groups) {
-    const FamilyVerdict& v = group.families;
-    std::string peers;
-    for (const FamilyMargin& peer : v.peers) {
-      peers.append(peers.empty() ? "" : "; ")
-          .append(peer.family)
-          .append(peer.atOrBelow ? "" : " (above)")
-          .append(": ")
-          .append(Number(peer.budget))
-          .append(", ")
-          .append(Number(peer.talusError))
-          .append(", ")
-          .append(Number(peer.peerError))
-          .append(", ")
-          .append(Number(peer.margin))
-          .append(", ")
-          .append(Number(peer.floor));
-    }
-    out << "| " << group.id << " | " << FamilyOutcomeName(v.outcome) << " | " << v.budgets << " | "
-        << (peers.empty() ? "-" : peers) << " |\n";
+  out << "\n### Engine families against each other\n\n"
+      << "A family is every variant of one engine (talus, talus-split...; bullet, bullet-f32...), its "
+         "points the union of its variants'. Two families are compared at the cost of every point of "
+         "either, from the cheapest up; at each budget each family takes its point of smallest worst "
+         "error within it. A family is better at a budget when its worst copy is below the other's best "
+         "copy, or when the other failed in some copy or has nothing that cheap and it did not; "
+         "otherwise the budget is a tie. Better in an instance: better at some budget and worse at none; "
+         "a tie otherwise (split: each better at some budget). Cost ratio: the cost the first family "
+         "needs to reach the second's most accurate point, over that point's cost.\n\n"
+      << "| family | against | better | tie (split) | worse |\n|---|---|---|---|---|\n";
+  for (const FamilyTally& t : TallyFamilies(groups)) {
+    out << "| " << t.first << " | " << t.second << " | " << t.firstBetter << " | " << t.ties << " ("
+        << t.splits << ") | " << t.secondBetter << " |\n";
   }
-  out << "\n### Pareto fronts (time step s, iterations: cost s, error)\n\n| scenario | backend | front |\n"
-      << "|---|---|---|\n";
+  out << "\n| scenario | first | against | verdict | budgets won (first, second, of) | at budget s: first "
+         "error, second error | cost ratio (first for second's error, second for first's) |\n"
+      << "|---|---|---|---|---|---|---|\n";
+  for (const SweepGroup& group : groups) {
+    for (const FamilyPair& pair : group.families.pairs) {
+      out << "| " << group.id << " | " << pair.first << " | " << pair.second << " | "
+          << PairOutcomeName(pair.outcome) << (pair.split ? " (split)" : "") << " | " << pair.firstWins
+          << ", " << pair.secondWins << ", " << pair.budgets << " | " << Number(pair.budget) << ": "
+          << RangeText(pair.firstBest, pair.firstWorst) << ", "
+          << RangeText(pair.secondBest, pair.secondWorst) << " | " << Number(pair.firstCostRatio) << ", "
+          << Number(pair.secondCostRatio) << " |\n";
+    }
+  }
+  out << "\n### Pareto fronts (time step s, iterations: cost s, longest step s, error)\n\n"
+      << "| scenario | backend | front |\n|---|---|---|\n";
   for (const SweepGroup& group : groups) {
     for (const std::string& backend : group.backends) {
       std::vector<std::pair<double, std::string>> front;
@@ -521,10 +602,10 @@ std::string SweepMarkdown(const std::vector<SweepGroup>& groups) {
         if (curve.backend != backend) continue;
         for (std::size_t k = 0; k < curve.points.size(); ++k) {
           if (!curve.onFront[k]) continue;
-          front.emplace_back(curve.points[k].cost,
-                             Concat({"h ", Number(curve.timeSteps[k]), ", it ",
-                                     std::to_string(curve.iterations), ": ", Number(curve.points[k].cost),
-                                     ", ", ErrorText(curve.points[k].error, curve.points[k].spread)}));
+          const CostErrorPoint& p = curve.points[k];
+          front.emplace_back(p.cost, Concat({"h ", Number(curve.timeSteps[k]), ", it ",
+                                             std::to_string(curve.iterations), ": ", Number(p.cost), ", ",
+                                             Number(p.longestStep), ", ", ErrorText(p.error, p.spread)}));
         }
       }
       std::stable_sort(front.begin(), front.end(),

@@ -20,6 +20,7 @@
 #include <string>
 
 #include "talus/harness/analytic/truths.h"
+#include "talus/harness/support/nan_extremes.h"
 #include "truth/checks/evaluators.h"
 
 namespace talus::harness {
@@ -84,7 +85,7 @@ std::vector<MetricResult> EvaluateBounceHeights(const Run& run, const Truth& tru
       apex = -std::numeric_limits<double>::infinity();
     }
     if (rising) {
-      apex = std::max(apex, LowestPoint(shape, state, up) - floor);
+      apex = MaxKeepingNaN(apex, LowestPoint(shape, state, up) - floor);
       if (speed < 0.0) {
         apexes.push_back(apex);
         rising = false;

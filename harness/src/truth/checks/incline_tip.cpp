@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "talus/harness/analytic/truths.h"
+#include "talus/harness/support/nan_extremes.h"
 #include "truth/checks/evaluators.h"
 
 namespace talus::harness {
@@ -22,7 +23,7 @@ std::vector<MetricResult> EvaluateInclineTip(const Run& run, const Truth& truth,
   const Quat start = trajectory.samples.front().bodies[body].orientation;
   double tilt = 0.0;
   for (const Sample& sample : trajectory.samples) {
-    tilt = std::max(tilt, sample.bodies[body].orientation.angularDistance(start));
+    tilt = MaxKeepingNaN(tilt, sample.bodies[body].orientation.angularDistance(start));
   }
   const bool tips = InclineBoxOutcome(kind.angle, kind.mu, kind.width, kind.height) == InclineOutcome::Tips;
   MetricResult metric =

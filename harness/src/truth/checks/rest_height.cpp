@@ -7,6 +7,7 @@
 #include <cassert>
 #include <limits>
 
+#include "talus/harness/support/nan_extremes.h"
 #include "truth/checks/evaluators.h"
 
 namespace talus::harness {
@@ -27,11 +28,12 @@ std::vector<MetricResult> EvaluateRestHeight(const Run& run, const Truth& truth,
   for (const Sample& sample : trajectory.samples) {
     if (sample.time < halfTime) continue;
     const double y = sample.bodies[body].centerOfMass.dot(up);
-    low = std::min(low, y);
-    high = std::max(high, y);
+    low = MinKeepingNaN(low, y);
+    high = MaxKeepingNaN(high, y);
   }
   MetricResult jitter = MakeMetric("rest_height.jitter", "m");
-  jitter.measured = high - low;  // the last sample always qualifies, so this is finite
+  // The last sample always qualifies; a NaN sample makes this NaN (a fail).
+  jitter.measured = high - low;
   jitter.truth = 0.0;
   Judge(jitter, Tolerance{.absolute = kind.maxJitter, .relative = 0.0});
   return {height, jitter};

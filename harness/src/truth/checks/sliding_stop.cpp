@@ -18,6 +18,7 @@
 #include <limits>
 
 #include "talus/harness/analytic/truths.h"
+#include "talus/harness/support/nan_extremes.h"
 #include "truth/checks/evaluators.h"
 
 namespace talus::harness {
@@ -56,7 +57,7 @@ std::vector<MetricResult> EvaluateSlidingStop(const Run& run, const Truth& truth
     if (std::isnan(time.measured) && velocity.norm() < kStoppedSpeed) time.measured = sample.time;
     const Vec3 offset = state.centerOfMass - start;
     const Vec3 across = offset - offset.dot(up) * up - offset.dot(direction) * direction;
-    lateral = std::max(lateral, across.norm());
+    lateral = MaxKeepingNaN(lateral, across.norm());
   }
   time.truth = SlidingSlowTime(kind.v0, kind.mu, kind.g, kStoppedSpeed);
   time.truthIntegrator =

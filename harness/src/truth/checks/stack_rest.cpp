@@ -10,6 +10,7 @@
 #include <string>
 
 #include "talus/harness/analytic/truths.h"
+#include "talus/harness/support/nan_extremes.h"
 #include "truth/checks/evaluators.h"
 
 namespace talus::harness {
@@ -38,7 +39,8 @@ std::vector<MetricResult> EvaluateStackRest(const Run& run, const Truth& truth, 
       height.truth = StackRestHeight(kind.floor, kind.layerHeight, static_cast<int>(layer));
       Judge(height, truth.tolerance);
       metrics.push_back(height);
-      drift = std::max(drift, (last.bodies[body].centerOfMass - middle->bodies[body].centerOfMass).norm());
+      drift =
+          MaxKeepingNaN(drift, (last.bodies[body].centerOfMass - middle->bodies[body].centerOfMass).norm());
     }
   }
   MetricResult driftMetric = MakeMetric("stack_rest.drift", "m");

@@ -10,6 +10,7 @@
 #include <cassert>
 
 #include "talus/harness/analytic/torque_free_motion.h"
+#include "talus/harness/support/nan_extremes.h"
 #include "truth/checks/evaluators.h"
 
 namespace talus::harness {
@@ -28,8 +29,8 @@ std::vector<MetricResult> EvaluateTorqueFree(const Run& run, const Truth& truth,
     const BodyReading& state = sample.bodies[body];
     const Vec3 momentum = state.worldInertia * state.angularVelocity;
     const double energy = 0.5 * state.angularVelocity.dot(momentum);
-    momentumDrift = std::max(momentumDrift, (momentum - momentum0).norm() / invariants.angularMomentum);
-    energyDrift = std::max(energyDrift, std::abs(energy - invariants.energy) / invariants.energy);
+    momentumDrift = MaxKeepingNaN(momentumDrift, (momentum - momentum0).norm() / invariants.angularMomentum);
+    energyDrift = MaxKeepingNaN(energyDrift, std::abs(energy - invariants.energy) / invariants.energy);
   }
   // Drifts are fractions; the allowed one is the tolerance's relative part
   // (its absolute part, also a fraction here, adds to it).

@@ -40,7 +40,11 @@ struct PerturbedRuns {
   int copies = 0;                  ///< perturbed copies run besides the unperturbed run
   double amount = 0.0;             ///< m: each coordinate moved by at most this
   double errorSpread = 0.0;        ///< max - min of the error scalar over the run and its copies
-  std::vector<double> runSeconds;  ///< per run (unperturbed first): median s per step x steps
+  std::vector<double> runSeconds;  ///< per run (unperturbed first): its total wall seconds
+  /// Per run (unperturbed first): its error scalar (sweep.h RunErrorScalar),
+  /// +infinity for a run that failed or could not be measured. Empty in
+  /// files written before it was recorded.
+  std::vector<double> errors;
 };
 
 /// Everything one (run, backend) job produced.
@@ -59,8 +63,13 @@ struct RunResult {
   std::vector<MetricResult> metrics;      ///< truths first (file order), then drift, penetration, contacts
   double wallSecondsPerStepMedian = 0.0;  ///< seconds; 0 in deterministic mode
   double wallSecondsPerStepMean = 0.0;    ///< seconds; 0 in deterministic mode
-  /// With perturbed copies, wallSecondsPerStepMedian is the median over the
-  /// run and its copies (the mean stays the unperturbed run's).
+  /// Seconds: the sum of every step's wall time, the run's cost (also of a
+  /// run that failed: the steps up to the failure); 0 in deterministic
+  /// mode. With perturbed copies, the median over the run and its copies.
+  double wallSeconds = 0.0;
+  /// Seconds: the longest single step (0 in deterministic mode, NaN when the
+  /// file predates it); with perturbed copies, the longest of all the runs'.
+  double wallSecondsLongestStep = 0.0;
   PerturbedRuns perturbed;
   PlotSeries series;  ///< for the HTML report
   Replay replay;      ///< for the 3D replay; empty unless selected (RunnerOptions::replay)
@@ -139,8 +148,15 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
 /// `tick`, when set, is called with the step number every 1024 steps; a
 /// non-empty answer stops the recording with that reason. The first failed
 /// step or non-finite body state stops it too (Trajectory::failure).
+/// `wall`, when not null, gets the total and the longest of every step's
+/// wall time (every step, not only those kept in `stepSeconds`).
+struct StepWallTimes {
+  double total = 0.0;    ///< seconds
+  double longest = 0.0;  ///< seconds
+};
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
                   const std::function<bool(int)>& record, std::vector<double>* stepSeconds,
-                  bool detail = false, const std::function<std::string(int)>& tick = {});
+                  bool detail = false, const std::function<std::string(int)>& tick = {},
+                  StepWallTimes* wall = nullptr);
 
 }  // namespace talus::harness

@@ -50,7 +50,10 @@ std::optional<std::string> SweepPerturbationProblem(double amount);
 /// Each run followed by its `copies` perturbed copies (copy k: every
 /// dynamic body's initial position moved by PerturbDynamicPositions(amount,
 /// RepeatSeed(kSweepPerturbSeed, k - 1))); the copies keep the run's id
-/// with " perturbed copy k" appended. 0 copies returns `runs` unchanged.
+/// with " perturbed copy k" appended. Each copy's truths that name a body's
+/// start (free fall's y0, the projectile's x0, the bounce's drop height)
+/// move with that body, so a copy is judged against the truth of its own
+/// start. 0 copies returns `runs` unchanged.
 Result<std::vector<Run>> WithPerturbedCopies(const std::vector<Run>& runs, int copies, double amount);
 
 /// The spread of a point's error over its runs (RunErrorScalar of each):
@@ -61,10 +64,11 @@ double ErrorSpread(const std::vector<double>& errors);
 /// Folds RunAll's results over WithPerturbedCopies' runs back to one
 /// result per (run, backend): `resultCounts` holds, per original run, how
 /// many backends ran it (each copy ran on the same ones). Each kept result
-/// is the unperturbed run's, with `perturbed` filled in and its median wall
-/// time per step replaced by the median over the run and its copies (so
-/// RunCost is the median run's cost). An Error when the results do not
-/// match the counts (a copy ran on other backends).
+/// is the unperturbed run's, with `perturbed` filled in (every run's error
+/// and total wall time), its total wall time replaced by the median over
+/// the run and its copies (RunCost) and its longest step by the longest of
+/// all. An Error when the results do not match the counts (a copy ran on
+/// other backends).
 Result<std::vector<RunResult>> FoldPerturbedCopies(std::vector<RunResult> results,
                                                    const std::vector<int>& resultCounts, int copies,
                                                    double amount);

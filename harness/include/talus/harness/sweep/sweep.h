@@ -2,16 +2,18 @@
 // at several time steps and solver iterations, runner.h ExpandStepping),
 // and the sharding of long job lists.
 //
-// Each result with a truth gives one (cost, error) point: cost is its wall
-// time (median seconds per step x steps), error the run's error scalar
-// (RunErrorScalar). Points group into curves, one per (scenario instance,
-// backend, iterations); each backend's Pareto front over all its settings
-// is marked, and per scenario instance the backend most accurate at equal
-// cost is named (CompareFronts, definition in docs/testbed-sweeps.md), and
-// Talus's engine family is judged against every peer family (CompareFamilies:
-// issue 15's "at or below every peer").
-// Everything is a pure function of the results, in their order, so equal
-// results give equal text.
+// Each result of a scenario instance with a truth gives one (cost, error)
+// point: cost is the run's total wall time (RunResult::wallSeconds, never a
+// median over its steps), error the run's error scalar (RunErrorScalar);
+// a run that failed is a point too, infinitely bad at its cost. With
+// perturbed copies a point also carries its best and worst error over the
+// run and its copies. Points group into curves, one per (scenario
+// instance, backend, iterations); each backend's Pareto front is marked,
+// per instance the backend most accurate at equal cost is named
+// (CompareFronts), and every engine family is judged against every other
+// (CompareFamilies: better, tie or worse; definitions in
+// docs/testbed-sweeps.md). Everything is a pure function of the results,
+// in their order, so equal results give equal text.
 //
 // Sharding: a job is one (run, backend); shard i of n takes every job of
 // the runs whose index r (in the expanded run list) has r mod n == i, so
@@ -38,50 +40,70 @@ namespace talus::harness {
 /// failed to run.
 double RunErrorScalar(const RunResult& result);
 
-/// The cost of one result: wall seconds of the whole run (median seconds
-/// per step x steps); 0 in deterministic mode.
+/// The cost of one result: its total wall seconds (RunResult::wallSeconds:
+/// every step's time summed; with perturbed copies the median over the run
+/// and its copies); 0 in deterministic mode.
 double RunCost(const RunResult& result);
 
 /// One point of a run-time-against-error plot.
 struct CostErrorPoint {
-  double cost = 0.0;   ///< seconds (with perturbed copies: the median over the runs)
-  double error = 0.0;  ///< error scalar, >= 0, may be +infinity (the unperturbed run's)
-  double spread =
-      0.0;  ///< the error's noise floor: max - min over the run and its perturbed copies; 0 without
+  double cost = 0.0;   ///< seconds, RunCost
+  double error = 0.0;  ///< the unperturbed run's error scalar, >= 0; +infinity when it failed
+  /// max - min of the error over the run and its perturbed copies (shown
+  /// beside the error; 0 without copies, +infinity when only some failed).
+  double spread = 0.0;
+  /// The smallest and largest error over the run and its copies (+infinity
+  /// for a failed copy); NaN means "no copies": both are `error`.
+  double best = std::numeric_limits<double>::quiet_NaN();
+  double worst = std::numeric_limits<double>::quiet_NaN();
+  double longestStep = 0.0;  ///< seconds: the run's longest step (NaN when not recorded)
+  /// Seconds: the cheapest of the run's and its copies' totals; NaN means
+  /// "no copies": `cost`.
+  double cheapestRun = std::numeric_limits<double>::quiet_NaN();
 };
 
-/// Indices of the Pareto-optimal points (no other point has cost <= and
-/// error <= with one strictly smaller), by increasing cost; of equal points
-/// the first is kept. Infinite errors are never on the front unless every
-/// point is infinite (then none is).
+/// The cost at which a point counts as affordable: the cheapest of its runs
+/// (its cost without copies). A budget buys a point when one of its runs
+/// was that cheap, so a difference of costs within the points' own timing
+/// noise never makes one side "have nothing that cheap".
+double AffordableCost(const CostErrorPoint& point);
+
+/// A point's best and worst error (its `error` when it has no copies); a NaN
+/// error counts as +infinity (nothing measured).
+double BestError(const CostErrorPoint& point);
+double WorstError(const CostErrorPoint& point);
+
+/// Indices of the Pareto-optimal points by (cost, worst error): no other
+/// point has cost <= and worst <= with one strictly smaller; by increasing
+/// cost, of equal points the first kept. Infinite worsts are never on it.
 std::vector<int> ParetoFront(const std::vector<CostErrorPoint>& points);
 
-/// The best error a front reaches for a budget: the smallest error among
-/// the points with cost <= budget, +infinity when none is that cheap.
-double FrontErrorAt(const std::vector<CostErrorPoint>& points, double budget);
-
-/// The point FrontErrorAt reads: the first of smallest error among those
-/// with cost <= budget; nullptr when none is that cheap.
+/// The point a budget buys: among the points with AffordableCost <= budget, the one
+/// of smallest worst error, then smallest best error, then the first;
+/// nullptr when none is that cheap. A failed run's point is chosen only
+/// when nothing within the budget did better, so a crash stands at its cost.
 const CostErrorPoint* FrontPointAt(const std::vector<CostErrorPoint>& points, double budget);
 
-/// The noise floor of comparing two front values (FrontPointAt of each,
-/// nullptr for none): the larger of the two points' spreads. A difference
-/// of errors no larger than it is a tie: one of the two points already
-/// moved that much between round-off-perturbed copies of itself.
-double NoiseFloor(const CostErrorPoint* a, const CostErrorPoint* b);
+/// WorstError of FrontPointAt, +infinity when no point is that cheap.
+double FrontErrorAt(const std::vector<CostErrorPoint>& points, double budget);
 
-/// Whether errors `a` and `b` are tied under `floor`: equal (inf with inf
-/// included) or |a - b| <= floor. With floor 0 this is exact equality.
-bool ErrorsTie(double a, double b, double floor);
+/// Who is more accurate at one budget, each side given by the point its
+/// budget buys (nullptr: nothing that cheap, as bad as a failure).
+enum class BudgetOutcome { kFirst, kTie, kSecond };
+/// A side with an infinite worst error (a failed run or copy, or no point)
+/// loses to a side without one; both infinite is a tie. Otherwise a side is
+/// better only when its worst copy is below the other side's best copy, so
+/// no draw of the round-off lottery could reverse the order; overlapping
+/// ranges, equal errors included, are a tie.
+BudgetOutcome CompareAtBudget(const CostErrorPoint* first, const CostErrorPoint* second);
 
 /// Which of several fronts (one per backend) is most accurate at equal
 /// cost. The compared budgets are the costs of every front point that are
 /// >= the matched cost (the largest of the fronts' cheapest costs, the
-/// least budget at which every backend has a result); at each budget the
-/// backend with the smallest FrontErrorAt wins, unless another backend's
-/// error ties with it under their NoiseFloor (then nobody wins that
-/// budget). The winner is the backend with the most wins, -1 when there is
-/// no budget or a tie.
+/// least budget at which every backend has a result); at each budget a
+/// backend wins when CompareAtBudget puts it before every other. The
+/// winner is the backend with the most wins, -1 when there is no budget or
+/// a tie.
 struct FrontComparison {
   int winner = -1;                      ///< index into the fronts, -1 for none
   std::vector<int> wins;                ///< per front: budgets won
@@ -108,49 +130,54 @@ inline constexpr std::string_view kTalusFamily = "Talus";
 std::string EngineFamily(const RunResult& result);
 
 /// One engine family's points in one scenario instance: the union of its
-/// variants' points (every setting of every variant).
+/// variants' points (every setting of every variant, failed runs included).
 struct FamilyPoints {
   std::string family;                 ///< e.g. "Bullet"
   std::vector<std::string> backends;  ///< its variants that have points, in the results' order
   std::vector<CostErrorPoint> points;
 };
 
-/// Talus's family against one peer family at the compared budgets.
-struct FamilyMargin {
-  std::string family;       ///< the peer family
-  bool atOrBelow = false;   ///< at every budget Talus's best error <= the peer's or ties with it (ErrorsTie)
-  double budget = 0.0;      ///< s: the budget where margin - floor is largest (the first such)
-  double talusError = 0.0;  ///< Talus family's FrontErrorAt(budget)
-  double peerError = 0.0;   ///< the peer family's FrontErrorAt(budget)
-  double margin = 0.0;      ///< talusError - peerError (0 when equal, +inf when only the peer is finite)
-  double floor = 0.0;       ///< NoiseFloor of the two points compared at `budget`
-};
+/// The verdict between two families in one instance.
+enum class PairOutcome { kFirstBetter, kTie, kSecondBetter };
+std::string_view PairOutcomeName(PairOutcome outcome);
 
-/// The issue-15 criterion for one scenario instance.
-enum class FamilyOutcome {
-  kAtOrBelow,  ///< Talus's family front at or below every peer family's at every budget
-  kAbove,      ///< some peer family is strictly better at some budget
-  kNoTalus,    ///< no Talus result with a truth: nothing to judge
-  kNoPeer,     ///< Talus alone: nothing to compare with
-};
-std::string_view FamilyOutcomeName(FamilyOutcome outcome);
-
-struct FamilyVerdict {
-  FamilyOutcome outcome = FamilyOutcome::kNoTalus;
-  std::vector<FamilyPoints> families;  ///< every family present, in the results' order
-  double matchedCost = 0.0;            ///< s: ComparedBudgets over the families' fronts
+/// Two families compared at every budget: the cost of every point of
+/// either (failed runs included), from the cheapest up, so a family that
+/// has nothing that cheap, or only a crash, loses those budgets (the cost
+/// axis), and at each budget CompareAtBudget (the error axis). The first
+/// is better when it wins some budget and loses none; the second likewise;
+/// otherwise a tie (no budget decided, or each won some: `split`).
+struct FamilyPair {
+  std::string first, second;
+  PairOutcome outcome = PairOutcome::kTie;
+  bool split = false;  ///< each won some budget (counted as a tie)
   int budgets = 0;
-  std::vector<FamilyMargin> peers;  ///< one per peer family, in `families` order
+  int firstWins = 0, secondWins = 0;
+  /// The budget shown: the first won by the better family, or, in a tie,
+  /// the first won by either (the first budget when none was won).
+  double budget = 0.0;
+  /// Best and worst error each family's budget point reached there
+  /// (+infinity: a failure or nothing that cheap).
+  double firstBest = 0.0, firstWorst = 0.0, secondBest = 0.0, secondWorst = 0.0;
+  /// The cost axis: the cost the first family needs to reach the second's
+  /// most accurate point (its smallest worst error, the cheapest such),
+  /// over that point's cost: "first needs x the cost for second's error";
+  /// +infinity when the first never reaches it, NaN when the costs are 0
+  /// (deterministic mode). secondCostRatio the other way round.
+  double firstCostRatio = 0.0, secondCostRatio = 0.0;
+};
+FamilyPair CompareFamilyPair(const FamilyPoints& first, const FamilyPoints& second);
+
+/// Every family present in one instance and every pair of them.
+struct FamilyVerdict {
+  std::vector<FamilyPoints> families;  ///< with points, Talus first, then in the results' order
+  std::vector<FamilyPair> pairs;       ///< every pair (i < j in `families`), so Talus's come first
 };
 
-/// Compares the family named `talus` with every other family: each
-/// family's front is the Pareto front of its points; the budgets are
-/// ComparedBudgets over those fronts; at each budget the errors are
-/// compared under the two points' NoiseFloor (exactly when both spreads are
-/// 0), ties counting as at or below. A
-/// family whose every error is infinite stands at its cheapest cost with
-/// an infinite error; a family without points is skipped.
-FamilyVerdict CompareFamilies(std::vector<FamilyPoints> families, std::string_view talus = kTalusFamily);
+/// Compares every family with every other (families without points are
+/// dropped: nothing ran with a truth). The family named `first` is moved to
+/// the front, so its pairs read "first against each peer".
+FamilyVerdict CompareFamilies(std::vector<FamilyPoints> families, std::string_view first = kTalusFamily);
 
 /// One curve: a backend at one iteration count across the time steps.
 struct SweepCurve {
@@ -168,23 +195,34 @@ struct SweepGroup {
   std::vector<SweepCurve> curves;     ///< backend-major in the results' backend order, then iterations
   std::vector<std::string> backends;  ///< compared, in the results' order
   FrontComparison comparison;         ///< over `backends`
-  FamilyVerdict families;             ///< Talus's engine family against every peer family
+  FamilyVerdict families;             ///< every engine family against every other
 };
 
 /// The backends a sweep analysis treats as having no iteration setting:
 /// ODE's dWorldStep solves its LCP directly, so iterations do not apply.
 inline const std::vector<std::string> kSweepSingleSetting{"ode-step", "ode-step-tuned"};
 
-/// Groups the results with a truth into curves; backends in
+/// Groups the results of every instance with a truth into curves (a failed
+/// run of such an instance is a point of infinite error at its cost; an
+/// instance no run measured a truth in is left out); backends in
 /// `singleSetting` ignore iterations (e.g. "ode-step"): only their first
 /// iteration count is kept.
 std::vector<SweepGroup> AnalyseSweep(const ResultsFile& file, const std::vector<std::string>& singleSetting);
 
+/// Per pair of families, over the instances where both ran: how many the
+/// first was better in, tied, and the second was better in.
+struct FamilyTally {
+  std::string first, second;
+  int firstBetter = 0, ties = 0, secondBetter = 0;
+  int splits = 0;  ///< of the ties, those where each won some budget
+};
+/// In the order pairs first appear (Talus's first).
+std::vector<FamilyTally> TallyFamilies(const std::vector<SweepGroup>& groups);
+
 /// The analysis as JSON (2-space indented, infinities as null) and as a
 /// Markdown section (per group: the winner, wins, error at the matched
-/// cost, each backend's front; then the family verdict per group, its
-/// worst budget against each peer family, and the count of instances where
-/// Talus's family is at or below every peer family).
+/// cost; the family tallies; per group each family pair's verdict; each
+/// backend's front with cost and longest step).
 std::string SweepToJson(const std::vector<SweepGroup>& groups);
 std::string SweepMarkdown(const std::vector<SweepGroup>& groups);
 
