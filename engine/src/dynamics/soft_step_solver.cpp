@@ -88,15 +88,13 @@ struct PassBody {
 // The velocity half of the integrator for one sub-step: as
 // IntegrateVelocities (dynamics/integrator.h) but the accumulated forces are
 // kept, since every sub-step applies them; the step clears them at its end.
-int IntegrateSubstepVelocities(std::span<BodySim> bodies, const Vec3& gravity, RotationIntegrator rotation,
-                               double h) {
+int IntegrateSubstepVelocities(std::span<BodySim> bodies, const Vec3& gravity, double h) {
   int integrated = 0;
   for (BodySim& body : bodies) {
     if (body.type != BodyType::Dynamic || !body.awake) continue;
     body.startLinearVelocity = body.linearVelocity;
     body.linearVelocity += h * (gravity + body.invMass * body.force);
     body.freeLinearVelocity = body.linearVelocity;
-    if (rotation == RotationIntegrator::ImplicitGyroscopic) body.angularVelocity = GyroscopicStep(body, h);
     body.angularVelocity += h * (body.invInertiaWorld * body.torque);
     ++integrated;
   }
@@ -355,7 +353,7 @@ int SoftStepSolver::Step(std::span<BodySim> bodies, const WorldSettings& setting
             : bodies.subspan(static_cast<std::size_t>(begin), static_cast<std::size_t>(end - begin));
     switch (job.kind) {
       case PhaseJob::Kind::IntegrateVelocities: {
-        const int n = IntegrateSubstepVelocities(chunk, settings.gravity, settings.rotation, m_h);
+        const int n = IntegrateSubstepVelocities(chunk, settings.gravity, m_h);
         if (phase < firstPositions) integrated.fetch_add(n, std::memory_order_relaxed);
         return;
       }
