@@ -292,7 +292,9 @@ void CheckHeavyOnLight(double ratio) {
   // sinks 0.11 mm (6.6e-4) less than the upright model says; that model
   // does not describe turned supports, so only the bound above is asserted
   // there (docs/dynamics.md, "The soft step").
-  if (ratio <= 100.0) EXPECT_NEAR(sank, ground + top, 1e-4 * (ground + top)) << "ratio " << ratio;
+  if (ratio <= 100.0) {
+    EXPECT_NEAR(sank, ground + top, 1e-4 * (ground + top)) << "ratio " << ratio;
+  }
 }
 
 TEST(SoftStep, HeavyPlankOnLightCubesAt100To1) { CheckHeavyOnLight(100.0); }
