@@ -34,6 +34,7 @@ std::vector<MetricResult> EvaluateRestHeight(const Run& run, const Truth& truth,
   jitter.measured = high - low;  // the last sample always qualifies, so this is finite
   jitter.truth = 0.0;
   Judge(jitter, Tolerance{.absolute = kind.maxJitter, .relative = 0.0});
+  jitter.reason = BoundReason(truth, "maxJitter");
   return {height, jitter};
 }
 
