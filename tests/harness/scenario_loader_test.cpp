@@ -49,7 +49,7 @@ TEST(ScenarioLoader, BoxRestMapsEveryField) {
   ASSERT_EQ(s.truths.size(), 1u);
   EXPECT_EQ(s.truths[0].body, 1);
   EXPECT_EQ(std::get<RestHeightTruth>(s.truths[0].kind).height, 0.5);
-  EXPECT_EQ(s.truths[0].tolerance.absolute, 0.01);
+  EXPECT_EQ(s.truths[0].tolerance.absolute, 0.004);
 }
 
 TEST(ScenarioLoader, AxisAngleOrientationBecomesTheSameQuaternion) {

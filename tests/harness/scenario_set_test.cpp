@@ -38,7 +38,7 @@ TEST(ScenarioSet, EveryScenarioFileLoadsIntoItsRuns) {
       {"sliding/box_slide.json", 6},
       {"sliding/box_slide_directions.json", 12},
       {"sliding/box_incline.json", 5},
-      {"sliding/tall_box_tipping.json", 4},
+      {"sliding/tall_box_tipping.json", 5},
       {"tumbling/box_free_fall.json", 1},
       {"tumbling/box_torque_free.json", 1},
       {"tumbling/box_intermediate_axis.json", 1},
@@ -151,12 +151,21 @@ TEST(ScenarioSet, SweepsStraddleTheSlidingAndTippingThresholds) {
   EXPECT_EQ(slides, 2);
   EXPECT_EQ(holds, 3);
   std::vector<InclineOutcome> outcomes;
+  std::vector<double> offsets;  // degrees from the tipping threshold
   for (const harness::Run& run : Load("sliding/tall_box_tipping.json")) {
     const auto& t = std::get<InclineTipTruth>(run.scenario.truths[0].kind);
     outcomes.push_back(InclineBoxOutcome(t.angle, t.mu, t.width, t.height));
+    offsets.push_back((t.angle - std::atan(t.width / t.height)) * 180.0 / std::numbers::pi);
+    // The friction the truth assumes is the bodies' (sqrt combine of equals).
+    EXPECT_EQ(run.scenario.bodies[0].friction, t.mu) << run.id;
+    EXPECT_EQ(run.scenario.bodies[1].friction, t.mu) << run.id;
   }
-  EXPECT_EQ(outcomes, (std::vector<InclineOutcome>{InclineOutcome::Stays, InclineOutcome::Stays,
-                                                   InclineOutcome::Tips, InclineOutcome::Tips}));
+  EXPECT_EQ(outcomes,
+            (std::vector<InclineOutcome>{InclineOutcome::Stays, InclineOutcome::Stays, InclineOutcome::Tips,
+                                         InclineOutcome::Tips, InclineOutcome::Slides}));
+  // The two runs nearest the threshold bracket it 0.3 degree either side.
+  EXPECT_NEAR(offsets[1], -0.3, 1e-9);
+  EXPECT_NEAR(offsets[2], 0.3, 1e-9);
 }
 
 TEST(ScenarioSet, SpinTruthsDescribeTheirBox) {
@@ -197,6 +206,7 @@ json SlideDoc() {
                {"name": "hull", "shape": {"kind": "hull", "points": [[0, 0, 0], [3, 0, 0], [4, 1, 0], [0, 0, 1], [3, 0, 1], [4, 1, 1]]},
                 "motion": "dynamic", "position": [0, 0, 3], "density": 1000}],
     "truths": [{"kind": "sliding_stop", "body": "box", "v0": 1, "mu": 0.5, "g": 9.81,
+                "maxLateral": {"value": 0.01, "reason": "1% of the friction force across the path"},
                 "tolerance": {"relative": 0.01, "reason": "a friction coefficient 1% off"}}]})");
 }
 
@@ -206,10 +216,23 @@ std::string Refusal(const json& doc) {
   return runs ? std::string() : runs.GetError().message;
 }
 
-// Every truth needs a tolerance with its reason; the truths below are about
-// other fields, so they get one when they have none.
+// Every truth needs a tolerance with its reason, and every secondary bound
+// of its kind a value with its reason; the truths below are about other
+// fields, so they get them when they have none.
 json WithTolerance(json truth) {
   if (!truth.contains("tolerance")) truth["tolerance"] = {{"absolute", 0.01}, {"reason", "one slop"}};
+  const std::string kind = truth["kind"].get<std::string>();
+  const auto bound = [&](const char* name, double value) {
+    if (!truth.contains(name)) truth[name] = {{"value", value}, {"reason", "one slop of it"}};
+  };
+  if (kind == "sliding_stop") bound("maxLateral", 0.01);
+  if (kind == "rest_height") bound("maxJitter", 0.001);
+  if (kind == "stack_rest") bound("maxDrift", 0.004);
+  if (kind == "hull_rest") bound("maxFaceAngle", 0.05);
+  if (kind == "incline_tip") {
+    bound("tiltThreshold", 0.5);
+    bound("maxStayTilt", 0.025);
+  }
   return truth;
 }
 
@@ -229,8 +252,8 @@ TEST(ScenarioSet, BadSlidingDirectionsAreRefused) {
   truth["direction"] = {1, 0};
   ExpectRefused(truth, "/truths/0/direction: needs at least 3 items");
   truth["direction"] = {1, 0, 0};
-  truth["maxLateral"] = -0.1;
-  ExpectRefused(truth, "/truths/0/maxLateral: must be >= 0");
+  truth["maxLateral"]["value"] = -0.1;
+  ExpectRefused(truth, "/truths/0/maxLateral/value: must be >= 0");
 }
 
 TEST(ScenarioSet, BadStackLayersAreRefused) {
@@ -263,8 +286,8 @@ TEST(ScenarioSet, HullRestNeedsAStableFaceOfAHullBody) {
   truth["faceNormal"] = {0, 0, 0};
   ExpectRefused(truth, "/truths/0/faceNormal: normal has zero length");
   truth["faceNormal"] = {0, -1, 0};
-  truth["maxFaceAngle"] = -1;
-  ExpectRefused(truth, "/truths/0/maxFaceAngle: must be >= 0");
+  truth["maxFaceAngle"] = {{"value", -1}, {"reason", "a neighbouring face is further"}};
+  ExpectRefused(truth, "/truths/0/maxFaceAngle/value: must be >= 0");
   truth.erase("maxFaceAngle");
   json doc = SlideDoc();
   doc["truths"][0] = WithTolerance(truth);
@@ -286,8 +309,10 @@ TEST(ScenarioSet, BadInclineFieldsAreRefused) {
       {"kind", "incline_tip"}, {"body", "box"}, {"angle", 0.3}, {"mu", 0.8}, {"width", 0}, {"height", 1}};
   ExpectRefused(tip, "/truths/0/width: must be > 0");
   tip["width"] = 0.2;
-  tip["tiltThreshold"] = 0;
-  ExpectRefused(tip, "/truths/0/tiltThreshold: must be > 0");
+  tip["tiltThreshold"] = {{"value", 0}, {"reason", "fallen over"}};
+  ExpectRefused(tip, "/truths/0/tiltThreshold/value: must be > 0");
+  tip["tiltThreshold"]["value"] = 0.02;
+  ExpectRefused(tip, "/truths/0/maxStayTilt/value: must be below tiltThreshold");
   // An angle within the tolerance of the tipping threshold atan(0.2) = 11.3
   // degrees is not decided by the physics.
   tip.erase("tiltThreshold");
@@ -296,7 +321,7 @@ TEST(ScenarioSet, BadInclineFieldsAreRefused) {
   ExpectRefused(tip, "/truths/0/angle: lies 0.149");
   tip["angle"] = 0.3;
   json doc = SlideDoc();
-  doc["truths"][0] = tip;
+  doc["truths"][0] = WithTolerance(tip);
   EXPECT_TRUE(ParseScenarioText(doc.dump(), "t.json"));
 }
 
@@ -331,13 +356,70 @@ TEST(ScenarioSet, GateDefaultsToOnAndMustBeABoolean) {
   ASSERT_TRUE(runs);
   EXPECT_TRUE(runs.Value()[0].scenario.truths[0].gate);
   doc["truths"][0]["gate"] = false;
+  // Out of the gate for every backend only with a written reason.
+  std::string message = Refusal(doc);
+  EXPECT_NE(message.find("/truths/0/gate: is false without a \"gateReason\""), std::string::npos) << message;
+  doc["truths"][0]["gateReason"] = " ";
+  EXPECT_NE(Refusal(doc).find("/truths/0/gate: is false without"), std::string::npos);
+  doc["truths"][0]["gateReason"] = "every engine measured stops 3% short";
   runs = ParseScenarioText(doc.dump(), "t.json");
-  ASSERT_TRUE(runs);
+  ASSERT_TRUE(runs) << runs.GetError().message;
   EXPECT_FALSE(runs.Value()[0].scenario.truths[0].gate);
+  EXPECT_EQ(runs.Value()[0].scenario.truths[0].gateReason, "every engine measured stops 3% short");
+  doc["truths"][0]["gate"] = true;
+  message = Refusal(doc);
+  EXPECT_NE(message.find("/truths/0/gateReason: is given but the truth is gated"), std::string::npos)
+      << message;
   doc["truths"][0]["gate"] = "no";
-  const std::string message = Refusal(doc);
+  message = Refusal(doc);
   EXPECT_NE(message.find("/truths/0/gate: must be of type boolean, not string"), std::string::npos)
       << message;
+}
+
+TEST(ScenarioSet, EverySecondaryBoundNeedsItsReason) {
+  // Written straight into the document: WithTolerance would fill the bound in.
+  json doc = SlideDoc();
+  const auto refusal = [&doc](const json& truth) {
+    doc["truths"][0] = truth;
+    return Refusal(doc);
+  };
+  json truth = SlideDoc()["truths"][0];
+  truth.erase("maxLateral");
+  EXPECT_NE(refusal(truth).find("/truths/0: missing required field \"maxLateral\""), std::string::npos);
+  truth["maxLateral"] = 0.01;  // a bare number, the old form
+  EXPECT_NE(refusal(truth).find("/truths/0/maxLateral: must be of type object"), std::string::npos);
+  truth["maxLateral"] = {{"value", 0.01}};
+  EXPECT_NE(refusal(truth).find("/truths/0/maxLateral: missing required field \"reason\""),
+            std::string::npos);
+  truth["maxLateral"]["reason"] = "\t ";
+  EXPECT_NE(refusal(truth).find("/truths/0/maxLateral/reason: is empty; say where the bound comes from"),
+            std::string::npos);
+  truth["maxLateral"]["reason"] = "1% of the friction force across the path";
+  doc["truths"][0] = truth;
+  auto runs = ParseScenarioText(doc.dump(), "t.json");
+  ASSERT_TRUE(runs) << runs.GetError().message;
+  EXPECT_EQ(runs.Value()[0].scenario.truths[0].boundReasons.at("maxLateral"),
+            "1% of the friction force across the path");
+}
+
+TEST(ScenarioSet, BoxLandingNeedsADynamicBoxGravityAndARestInsideTheRun) {
+  json landing = {{"kind", "box_landing"}, {"body", "hull"}, {"floor", 0}, {"restAfter", 0.05}};
+  for (const char* name : {"maxFaceAngle", "maxMotion", "maxEnergyRise", "maxPenetration"}) {
+    landing[name] = {{"value", 0.01}, {"reason", "one slop"}};
+  }
+  ExpectRefused(landing, "/truths/0/body: box_landing needs a dynamic box body");
+  landing["body"] = "box";
+  landing["restAfter"] = 0.2;  // the run is 10 steps of 0.01 s
+  ExpectRefused(landing, "/truths/0/restAfter: is after the end of the run");
+  landing["restAfter"] = 0.05;
+  landing["maxFaceAngle"]["value"] = 1.0;
+  ExpectRefused(landing, "/truths/0/maxFaceAngle/value: must be <= 0.785");
+  landing["maxFaceAngle"]["value"] = 0.01;
+  json doc = SlideDoc();
+  doc["truths"][0] = WithTolerance(landing);
+  ASSERT_TRUE(ParseScenarioText(doc.dump(), "t.json"));
+  doc["world"]["gravity"] = {0, 0, 0};
+  EXPECT_NE(Refusal(doc).find("/truths/0/kind: box_landing needs gravity"), std::string::npos);
 }
 
 TEST(ScenarioSet, BadPerTargetSweepsAreRefused) {

@@ -78,12 +78,26 @@ TEST(TruthEvaluators, StackAtItsRestHeightsPassesAndACreepingBoxFails) {
   EXPECT_TRUE(AllPass(metrics));
   EXPECT_EQ(metrics[1].name, "stack_rest.height.1.box1");
   EXPECT_DOUBLE_EQ(metrics[1].truth, 0.75);
+  // Layer l is judged with (l + 1) times the per-contact tolerance: the top
+  // box stands on two contacts, the bottom one on one.
+  EXPECT_DOUBLE_EQ(metrics[0].tolerance.absolute, truth.tolerance.absolute);
+  EXPECT_DOUBLE_EQ(metrics[1].tolerance.absolute, 2.0 * truth.tolerance.absolute);
+  // Both boxes 1.5 contacts' depths low: the top box passes, the bottom one fails.
+  for (const int body : {1, 2}) {
+    trajectory.samples.back().bodies[body].centerOfMass.y() -= 1.5 * truth.tolerance.absolute;
+  }
+  metrics = EvaluateTruth(run, truth, trajectory);
+  EXPECT_FALSE(metrics[0].pass);
+  EXPECT_TRUE(metrics[1].pass);
+  trajectory.samples.back() = MakeSample(run, run.steps, StartStates(run));
   // The top box slides 2 cm sideways in the second half: heights fine, drift not.
   trajectory.samples.back().bodies[2].centerOfMass.x() += 0.02;
   metrics = EvaluateTruth(run, truth, trajectory);
   EXPECT_TRUE(metrics[1].pass);
   EXPECT_FALSE(Find(metrics, "stack_rest.drift").pass);
   EXPECT_NEAR(Find(metrics, "stack_rest.drift").measured, 0.02, 1e-15);
+  // The drift metric carries its bound's written reason.
+  EXPECT_EQ(Find(metrics, "stack_rest.drift").reason, truth.boundReasons.at("maxDrift"));
 }
 
 TEST(TruthEvaluators, HullOnItsFaceAtTheCentroidHeightPassesAndOnItsSideFails) {
@@ -132,11 +146,16 @@ TEST(TruthEvaluators, InclineSlideIsJudgedAgainstTheIntegratorSum) {
 }
 
 TEST(TruthEvaluators, TippingIsAThresholdOnTheLargestTilt) {
-  for (size_t index : {0u, 2u}) {  // 6 degrees stays, 18 degrees tips
+  // 6 degrees stays, 14.34 tips, 20 degrees at mu = 0.2 slides upright.
+  for (size_t index : {0u, 2u, 4u}) {
     const harness::Run run = LoadRun("sliding/tall_box_tipping.json", index);
     const Truth& truth = run.scenario.truths[0];
+    const auto& kind = std::get<InclineTipTruth>(truth.kind);
     const bool tips = index == 2;
-    for (const double tilt : {0.01, 1.2}) {
+    const char* outcome = tips ? "tips" : index == 0 ? "stays" : "slides";
+    // A slop's worth of tilt, a tilt between that and tipped (neither
+    // staying nor tipping: fails both), and a fall.
+    for (const double tilt : {0.01, 0.2, 1.2}) {
       Trajectory trajectory = Begin(run);
       std::vector<BodyReading> turned = StartStates(run);
       turned[1].orientation = Quat(Eigen::AngleAxisd(tilt, Vec3::UnitZ())) * turned[1].orientation;
@@ -145,10 +164,97 @@ TEST(TruthEvaluators, TippingIsAThresholdOnTheLargestTilt) {
       const auto metrics = EvaluateTruth(run, truth, trajectory);
       ASSERT_EQ(metrics.size(), 1u);
       EXPECT_NEAR(metrics[0].measured, tilt, 1e-12);  // the largest, not the last
-      EXPECT_EQ(metrics[0].pass, tips == (tilt > 0.5)) << run.id << " tilt " << tilt;
-      EXPECT_EQ(metrics[0].name, tips ? "incline_tip.tilt.tips" : "incline_tip.tilt.stays");
+      const bool expected = tips ? tilt > kind.tiltThreshold : tilt <= kind.maxStayTilt;
+      EXPECT_EQ(metrics[0].pass, expected) << run.id << " tilt " << tilt;
+      EXPECT_EQ(metrics[0].pass, tips ? tilt > 0.5 : tilt < 0.1) << run.id << " tilt " << tilt;
+      EXPECT_EQ(metrics[0].name, std::string("incline_tip.tilt.") + outcome);
     }
   }
+}
+
+// A box_toss trajectory made by hand: the box flies, lands flat on its
+// largest face (half extent 0.125 m) and rests there.
+Trajectory Landing(const harness::Run& run, double restHeight, const Quat& restOrientation) {
+  Trajectory trajectory = Begin(run);
+  const double g = 9.81;
+  for (int n = 1; n <= run.steps; ++n) {
+    std::vector<BodyReading> states = StartStates(run);
+    BodyReading& box = states[1];
+    box.mass = 125.0;
+    box.worldInertia = Mat3::Identity();
+    const double t = n * run.timeStep;
+    if (t < 0.5) {  // in flight, on the parabola (energy constant)
+      box.centerOfMass = run.scenario.bodies[1].position + Vec3(2 * t, t - 0.5 * g * t * t, 0);
+      box.linearVelocity = Vec3(2, 1 - g * t, 0);
+    } else {  // at rest
+      box.centerOfMass = Vec3(1.5, restHeight, 0);
+      box.orientation = restOrientation;
+      box.linearVelocity = Vec3::Zero();
+      box.angularVelocity = Vec3::Zero();
+    }
+    trajectory.samples.push_back(MakeSample(run, n, states));
+  }
+  // The start's velocities of the box are part of its energy too.
+  trajectory.samples.front().bodies[1].mass = 125.0;
+  trajectory.samples.front().bodies[1].worldInertia = Mat3::Identity();
+  return trajectory;
+}
+
+TEST(TruthEvaluators, ABoxLandingFlatAtItsHalfExtentPassesAndOneInTheAirOrOnEdgeFails) {
+  const harness::Run run = LoadRun("tumbling/box_toss.json");
+  const Truth& truth = run.scenario.truths[1];
+  ASSERT_TRUE(std::holds_alternative<BoxLandingTruth>(truth.kind));
+  // Flat on the 1 x 0.5 m face (body z up): the geometric height 0.125 m.
+  const Quat flat(Eigen::AngleAxisd(0.5 * std::numbers::pi, Vec3::UnitX()));
+  auto metrics = EvaluateTruth(run, truth, Landing(run, 0.125, flat));
+  ASSERT_EQ(metrics.size(), 5u);
+  EXPECT_TRUE(AllPass(metrics));
+  EXPECT_NEAR(Find(metrics, "box_landing.height").truth, 0.125, 1e-15);
+  EXPECT_LT(Find(metrics, "box_landing.face_angle").measured, 1e-7);
+  // Upside down on the same face is the same rest.
+  const Quat upsideDown(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Vec3::UnitX()));
+  EXPECT_TRUE(AllPass(EvaluateTruth(run, truth, Landing(run, 0.125, upsideDown))));
+  // Standing on its end (the 0.5 x 0.25 face): the height is 0.5 m there.
+  const Quat end(Eigen::AngleAxisd(0.5 * std::numbers::pi, Vec3::UnitZ()));
+  metrics = EvaluateTruth(run, truth, Landing(run, 0.5, end));
+  EXPECT_TRUE(AllPass(metrics));
+  EXPECT_NEAR(Find(metrics, "box_landing.height").truth, 0.5, 1e-15);
+  // Resting at 0.125 m on the face it does not show (standing on its end):
+  // the box is 37.5 cm into the floor.
+  EXPECT_FALSE(Find(EvaluateTruth(run, truth, Landing(run, 0.125, end)), "box_landing.height").pass);
+  // Balanced on an edge, 45 degrees between two faces.
+  const Quat edge(Eigen::AngleAxisd(0.25 * std::numbers::pi, Vec3::UnitX()) * flat);
+  EXPECT_FALSE(Find(EvaluateTruth(run, truth, Landing(run, 0.125, edge)), "box_landing.face_angle").pass);
+  // Never landed: 1 km below the floor.
+  EXPECT_FALSE(Find(EvaluateTruth(run, truth, Landing(run, -1000.0, flat)), "box_landing.height").pass);
+}
+
+TEST(TruthEvaluators, ABoxLandingThatGainsEnergyMovesOrSinksFails) {
+  const harness::Run run = LoadRun("tumbling/box_toss.json");
+  const Truth& truth = run.scenario.truths[1];
+  const auto& kind = std::get<BoxLandingTruth>(truth.kind);
+  const Quat flat(Eigen::AngleAxisd(0.5 * std::numbers::pi, Vec3::UnitX()));
+  // A kick upwards after the landing: energy rises by m g (0.5 m).
+  Trajectory kicked = Landing(run, 0.125, flat);
+  kicked.samples[kicked.samples.size() / 2].bodies[1].centerOfMass.y() += 0.5;
+  auto metrics = EvaluateTruth(run, truth, kicked);
+  EXPECT_NEAR(Find(metrics, "box_landing.energy_rise").measured, 0.5, 1e-9);
+  EXPECT_FALSE(Find(metrics, "box_landing.energy_rise").pass);
+  // Still creeping at the end: moves after restAfter.
+  Trajectory creeping = Landing(run, 0.125, flat);
+  for (Sample& sample : creeping.samples) {
+    if (sample.time >= kind.restAfter)
+      sample.bodies[1].centerOfMass.x() += 0.01 * (sample.time - kind.restAfter);
+  }
+  EXPECT_FALSE(Find(EvaluateTruth(run, truth, creeping), "box_landing.motion").pass);
+  // A contact deeper than the bound at some step.
+  Trajectory sunk = Landing(run, 0.125, flat);
+  sunk.samples[40].maxPenetration = 2.0 * kind.maxPenetration;
+  EXPECT_FALSE(Find(EvaluateTruth(run, truth, sunk), "box_landing.penetration").pass);
+  // A NaN state is never hidden by the maxima.
+  Trajectory broken = Landing(run, 0.125, flat);
+  broken.samples[40].bodies[1].linearVelocity.x() = std::nan("");
+  EXPECT_FALSE(Find(EvaluateTruth(run, truth, broken), "box_landing.energy_rise").pass);
 }
 
 // States of a box turning at constant world angular velocity w about the

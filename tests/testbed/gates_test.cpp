@@ -2,9 +2,10 @@
 // for one backend is still judged and reported but does not fail that
 // backend's check (and only that backend's); and Talus with one piece of
 // physics deliberately broken (friction 3% high, restitution 2.5% low, a
-// box whose tipping threshold sits 1.5 degrees off, gravity 1% strong in a
-// toss) fails the check at the shipped scenarios' tolerances, while the
-// same run unbroken passes. The perturbations are the errors the old
+// box whose tipping threshold sits 1.5, 0.85, 0.9 or 0.4 degrees off, a
+// sliding box held by doubled friction, gravity 1% strong in a toss, a
+// ground the tossed box never reaches) fails the check at the shipped
+// scenarios' tolerances, while the same run unbroken passes. The perturbations are the errors the old
 // tolerances let through (issue 11).
 #include <gtest/gtest.h>
 
@@ -54,8 +55,17 @@ ResultsFile RunOn(const ScenarioRun& run, const std::vector<std::string>& backen
   return ResultsFile{options.backends, true, results ? results.Value() : std::vector<RunResult>{}};
 }
 
-// The gate's verdict on `run` with the Talus default backend.
-CheckOutcome Check(const ScenarioRun& run) { return Recheck(RunOn(run, {"talus"}), run, "talus"); }
+// The box of tall_box_tipping made wider or narrower so that its real
+// tipping threshold sits `offset` degrees from the truth's atan(0.25).
+void MoveTippingThreshold(ScenarioRun& run, double offset) {
+  auto& box = std::get<BoxShape>(run.scenario.bodies[1].shape);
+  box.halfExtents.x() = box.halfExtents.y() * std::tan((14.036243 + offset) * std::numbers::pi / 180.0);
+}
+
+// The gate's verdict on `run` with `backend` (the Talus default unless named).
+CheckOutcome Check(const ScenarioRun& run, const std::string& backend = "talus") {
+  return Recheck(RunOn(run, {backend}), run, backend);
+}
 
 std::string FirstProblem(const CheckOutcome& outcome) {
   return outcome.problems.empty() ? std::string("(none)") : outcome.problems[0];
@@ -90,15 +100,17 @@ TEST(Gates, AnUngatedTruthIsJudgedAndShownButFailsOnlyTheBackendsNotListed) {
   const CheckOutcome talus = Recheck(file, run, "talus");
   EXPECT_FALSE(talus.Ok());
   EXPECT_TRUE(talus.ungated.empty());
-  // gate false ungates every backend, with a reason pointing at the description.
+  // gate false ungates every backend, with the file's written reason.
   Truth truth = run.scenario.truths.at(0);
   truth.gate = false;
+  truth.gateReason = "every engine measured sinks 2 cm";
   MetricResult failing = file.results[0].metrics.at(0);
   Judge(failing, truth.tolerance);
   std::vector<MetricResult> metrics = {failing};
   ApplyGate(truth, "talus", metrics);
   EXPECT_FALSE(metrics[0].checked);
-  EXPECT_FALSE(metrics[0].ungated.empty());
+  EXPECT_NE(metrics[0].ungated.find("every engine measured sinks 2 cm"), std::string::npos)
+      << metrics[0].ungated;
 }
 
 TEST(Gates, FrictionThreePercentHighFailsTheSlidingGate) {
@@ -122,15 +134,60 @@ TEST(Gates, RestitutionTwoAndAHalfPercentLowFailsTheBounceGate) {
 }
 
 TEST(Gates, ATippingThresholdOneAndAHalfDegreesOffFailsTheTippingGate) {
-  ScenarioRun run = LoadRun("sliding/tall_box_tipping.json", "tall_box_tipping[angle=15deg]");
+  ScenarioRun run = LoadRun("sliding/tall_box_tipping.json", "tall_box_tipping[angle=14.34deg]");
   const CheckOutcome good = Check(run);
   EXPECT_TRUE(good.Ok()) << FirstProblem(good);
-  // A box whose real threshold is 15.54 degrees (truth: 14.04): at 15 degrees it stays.
-  auto& box = std::get<BoxShape>(run.scenario.bodies[1].shape);
-  box.halfExtents.x() = box.halfExtents.y() * std::tan((14.036 + 1.5) * std::numbers::pi / 180.0);
+  // A box whose real threshold is 15.54 degrees (truth: 14.04): at 14.34 degrees it stays.
+  MoveTippingThreshold(run, 1.5);
   const CheckOutcome broken = Check(run);
   EXPECT_FALSE(broken.Ok());
   EXPECT_NE(FirstProblem(broken).find("incline_tip"), std::string::npos) << FirstProblem(broken);
+}
+
+TEST(Gates, TippingThresholdsMovedBeyondTheBracketFailTheTippingGate) {
+  // The runs bracket the threshold 0.3 degree either side. A threshold
+  // moved up by 0.85 degree (the box stays at 14.34) or down by 0.90 (it
+  // tips at 13.74), both of which the old 13/15-degree runs let pass, and
+  // one moved by 0.4 degree either way, each fail one of the two.
+  const ScenarioRun below = LoadRun("sliding/tall_box_tipping.json", "tall_box_tipping[angle=13.74deg]");
+  const ScenarioRun above = LoadRun("sliding/tall_box_tipping.json", "tall_box_tipping[angle=14.34deg]");
+  for (const double offset : {0.85, -0.90, 0.4, -0.4}) {
+    ScenarioRun stays = below;
+    ScenarioRun tips = above;
+    MoveTippingThreshold(stays, offset);
+    MoveTippingThreshold(tips, offset);
+    const CheckOutcome low = Check(stays);
+    const CheckOutcome high = Check(tips);
+    EXPECT_FALSE(low.Ok() && high.Ok()) << "threshold moved by " << offset << " degrees passed both";
+  }
+}
+
+TEST(Gates, FrictionThatTipsTheSlidingBoxFailsTheSlidingCase) {
+  // mu = 0.2 < width/height = 0.25 slides upright at 20 degrees; with the
+  // bodies' friction doubled (0.4 > tan 20 = 0.36) friction holds it and it
+  // tips, which the truth (it keeps mu = 0.2) does not allow.
+  ScenarioRun run = LoadRun("sliding/tall_box_tipping.json", "tall_box_tipping[angle=20deg_mu0.2]");
+  const CheckOutcome good = Check(run);
+  EXPECT_TRUE(good.Ok()) << FirstProblem(good);
+  for (BodySpec& body : run.scenario.bodies) body.friction *= 2.0;
+  const CheckOutcome broken = Check(run);
+  EXPECT_FALSE(broken.Ok());
+  EXPECT_NE(FirstProblem(broken).find("incline_tip.tilt.slides"), std::string::npos) << FirstProblem(broken);
+}
+
+TEST(Gates, ABoxTossWhoseBoxNeverLandsFailsForEveryTalusVariant) {
+  // The ground moved 1 km down: the box falls for the whole run. The old
+  // after-landing truth, each engine against itself at h / 16, passed this
+  // for every Talus variant; the landing truths judge the box against the
+  // floor the file names, so each variant fails.
+  ScenarioRun run = LoadRun("tumbling/box_toss.json", "box_toss");
+  run.scenario.bodies[0].position.y() -= 1000.0;
+  for (const std::string& variant : TalusVariants(reference::AllBackends().Names())) {
+    const CheckOutcome broken = Check(run, variant);
+    EXPECT_FALSE(broken.Ok()) << variant;
+    EXPECT_NE(FirstProblem(broken).find("box_landing.height"), std::string::npos)
+        << variant << ": " << FirstProblem(broken);
+  }
 }
 
 TEST(Gates, GravityOnePercentStrongFailsTheTossFlight) {

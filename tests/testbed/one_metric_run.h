@@ -1,6 +1,7 @@
 // A hand-made run of one sweep instance whose error scalar is exactly
-// `error`: one checked metric of truth 1 with an absolute tolerance of 1,
-// and a total wall time of `seconds` over 10 steps (its cost, sweep.h). The sweep analysis tests build
+// `error`: one checked metric whose truth is 0 and whose measured value is
+// `error`, with an absolute tolerance of 1, and a total wall time of
+// `seconds` over 10 steps (its cost, sweep.h). The sweep analysis tests build
 // their fronts from these, so every answer can be read off the numbers.
 #pragma once
 
@@ -25,8 +26,9 @@ inline RunResult OneMetricRun(const std::string& backend, const std::string& hLa
   run.wallSeconds = seconds;
   run.wallSecondsLongestStep = seconds / 10.0;
   MetricResult metric = MakeMetric("m", "m");
+  metric.truth = 0.0;
+  metric.measured = error;  // the sweep reads the distance to the truth, exactly `error`
   metric.error = error;
-  metric.truth = 1.0;
   metric.tolerance = {1.0, 0.0};
   metric.checked = true;
   run.metrics = {metric};

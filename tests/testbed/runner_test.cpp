@@ -78,9 +78,13 @@ TEST_P(EveryBackend, BoxRestsAtItsHalfHeight) {
     ASSERT_NE(jitter, nullptr);
     EXPECT_TRUE(height->pass) << GetParam() << " error " << height->error;
     // ODE quickstep at ODE's default surface layer 0 makes and breaks the
-    // contacts each step: 1.18 mm peak to peak, over the 1 mm tolerance; its
-    // tuned 1 mm layer removes it (docs/testbed-backends.md).
-    EXPECT_EQ(jitter->pass, GetParam() != "ode-quickstep") << GetParam() << " jitter " << jitter->measured;
+    // contacts each step: 1.9 mm peak to peak, inside the one slop (4 mm) a
+    // resting contact may wander within (issue 24; it failed the old 1 mm);
+    // its tuned 1 mm layer removes it (docs/testbed-backends.md).
+    EXPECT_TRUE(jitter->pass) << GetParam() << " jitter " << jitter->measured;
+    if (GetParam() == "ode-quickstep") {
+      EXPECT_GT(jitter->measured, 1e-3);
+    }
     // The file measures contacts and penetration: a resting box touches.
     const MetricResult* contacts = Find(result, "contacts.final");
     ASSERT_NE(contacts, nullptr);

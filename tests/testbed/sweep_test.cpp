@@ -22,6 +22,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 MetricResult Metric(double error, double truth, double absolute, double relative, bool checked) {
   MetricResult metric = MakeMetric("m", "m");
+  metric.measured = truth + error;
   metric.error = error;
   metric.truth = truth;
   metric.tolerance = {absolute, relative};
@@ -35,9 +36,25 @@ TEST(RunErrorScalar, IsTheLargestErrorOverItsToleranceScale) {
   // metrics without a tolerance (drift, contacts) do not count.
   result.metrics = {Metric(-0.042, 2.0, 0.01, 0.1, true), Metric(0.25, 10.0, 0.5, 0.0, false),
                     Metric(100.0, 1.0, 0.0, 0.0, false)};
-  EXPECT_NEAR(RunErrorScalar(result), 0.5, 1e-15);                     // 0.25 / 0.5 > 0.042 / 0.21 = 0.2
-  result.metrics[0].error = std::numeric_limits<double>::quiet_NaN();  // not measured
+  EXPECT_NEAR(RunErrorScalar(result), 0.5, 1e-15);                        // 0.25 / 0.5 > 0.042 / 0.21 = 0.2
+  result.metrics[0].measured = std::numeric_limits<double>::quiet_NaN();  // not measured
   EXPECT_EQ(RunErrorScalar(result), kInf);
+}
+
+TEST(RunErrorScalar, IsTheDistanceToTheContinuousTruthNotToTheIntegratorsAnswer) {
+  // A run exactly on symplectic Euler's sequence (error 0 against the
+  // integrator-exact answer) that lags the continuous truth by 0.1: the
+  // sweep charges it the 0.1, 2 tolerances, so a finer step can earn less.
+  RunResult result;
+  MetricResult metric = Metric(0.0, 1.0, 0.05, 0.0, true);
+  metric.truthIntegrator = 0.9;
+  metric.measured = 0.9;
+  result.metrics = {metric};
+  EXPECT_NEAR(RunErrorScalar(result), 2.0, 1e-12);
+  // An engine exact in continuous time is not charged for leaving the sequence.
+  result.metrics[0].measured = 1.0;
+  result.metrics[0].error = 0.1;
+  EXPECT_NEAR(RunErrorScalar(result), 0.0, 1e-12);
 }
 
 TEST(RunErrorScalar, IsNaNWithoutAToleranceOrWhenTheRunFailed) {

@@ -146,20 +146,50 @@ TEST(TruthCheck, BounceApexesAreFoundAtTheirStepsAndMissingOnesFail) {
   for (int stride : {1, 5}) {
     const Trajectory trajectory = MakeTrajectory(h, 2500, stride, [&](int n) { return lowest(n) + 0.1; });
     const auto metrics = EvaluateTruth(run, truth, trajectory);
-    ASSERT_EQ(metrics.size(), 2u);
+    ASSERT_EQ(metrics.size(), 4u);  // each apex, then its step allowance
     EXPECT_EQ(metrics[0].name, "bounce_heights.apex1");
     // Apex known to within one stride of travel near the top: g (stride h)^2.
     EXPECT_NEAR(metrics[0].measured, 0.49, g * (stride * h) * (stride * h) + 1e-6) << "stride " << stride;
-    EXPECT_NEAR(metrics[1].measured, 0.2401, g * (stride * h) * (stride * h) + 1e-6) << "stride " << stride;
-    EXPECT_TRUE(metrics[0].pass && metrics[1].pass);
+    EXPECT_NEAR(metrics[2].measured, 0.2401, g * (stride * h) * (stride * h) + 1e-6) << "stride " << stride;
+    EXPECT_TRUE(metrics[0].pass && metrics[2].pass);
   }
   // Cut before the second apex: it is not measured, and fails.
   const ScenarioRun shortRun = MakeRun(h, 800);
   const Trajectory cut = MakeTrajectory(h, 800, 1, [&](int n) { return lowest(n) + 0.1; });
   const auto metrics = EvaluateTruth(shortRun, truth, cut);
+  ASSERT_EQ(metrics.size(), 4u);
+  EXPECT_TRUE(std::isnan(metrics[2].measured));
+  EXPECT_FALSE(metrics[2].pass);
+}
+
+TEST(TruthCheck, TheStepAllowanceOfABounceIsReportedBesideTheApexNotAddedToIt) {
+  // An apex 3 mm high: inside the first apex's step allowance at 1 kHz
+  // ((1 + e^2) sqrt(2 g h) h = 6.6 mm) but outside the 0.5 mm tolerance.
+  const double h = 0.001;
+  const double g = 9.81;
+  const double v0 = std::sqrt(2 * g * 1.0);
+  const double up = 0.7 * v0 * std::sqrt(1.0 + 2 * g * 0.003 / (0.49 * v0 * v0));  // to 0.493 m
+  const auto lowest = [&](int n) {
+    const double t = n * h;
+    const double t0 = v0 / g;
+    if (t < t0) return 1.0 - 0.5 * g * t * t;
+    const double s = t - t0;
+    return up * s - 0.5 * g * s * s;
+  };
+  const ScenarioRun run = MakeRun(h, 1200);
+  const Truth truth{BounceHeightsTruth{1.0, 0.7, 1}, 1, Tolerance{0.0005, 0.0}};
+  const auto metrics =
+      EvaluateTruth(run, truth, MakeTrajectory(h, 1200, 1, [&](int n) { return lowest(n) + 0.1; }));
   ASSERT_EQ(metrics.size(), 2u);
-  EXPECT_TRUE(std::isnan(metrics[1].measured));
-  EXPECT_FALSE(metrics[1].pass);
+  EXPECT_NEAR(metrics[0].measured, 0.493, 1e-5);
+  EXPECT_FALSE(metrics[0].pass);
+  EXPECT_EQ(metrics[0].tolerance.absolute, 0.0005);
+  EXPECT_EQ(metrics[1].name, "bounce_heights.apex1.step_allowance");
+  EXPECT_NEAR(metrics[1].measured, (1.0 + 0.49) * v0 * h, 1e-12);
+  // Reported only: no tolerance, so never judged and outside the sweep's error.
+  EXPECT_FALSE(metrics[1].checked);
+  EXPECT_EQ(metrics[1].tolerance.absolute, 0.0);
+  EXPECT_EQ(metrics[1].tolerance.relative, 0.0);
 }
 
 TEST(TruthCheck, RestHeightJitterIsPeakToPeakOverTheSecondHalf) {

@@ -330,6 +330,10 @@ struct TruthContext {
   int body = -1;        // index of the named body, -1 when none is named
 };
 
+// A secondary bound is written {"value", "reason"} (the schema requires
+// both); its value, which the kind keeps. The reason is read by MapBounds.
+double BoundValue(const json& entry, const char* name) { return entry[name]["value"].get<double>(); }
+
 Result<TruthKind> MapSlidingStop(const TruthContext& c) {
   SlidingStopTruth truth{c.entry["v0"].get<double>(), c.entry["mu"].get<double>(),
                          c.entry["g"].get<double>()};
@@ -343,7 +347,7 @@ Result<TruthKind> MapSlidingStop(const TruthContext& c) {
       return FieldError(c.file, c.pointer + "/direction", "must be perpendicular to gravity");
     }
   }
-  truth.maxLateral = c.entry.value("maxLateral", truth.maxLateral);
+  truth.maxLateral = BoundValue(c.entry, "maxLateral");
   return TruthKind(truth);
 }
 
@@ -351,7 +355,7 @@ Result<TruthKind> MapStackRest(const TruthContext& c) {
   StackRestTruth truth;
   truth.floor = c.entry["floor"].get<double>();
   truth.layerHeight = c.entry["layerHeight"].get<double>();
-  truth.maxDrift = c.entry.value("maxDrift", truth.maxDrift);
+  truth.maxDrift = BoundValue(c.entry, "maxDrift");
   std::unordered_set<int> seen;
   for (size_t l = 0; l < c.entry["layers"].size(); ++l) {
     std::vector<int> layer;
@@ -406,7 +410,7 @@ Result<TruthKind> MapHullRest(const TruthContext& c) {
   truth.faceNormal = normal.normalized();
   truth.floor = c.entry["floor"].get<double>();
   truth.height = c.entry["height"].get<double>();
-  truth.maxFaceAngle = c.entry.value("maxFaceAngle", truth.maxFaceAngle);
+  truth.maxFaceAngle = BoundValue(c.entry, "maxFaceAngle");
   return TruthKind(truth);
 }
 
@@ -485,7 +489,12 @@ Result<TruthKind> MapInclineTip(const TruthContext& c) {
   const json& truth = c.entry;
   InclineTipTruth tip{truth["angle"].get<double>(), truth["mu"].get<double>(), truth["width"].get<double>(),
                       truth["height"].get<double>()};
-  tip.tiltThreshold = truth.value("tiltThreshold", tip.tiltThreshold);
+  tip.tiltThreshold = BoundValue(truth, "tiltThreshold");
+  tip.maxStayTilt = BoundValue(truth, "maxStayTilt");
+  if (tip.maxStayTilt >= tip.tiltThreshold) {
+    return FieldError(c.file, c.pointer + "/maxStayTilt/value",
+                      "must be below tiltThreshold (a tilt cannot both stay and tip)");
+  }
   const double margin = truth["tolerance"].value("absolute", 0.0);
   const double tipping = std::atan(tip.width / tip.height);
   const double sliding = std::atan(tip.mu);
@@ -499,6 +508,52 @@ Result<TruthKind> MapInclineTip(const TruthContext& c) {
     }
   }
   return TruthKind(tip);
+}
+
+// A box landing is judged on a dynamic box (its faces and half extents
+// give the resting heights) that comes to rest within the run.
+Result<TruthKind> MapBoxLanding(const TruthContext& c) {
+  const BodySpec& body = c.bodies[c.body];
+  if (body.motion != Motion::Dynamic || !std::holds_alternative<BoxShape>(body.shape)) {
+    return FieldError(c.file, c.pointer + "/body", "box_landing needs a dynamic box body");
+  }
+  if (c.world.gravity.isZero()) {
+    return FieldError(c.file, c.pointer + "/kind", "box_landing needs gravity (nothing pulls the box down)");
+  }
+  BoxLandingTruth truth;
+  truth.floor = c.entry["floor"].get<double>();
+  truth.restAfter = c.entry["restAfter"].get<double>();
+  if (truth.restAfter > c.world.steps * c.world.timeStep) {
+    return FieldError(c.file, c.pointer + "/restAfter", "is after the end of the run");
+  }
+  truth.maxFaceAngle = BoundValue(c.entry, "maxFaceAngle");
+  truth.maxMotion = BoundValue(c.entry, "maxMotion");
+  truth.maxEnergyRise = BoundValue(c.entry, "maxEnergyRise");
+  truth.maxPenetration = BoundValue(c.entry, "maxPenetration");
+  return TruthKind(truth);
+}
+
+// Every secondary bound the truth writes carries a written reason, and
+// gate false says why in "gateReason" (and only then).
+Result<bool> MapBounds(const json& entry, std::string_view file, const std::string& pointer, Truth& truth) {
+  for (const std::string_view bound : kSecondaryBounds) {
+    const std::string name(bound);
+    if (!entry.contains(name)) continue;
+    const std::string reason = entry[name]["reason"].get<std::string>();
+    if (reason.find_first_not_of(" \t\n") == std::string::npos) {
+      return FieldError(file, pointer + "/" + name + "/reason", "is empty; say where the bound comes from");
+    }
+    truth.boundReasons[name] = reason;
+  }
+  if (entry.contains("gateReason")) {
+    truth.gateReason = entry["gateReason"].get<std::string>();
+    if (truth.gate) return FieldError(file, pointer + "/gateReason", "is given but the truth is gated");
+  }
+  if (!truth.gate && truth.gateReason.find_first_not_of(" \t\n") == std::string::npos) {
+    return FieldError(file, pointer + "/gate",
+                      "is false without a \"gateReason\" (say why no backend is held to the truth)");
+  }
+  return true;
 }
 
 // A free-body truth (projectile, drifts) holds only while nothing but
@@ -566,8 +621,7 @@ Result<TruthKind> MapTruthKind(const TruthContext& c) {
   }
   if (kind == "sliding_stop") return MapSlidingStop(c);
   if (kind == "rest_height") {
-    return TruthKind(RestHeightTruth{truth["height"].get<double>(),
-                                     truth.value("maxJitter", RestHeightTruth{}.maxJitter)});
+    return TruthKind(RestHeightTruth{truth["height"].get<double>(), BoundValue(truth, "maxJitter")});
   }
   if (kind == "bounce_heights") {
     return TruthKind(
@@ -583,6 +637,7 @@ Result<TruthKind> MapTruthKind(const TruthContext& c) {
   if (kind == "torque_free") return MapSpin(c, false);
   if (kind == "flip_period") return MapSpin(c, true);
   if (kind == "projectile") return MapProjectile(c);
+  if (kind == "box_landing") return MapBoxLanding(c);
   if (kind == "energy_drift" || kind == "angular_momentum_drift" || kind == "rotational_energy_drift") {
     return MapDrift(c, kind);
   }
@@ -643,6 +698,8 @@ Result<Scenario> MapScenario(const json& doc, std::string_view file) {
       truth.kind = std::move(kind).Value();
       auto gated = MapGate(entry, file, pointer, truth);
       if (!gated) return gated.GetError();
+      auto bounded = MapBounds(entry, file, pointer, truth);
+      if (!bounded) return bounded.GetError();
       if (entry.contains("published")) {
         const json& published = entry["published"];
         PublishedFigure figure;

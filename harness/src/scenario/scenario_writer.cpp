@@ -3,6 +3,7 @@
 // writes the fields its Map* reader in scenario_loader.cpp reads.
 #include "talus/harness/scenario/scenario_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <variant>
@@ -139,8 +140,13 @@ ordered_json KindJson(const TruthKind& kind, const std::vector<BodySpec>& bodies
       return {{"kind", "incline_slide"}, {"angle", t.angle}, {"mu", t.mu}, {"g", t.g}};
     }
     ordered_json operator()(const InclineTipTruth& t) const {
-      return {{"kind", "incline_tip"}, {"angle", t.angle},   {"mu", t.mu},
-              {"width", t.width},      {"height", t.height}, {"tiltThreshold", t.tiltThreshold}};
+      return {{"kind", "incline_tip"},
+              {"angle", t.angle},
+              {"mu", t.mu},
+              {"width", t.width},
+              {"height", t.height},
+              {"tiltThreshold", t.tiltThreshold},
+              {"maxStayTilt", t.maxStayTilt}};
     }
     ordered_json operator()(const TorqueFreeTruth& t) const {
       return {{"kind", "torque_free"}, {"inertia", Vec(t.inertia)}, {"omega", Vec(t.omega)}};
@@ -150,6 +156,15 @@ ordered_json KindJson(const TruthKind& kind, const std::vector<BodySpec>& bodies
     }
     ordered_json operator()(const ProjectileTruth& t) const {
       return {{"kind", "projectile"}, {"x0", Vec(t.x0)}, {"v0", Vec(t.v0)}};
+    }
+    ordered_json operator()(const BoxLandingTruth& t) const {
+      return {{"kind", "box_landing"},
+              {"floor", t.floor},
+              {"restAfter", t.restAfter},
+              {"maxFaceAngle", t.maxFaceAngle},
+              {"maxMotion", t.maxMotion},
+              {"maxEnergyRise", t.maxEnergyRise},
+              {"maxPenetration", t.maxPenetration}};
     }
     ordered_json operator()(const EnergyDriftTruth&) const { return {{"kind", "energy_drift"}}; }
     ordered_json operator()(const AngularMomentumDriftTruth& t) const {
@@ -165,6 +180,16 @@ ordered_json KindJson(const TruthKind& kind, const std::vector<BodySpec>& bodies
 
 ordered_json TruthJson(const Truth& truth, const std::vector<BodySpec>& bodies) {
   ordered_json out = KindJson(truth.kind, bodies);
+  // Secondary bounds are written {"value", "reason"}: KindJson gives the
+  // value, the truth keeps the reason.
+  for (auto& [name, value] : out.items()) {
+    const bool bound =
+        std::find(kSecondaryBounds.begin(), kSecondaryBounds.end(), name) != kSecondaryBounds.end();
+    if (!value.is_number() || !bound) continue;
+    const auto reason = truth.boundReasons.find(name);
+    value =
+        ordered_json{{"value", value}, {"reason", reason == truth.boundReasons.end() ? "" : reason->second}};
+  }
   if (truth.body >= 0) out["body"] = bodies[static_cast<std::size_t>(truth.body)].name;
   ordered_json tolerance;
   if (truth.tolerance.absolute > 0.0) tolerance["absolute"] = truth.tolerance.absolute;
@@ -172,6 +197,7 @@ ordered_json TruthJson(const Truth& truth, const std::vector<BodySpec>& bodies) 
   tolerance["reason"] = truth.toleranceReason;
   out["tolerance"] = tolerance;
   out["gate"] = truth.gate;
+  if (!truth.gateReason.empty()) out["gateReason"] = truth.gateReason;
   if (!truth.ungated.empty()) {
     ordered_json ungated = ordered_json::array();
     for (const UngatedBackend& entry : truth.ungated) {

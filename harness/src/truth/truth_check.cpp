@@ -26,6 +26,11 @@ void Judge(MetricResult& metric, const Tolerance& tolerance) {
   metric.pass = std::abs(metric.error) <= tolerance.absolute + tolerance.relative * std::abs(metric.truth);
 }
 
+std::string BoundReason(const Truth& truth, std::string_view field) {
+  const auto found = truth.boundReasons.find(std::string(field));
+  return found == truth.boundReasons.end() ? std::string() : found->second;
+}
+
 Vec3 UpAxis(const Run& run) {
   // Scaled by the largest component first: |g| of 1e300 would overflow to
   // inf and make the axis zero (every height 0), 1e-300 underflow to 0.
@@ -65,6 +70,8 @@ std::vector<MetricResult> EvaluateTruth(const Run& run, const Truth& truth, cons
           return EvaluateEnergyDrift(run, truth, kind, trajectory);
         } else if constexpr (std::is_same_v<Kind, AngularMomentumDriftTruth>) {
           return EvaluateAngularMomentumDrift(run, truth, kind, trajectory);
+        } else if constexpr (std::is_same_v<Kind, BoxLandingTruth>) {
+          return EvaluateBoxLanding(run, truth, kind, trajectory);
         } else if constexpr (std::is_same_v<Kind, RotationalEnergyDriftTruth>) {
           return EvaluateRotationalEnergyDrift(run, truth, kind, trajectory);
         } else {
@@ -84,11 +91,13 @@ std::vector<MetricResult> EvaluateTruth(const Run& run, const Truth& truth, cons
 }
 
 void ApplyGate(const Truth& truth, std::string_view backend, std::vector<MetricResult>& metrics) {
+  // A metric judged against a secondary bound carries that bound's reason
+  // (set by its evaluator); the others the tolerance's.
   for (MetricResult& metric : metrics) {
-    if (metric.checked) metric.reason = truth.toleranceReason;
+    if (metric.checked && metric.reason.empty()) metric.reason = truth.toleranceReason;
   }
   std::string reason;
-  if (!truth.gate) reason = "gate false for every backend (the scenario's description says why)";
+  if (!truth.gate) reason = "gate false for every backend: " + truth.gateReason;
   for (const UngatedBackend& entry : truth.ungated) {
     if (entry.backend == backend) reason = entry.reason;
   }

@@ -4,6 +4,8 @@
 // sample steps and times from the trajectory, never assuming stride 1.
 #pragma once
 
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "talus/harness/truth/truth_check.h"
@@ -37,6 +39,14 @@ std::vector<MetricResult> EvaluateEnergyDrift(const Run& run, const Truth& truth
 std::vector<MetricResult> EvaluateAngularMomentumDrift(const Run& run, const Truth& truth,
                                                        const AngularMomentumDriftTruth& kind,
                                                        const Trajectory& trajectory);
+std::vector<MetricResult> EvaluateBoxLanding(const Run& run, const Truth& truth, const BoxLandingTruth& kind,
+                                             const Trajectory& trajectory);
+
+/// The written reason of the truth's secondary bound `field` (e.g.
+/// "maxJitter"); empty when the truth has none (one built in code). An
+/// evaluator gives it to the metric the bound judges.
+std::string BoundReason(const Truth& truth, std::string_view field);
+
 std::vector<MetricResult> EvaluateRotationalEnergyDrift(const Run& run, const Truth& truth,
                                                         const RotationalEnergyDriftTruth& kind,
                                                         const Trajectory& trajectory);

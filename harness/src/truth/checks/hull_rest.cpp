@@ -24,6 +24,7 @@ std::vector<MetricResult> EvaluateHullRest(const Run& run, const Truth& truth, c
   face.measured = std::acos(std::clamp(worldNormal.dot(-up), -1.0, 1.0));
   face.truth = 0.0;
   Judge(face, Tolerance{.absolute = kind.maxFaceAngle, .relative = 0.0});
+  face.reason = BoundReason(truth, "maxFaceAngle");
   MetricResult height = MakeMetric("hull_rest.height", "m");
   height.measured = state.centerOfMass.dot(up);
   height.truth = kind.floor + kind.height;

@@ -1,7 +1,9 @@
 // Incline tip: the largest rotation of the body from its start orientation
 // over the run (radians). The truth is the closed-form outcome
 // (InclineBoxOutcome, truths.h): when it says "tips" the rotation must pass
-// tiltThreshold, otherwise it must stay below it. The metric reports the
+// tiltThreshold; when it says "stays" or "slides" it must stay within
+// maxStayTilt, a slop's worth of tilt (a box rocking on its edge and
+// falling back has not stayed). The metric reports the
 // rotation as measured, with truth pi/2 for "tips" (a box over its edge has
 // turned at least that far) and 0 otherwise; pass is the threshold test,
 // not the distance to those numbers.
@@ -32,9 +34,13 @@ std::vector<MetricResult> EvaluateInclineTip(const Run& run, const Truth& truth,
                  "rad");
   metric.measured = tilt;
   metric.truth = tips ? 0.5 * std::numbers::pi : 0.0;
-  Judge(metric, Tolerance{.absolute = kind.tiltThreshold, .relative = 0.0});
-  // Judge measured the distance to truth; the outcome is a threshold test.
-  metric.pass = tips ? tilt > kind.tiltThreshold : tilt < kind.tiltThreshold;
+  const double bound = tips ? kind.tiltThreshold : kind.maxStayTilt;
+  Judge(metric, Tolerance{.absolute = bound, .relative = 0.0});
+  metric.reason = BoundReason(truth, tips ? "tiltThreshold" : "maxStayTilt");
+  // Judge measured the distance to truth; the outcome is a threshold test:
+  // a box that tips turns past tiltThreshold, one that stays or slides
+  // tilts by no more than maxStayTilt (about one slop of tilt).
+  metric.pass = tips ? tilt > kind.tiltThreshold : tilt <= kind.maxStayTilt;
   return {metric};
 }
 

@@ -36,6 +36,7 @@ std::vector<MetricResult> EvaluateRestHeight(const Run& run, const Truth& truth,
   jitter.measured = high - low;
   jitter.truth = 0.0;
   Judge(jitter, Tolerance{.absolute = kind.maxJitter, .relative = 0.0});
+  jitter.reason = BoundReason(truth, "maxJitter");
   return {height, jitter};
 }
 

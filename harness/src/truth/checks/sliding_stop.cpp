@@ -72,6 +72,7 @@ std::vector<MetricResult> EvaluateSlidingStop(const Run& run, const Truth& truth
   deviation.measured = lateral;
   deviation.truth = 0.0;
   Judge(deviation, Tolerance{.absolute = kind.maxLateral, .relative = 0.0});
+  deviation.reason = BoundReason(truth, "maxLateral");
   return {metric, time, deviation};
 }
 

@@ -9,9 +9,12 @@
 // here.
 #pragma once
 
+#include <array>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -198,7 +201,10 @@ struct InclineSlideTruth {
 /// outcome is not decided by the physics.
 struct InclineTipTruth {
   double angle = 0.0, mu = 0.5, width = 1.0, height = 1.0;
-  double tiltThreshold = 0.5;  ///< radians, in (0, pi]
+  double tiltThreshold = 0.5;  ///< radians, in (0, pi]: more counts as tipped
+  /// Radians: a box that stays (or slides) may tilt by at most this much,
+  /// about a slop's worth; more is neither staying nor tipping and fails.
+  double maxStayTilt = 0.5;
   bool operator==(const InclineTipTruth&) const = default;
 };
 /// Torque-free rotation (no gravity, no contact) of a body with principal
@@ -225,6 +231,26 @@ struct ProjectileTruth {
   Vec3 x0 = Vec3::Zero();  ///< metres, centre of mass at t = 0
   Vec3 v0 = Vec3::Zero();  ///< m/s
   bool operator==(const ProjectileTruth&) const = default;
+};
+/// A box thrown onto a static floor lands and settles (box_toss): judged
+/// without the engine's own finer run. At the end it rests on a face (the
+/// box axis nearest the up axis within maxFaceAngle radians of it) with its
+/// centre of mass at floor + that axis's half extent, the geometric height
+/// (the truth's tolerance, metres); from `restAfter` seconds on its centre
+/// of mass moves less than maxMotion metres (peak to peak along each axis
+/// of the world, the largest of the three); its total mechanical energy
+/// never rises by more than maxEnergyRise metres of lift (the rise over the
+/// lowest energy before it, divided by m |g|): a contact with no
+/// restitution only takes energy out; no contact is ever deeper than
+/// maxPenetration metres. Each bound's reason is in Truth::boundReasons.
+struct BoxLandingTruth {
+  double floor = 0.0;           ///< metres, top of the floor along the up axis
+  double restAfter = 0.0;       ///< seconds: at rest from here to the end, >= 0
+  double maxFaceAngle = 0.0;    ///< radians, in [0, pi/4]
+  double maxMotion = 0.0;       ///< metres, >= 0
+  double maxEnergyRise = 0.0;   ///< metres of lift, >= 0
+  double maxPenetration = 0.0;  ///< metres, >= 0
+  bool operator==(const BoxLandingTruth&) const = default;
 };
 /// Total mechanical energy (translational and rotational kinetic energy plus
 /// the potential -m g.x) of `Truth::body`, or of every dynamic body when
@@ -255,10 +281,18 @@ struct ConvergedReferenceTruth {
   int timeStepDivisor = 16;
   bool operator==(const ConvergedReferenceTruth&) const = default;
 };
-using TruthKind = std::variant<FreeFallTruth, SlidingStopTruth, RestHeightTruth, BounceHeightsTruth,
-                               ConvergedReferenceTruth, StackRestTruth, HullRestTruth, InclineSlideTruth,
-                               InclineTipTruth, TorqueFreeTruth, FlipPeriodTruth, ProjectileTruth,
-                               EnergyDriftTruth, AngularMomentumDriftTruth, RotationalEnergyDriftTruth>;
+using TruthKind =
+    std::variant<FreeFallTruth, SlidingStopTruth, RestHeightTruth, BounceHeightsTruth,
+                 ConvergedReferenceTruth, StackRestTruth, HullRestTruth, InclineSlideTruth, InclineTipTruth,
+                 TorqueFreeTruth, FlipPeriodTruth, ProjectileTruth, EnergyDriftTruth,
+                 AngularMomentumDriftTruth, RotationalEnergyDriftTruth, BoxLandingTruth>;
+
+/// The secondary bounds of the truth kinds, by their field names in a
+/// scenario file: each is written {"value", "reason"} (a bound without its
+/// reason is refused) and its reason kept in Truth::boundReasons.
+inline constexpr std::array<std::string_view, 9> kSecondaryBounds = {
+    "maxLateral",  "maxJitter", "maxDrift",      "maxFaceAngle",  "tiltThreshold",
+    "maxStayTilt", "maxMotion", "maxEnergyRise", "maxPenetration"};
 
 /// A figure published for the same case (e.g. by the benchmark's authors),
 /// printed beside the measured one; never judged.
@@ -287,8 +321,16 @@ struct Truth {
   /// Whether the truth's metrics count in the CI check (MetricResult::checked)
   /// for every backend. False for a known shortfall of every engine: still
   /// measured, judged and reported, but not failing the gate; the
-  /// scenario's description says why. Default true.
+  /// reason is gateReason. Default true.
   bool gate = true;
+  /// Why the truth is out of the gate for every backend (the file's
+  /// "gateReason", required when gate is false, refused otherwise).
+  std::string gateReason{};
+  /// The written reason of each secondary bound the truth's kind has
+  /// (maxLateral, maxJitter, maxDrift, maxFaceAngle, tiltThreshold,
+  /// maxStayTilt, maxMotion, maxEnergyRise, maxPenetration), keyed by the
+  /// field's name: the file writes each bound as {"value", "reason"}.
+  std::map<std::string, std::string> boundReasons{};
   /// Backends for which this truth is outside the gate, each with its
   /// reason (no repeats). Default none.
   std::vector<UngatedBackend> ungated{};

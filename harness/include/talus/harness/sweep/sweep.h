@@ -32,8 +32,11 @@
 
 namespace talus::harness {
 
-/// The error scalar of one result: the largest |error| / (absolute +
-/// relative |truth|) over its metrics that have a tolerance (gated by the
+/// The error scalar of one result: the largest |measured - truth| /
+/// (absolute + relative |truth|), the distance to the continuous truth (not
+/// to MetricResult::truthIntegrator, the integrator-exact answer at the
+/// run's step, which the metric's own error keeps), over its metrics that
+/// have a tolerance (gated by the
 /// CI check or not), so 1 is "exactly at the tolerance". Such a metric
 /// that could not be measured (NaN), or whose tolerance scale is 0, makes
 /// it +infinity; NaN when the result has no such metric (no truth) or
