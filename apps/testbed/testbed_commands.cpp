@@ -212,6 +212,11 @@ int CheckCommand(const CheckOptions& options) {
     std::cerr << "talus-testbed: no Talus variant to check (name one with --backend)\n";
     return kExitBadInput;
   }
+  if (options.backends.empty()) {
+    for (const harness::UngatedVariant& variant : harness::UngatedTalusVariants()) {
+      std::cout << "not gated: " << variant.name << ", " << variant.reason << "\n";
+    }
+  }
   auto outcomes = harness::RecheckResults(file, runs.Value(), backends, reference::AllBackends());
   if (!outcomes) {
     std::cerr << "talus-testbed: check refused " << (options.results.empty() ? "the run" : options.results)

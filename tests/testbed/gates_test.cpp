@@ -81,6 +81,10 @@ TEST(Gates, EveryTalusVariantIsGatedByDefault) {
   }
   EXPECT_EQ(TalusVariants({"bullet", "talus-x", "ode-step", "talusish"}),
             std::vector<std::string>{"talus-x"});
+  // A variant outside the gate is left out, and says why.
+  EXPECT_EQ(std::find(variants.begin(), variants.end(), "talus-soft"), variants.end());
+  EXPECT_EQ(TalusVariants({"talus", "talus-soft"}), std::vector<std::string>{"talus"});
+  for (const UngatedVariant& variant : UngatedTalusVariants()) EXPECT_FALSE(variant.reason.empty());
 }
 
 TEST(Gates, AnUngatedTruthIsJudgedAndShownButFailsOnlyTheBackendsNotListed) {

@@ -11,6 +11,7 @@
 //   expected 0.1688 m (+- 0.00507), off by 0.0123 m, 0.00723 m beyond the tolerance
 #pragma once
 
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -72,9 +73,20 @@ Result<std::vector<CheckOutcome>> RecheckResults(const ResultsFile& file, const 
                                                  const std::vector<std::string>& backends,
                                                  const BackendRegistry& registry);
 
+/// A Talus variant that `talus-testbed check` leaves out unless it is named
+/// with --backend, and why. The report still judges and shows its every
+/// truth (its FAILs are results); only the CI gate passes over it.
+struct UngatedVariant {
+  std::string_view name;
+  std::string_view reason;
+};
+
+/// The Talus variants outside the default gate (docs/testbed-runner.md).
+std::span<const UngatedVariant> UngatedTalusVariants();
+
 /// The backends `talus-testbed check` gates when none is named: every
 /// Talus variant among `registered` (the name `talus` or `talus-...`), in
-/// registry order.
+/// registry order, but those of UngatedTalusVariants.
 std::vector<std::string> TalusVariants(const std::vector<std::string>& registered);
 
 }  // namespace talus::harness
