@@ -1,13 +1,42 @@
 // talus-testbed: the command line of the testbed. Parses arguments with
 // CLI11 and hands them to the subcommands (testbed_commands.h).
 #include <CLI/CLI.hpp>
+#include <exception>
 #include <iostream>
 #include <string>
 
 #include "sweep_commands.h"
+#include "talus/harness/run/runner.h"
 #include "talus/harness/scenario/scenario_limits.h"
+#include "talus/harness/support/number_text.h"
 #include "talus/world_settings.h"
 #include "testbed_commands.h"
+
+namespace {
+
+// A number that is 0 (none) or in [low, high]: anything else, NaN
+// included, is refused naming the value and the range (CLI11 adds the flag).
+CLI::Validator ZeroOrWithin(double low, double high, const std::string& unit) {
+  const std::string range = "0 (none) or " + talus::harness::FormatNumber(low, 17) + " to " +
+                            talus::harness::FormatNumber(high, 17);
+  return CLI::Validator(
+      [=](const std::string& text) -> std::string {
+        double value = 0.0;
+        std::size_t used = 0;
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != text.size() || !(value == 0.0 || (value >= low && value <= high))) {
+          return text + " is not " + range + " " + unit;
+        }
+        return {};
+      },
+      "0|" + talus::harness::FormatNumber(low, 17) + ".." + talus::harness::FormatNumber(high, 17));
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace talus::testbed;
@@ -37,8 +66,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, talus::kMaxThreads));
   runCommand
       ->add_option("--budget", run.budget,
-                   "wall-clock seconds per job; a job past it stops with the reason (0 = no budget)")
-      ->check(CLI::NonNegativeNumber);
+                   "wall-clock seconds per job; a job past it stops with the reason, one stuck inside a step "
+                   "is killed 2 s later (0 = no budget)")
+      ->check(ZeroOrWithin(0.0, harness::kMaxBudgetSeconds, "s"))
+      ->capture_default_str();
+  runCommand
+      ->add_option("--memory-limit", run.memoryLimitMiB,
+                   "address space each job's process may add, MiB; past it the job stops naming the limit "
+                   "(0 = none)")
+      ->check(ZeroOrWithin(static_cast<double>(harness::kMinMemoryLimitBytes >> 20),
+                           static_cast<double>(harness::kMaxMemoryLimitBytes >> 20), "MiB"))
+      ->capture_default_str();
   runCommand->add_flag("--deterministic", run.deterministic, "zero wall times so reruns are byte-identical");
   runCommand->add_flag("-q,--quiet", run.quiet, "no progress on stderr");
   runCommand

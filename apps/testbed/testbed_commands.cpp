@@ -43,7 +43,7 @@ std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
                                       bool quiet, const std::vector<double>& timeSteps = {},
                                       const std::vector<int>& iterations = {},
                                       const std::vector<std::string>& replay = {}, double budget = 0.0,
-                                      int talusThreads = 1) {
+                                      int talusThreads = 1, std::size_t memoryLimitMiB = 0) {
   auto loaded = harness::LoadScenarios(ScenarioPaths(scenarios));
   if (!loaded) {
     std::cerr << "talus-testbed: " << loaded.GetError().message << "\n";
@@ -60,6 +60,7 @@ std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
   options.deterministic = deterministic;
   options.replay = replay;
   options.budgetSeconds = budget;
+  options.memoryLimitBytes = memoryLimitMiB << 20;
   if (!quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   // Shown even with --quiet: a run that ran nowhere must not vanish unseen.
   options.notice = [](const std::string& line) { std::cout << "talus-testbed: " << line << "\n"; };
@@ -106,9 +107,9 @@ std::vector<std::string> DefaultBackends() {
 
 int RunCommand(const RunOptions& options) {
   const std::vector<std::string> backends = options.backends.empty() ? DefaultBackends() : options.backends;
-  auto file =
-      LoadAndRun(options.scenarios, backends, options.jobs, options.deterministic, options.quiet,
-                 options.timeSteps, options.iterations, options.replay, options.budget, options.threads);
+  auto file = LoadAndRun(options.scenarios, backends, options.jobs, options.deterministic, options.quiet,
+                         options.timeSteps, options.iterations, options.replay, options.budget,
+                         options.threads, options.memoryLimitMiB);
   if (!file) return kExitBadInput;
   std::error_code error;
   fs::create_directories(options.out, error);

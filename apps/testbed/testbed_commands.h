@@ -3,6 +3,7 @@
 // stdout and errors and progress on stderr.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,13 @@ struct RunOptions {
   bool deterministic = false;          ///< zero wall times
   bool quiet = false;                  ///< no progress lines
   std::vector<std::string> replay;     ///< runs to record for the 3D replay: ids, scenario names or "all"
-  double budget = 0.0;                 ///< wall-clock seconds per job before it is stopped; 0 = none
+  /// Wall-clock seconds per job before it is stopped (0 = none); the
+  /// default leaves the longest default-suite job (docs/testbed-runner.md,
+  /// "Isolated jobs") a hundredfold margin and ends a hang within the hour.
+  double budget = 1800.0;
+  /// Address space each job's process may add, MiB (0 = none); the default
+  /// is far above any suite job's and far below what the CI machine has.
+  std::size_t memoryLimitMiB = 8192;
 };
 int RunCommand(const RunOptions& options);
 

@@ -2,7 +2,11 @@
 // theirs (TalusBackendOptions::threads): results.json is byte-identical at
 // 1, 2 and 8 jobs, and a Talus world's results do not depend on its thread
 // count. Only the Talus backends are registered, so the ThreadSanitizer
-// tree builds no peer.
+// tree builds no peer. The jobs run in this process (JobIsolation::
+// InProcess), on the runner's threads, which is what ThreadSanitizer is
+// here to watch; the ThreadSanitizer tree never forks a job's process
+// (tests/testbed/isolation_test.cpp checks the processes give the same
+// bytes).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -72,6 +76,7 @@ TEST(RunnerJobs, ResultsFileIsByteIdenticalAtOneTwoAndEightJobs) {
   RunnerOptions options;
   options.backends = {"talus", "talus-split"};
   options.deterministic = true;
+  options.isolation = JobIsolation::InProcess;
   const ScratchFolder scratch;
   std::string first;
   for (const int jobs : {1, 2, 8}) {
@@ -107,6 +112,7 @@ TEST(RunnerJobs, TalusResultsDoNotDependOnTheWorldsThreadCount) {
   RunnerOptions options;
   options.backends = {"talus"};
   options.deterministic = true;
+  options.isolation = JobIsolation::InProcess;
   options.jobs = 2;
   std::string first;
   for (const int threads : {1, 3}) {

@@ -37,6 +37,24 @@ TEST(TestbedCommand, AHugeJobCountIsRefusedWithItsRange) {
   EXPECT_TRUE(Has(outcome.output, "1024")) << outcome.output;
 }
 
+TEST(TestbedCommand, OutOfRangeLimitsAreRefusedNamingTheFlagTheValueAndTheRange) {
+  const struct {
+    const char* arguments;
+    const char* expected;
+  } cases[] = {
+      {"--budget -1", "--budget: -1 is not 0 (none) or 0 to 1000000 s"},
+      {"--budget nan", "--budget: nan is not 0 (none) or 0 to 1000000 s"},
+      {"--budget 2e6", "--budget: 2e6 is not 0 (none) or 0 to 1000000 s"},
+      {"--memory-limit 8", "--memory-limit: 8 is not 0 (none) or 16 to 1048576 MiB"},
+      {"--memory-limit 1e9", "--memory-limit: 1e9 is not 0 (none) or 16 to 1048576 MiB"},
+  };
+  for (const auto& c : cases) {
+    const Outcome outcome = Execute(std::string("run -q ") + c.arguments);
+    EXPECT_EQ(outcome.code, 2) << c.arguments;
+    EXPECT_TRUE(Has(outcome.output, c.expected)) << c.arguments << ": " << outcome.output;
+  }
+}
+
 TEST(TestbedCommand, ARunWhoseStepFailsIsReportedAndTheOthersFinish) {
   const fs::path out = fs::temp_directory_path() / "talus_command_refusals_run";
   fs::remove_all(out);

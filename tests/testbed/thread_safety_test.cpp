@@ -1,5 +1,5 @@
 // Each backend declares its thread safety where it registers, and the
-// runner keeps to it: every job of the backends that share one library's
+// in-process runner (JobIsolation::InProcess) keeps to it: every job of the backends that share one library's
 // state runs on one thread, one step at a time, while independent worlds
 // run beside them. Nothing is read from a backend's name.
 #include <gtest/gtest.h>
@@ -85,6 +85,9 @@ TEST(ThreadSafety, BackendsSharingALibraryRunOnOneThreadOneStepAtATime) {
   options.backends = {"talus-lib-a", "other-lib-b", "lib-free"};
   options.jobs = 4;
   options.deterministic = true;
+  // The lanes are the in-process runner's (with a process per job no two
+  // jobs share a library's state at all).
+  options.isolation = JobIsolation::InProcess;
   auto results = RunAll(registry, runs, options);
   ASSERT_TRUE(results) << results.GetError().message;
   ASSERT_EQ(results.Value().size(), 24u);

@@ -6,10 +6,12 @@
 #include "talus/harness/support/atomic_file.h"
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "support/text_util.h"
 
@@ -18,7 +20,12 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json Number(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+// True while RunResultToWire writes: numbers go out exactly as they are
+// (CBOR keeps NaN and infinities), not as JSON's null. Thread-local, so the
+// writers below need no second signature for the wire.
+thread_local bool tExactNumbers = false;
+
+Json Number(double value) { return std::isfinite(value) || tExactNumbers ? Json(value) : Json(nullptr); }
 
 Json NumbersOrNull(const std::vector<double>& values) {
   Json array = Json::array();
@@ -300,6 +307,29 @@ Result<ResultsFile> ResultsFromJson(std::string_view text) {
       file.results.push_back(ResultFromJson(results[i], Concat({"/results/", std::to_string(i)})));
     }
     return file;
+  } catch (const ParseFailure& failure) {
+    return Error{failure.message};
+  }
+}
+
+std::string RunResultToWire(const RunResult& result) {
+  tExactNumbers = true;
+  std::vector<std::uint8_t> bytes;
+  try {
+    bytes = Json::to_cbor(ResultToJson(result));
+  } catch (...) {
+    tExactNumbers = false;
+    throw;
+  }
+  tExactNumbers = false;
+  return {bytes.begin(), bytes.end()};
+}
+
+Result<RunResult> RunResultFromWire(std::string_view bytes) {
+  const Json j = Json::from_cbor(bytes.begin(), bytes.end(), true, false);
+  if (j.is_discarded()) return Error{"not a serialised run result"};
+  try {
+    return ResultFromJson(j, "result");
   } catch (const ParseFailure& failure) {
     return Error{failure.message};
   }

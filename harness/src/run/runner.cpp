@@ -1,6 +1,6 @@
-// The runner: one job per (run, backend), the thread pool with serialised
-// lanes for backends that are not thread-safe, and the per-job recording
-// and metrics (see runner.h).
+// The runner: one job per (run, backend), each in its own process or on
+// the thread pool with serialised lanes for backends that are not
+// thread-safe, and the per-job recording and metrics (see runner.h).
 #include "talus/harness/run/runner.h"
 
 #include <algorithm>
@@ -15,6 +15,8 @@
 #include <utility>
 
 #include "support/text_util.h"
+#include "talus/harness/run/job_processes.h"
+#include "talus/harness/run/results_file.h"
 #include "talus/harness/run/run_metrics.h"
 #include "talus/harness/scenario/scenario_limits.h"
 #include "talus/harness/support/nan_extremes.h"
@@ -25,6 +27,11 @@ namespace {
 // The most per-step wall times a run keeps (8 MB): enough for a stable
 // median, bounded for runs of a billion steps.
 constexpr std::size_t kMaxTimedSteps = std::size_t{1} << 20;
+
+// True while RunOne records its run (not a converged reference): Record
+// then reports each step to the runner's parent process (ReportJobStep),
+// which places a crash at its step.
+thread_local bool tReportSteps = false;
 
 // Serialises every call of RunnerOptions::progress (job lines and the
 // long-job lines), so lines never interleave.
@@ -119,6 +126,40 @@ std::string NonFiniteBody(const Backend& backend, const Run& run) {
     }
   }
   return {};
+}
+
+// A result with its run's identity and nothing measured yet.
+RunResult ResultIdentity(const Run& run, const std::string& backendName) {
+  RunResult result;
+  result.scenario = run.scenario.name;
+  result.file = run.scenario.file;
+  result.runId = run.id;
+  result.backend = backendName;
+  result.sweepValues = run.sweepValues;
+  result.timeStep = run.timeStep;
+  result.iterations = run.iterations;
+  result.steps = run.steps;
+  for (const BodySpec& body : run.scenario.bodies) result.bodyNames.push_back(body.name);
+  return result;
+}
+
+// The error of a job whose process died, placed like a failed step's
+// ("step 63: ode-step: ...") when it died while stepping; no step number
+// when it died before the first step or after the last (metrics, the
+// converged reference, the answer).
+std::string StoppedReason(const JobOutcome& outcome, const Run& run, const std::string& backendName) {
+  std::string where;
+  if (outcome.step >= 1) {
+    where = Concat({"step ", std::to_string(outcome.step), ": ", backendName, ": "});
+  } else if (outcome.step == kJobPastSteps) {
+    where = Concat({backendName, ": after its ", std::to_string(run.steps),
+                    " steps (metrics or converged reference): "});
+  } else {
+    where = Concat({backendName, ": before its first step: "});
+  }
+  std::string reason = Concat({where, outcome.failure});
+  if (!outcome.lastMessage.empty()) reason.append("; last message: ").append(outcome.lastMessage);
+  return reason;
 }
 
 }  // namespace
@@ -222,6 +263,7 @@ Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
   // memory stays bounded however long the run is.
   int timedEvery = 1;
   for (int step = 1; step <= steps; ++step) {
+    if (tReportSteps) ReportJobStep(step);
     const auto start = std::chrono::steady_clock::now();
     backend.Step();
     const auto end = std::chrono::steady_clock::now();
@@ -259,16 +301,7 @@ Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
 
 RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::string& backendName,
                  const RunnerOptions& options) {
-  RunResult result;
-  result.scenario = run.scenario.name;
-  result.file = run.scenario.file;
-  result.runId = run.id;
-  result.backend = backendName;
-  result.sweepValues = run.sweepValues;
-  result.timeStep = run.timeStep;
-  result.iterations = run.iterations;
-  result.steps = run.steps;
-  for (const BodySpec& body : run.scenario.bodies) result.bodyNames.push_back(body.name);
+  RunResult result = ResultIdentity(run, backendName);
 
   auto built = registry.Create(backendName, run);
   if (!built) {
@@ -298,9 +331,12 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
     options.progress(Concat({run.id, " ", backendName, ": ", line}));
     return {};
   };
+  tReportSteps = true;
   const Trajectory trajectory = Record(
       backend, run, run.steps, run.timeStep, [&](int step) { return IsSampled(step, run.steps, stride); },
       &stepSeconds, replay, tick, &wall);
+  tReportSteps = false;
+  ReportJobStep(kJobPastSteps);
   if (!options.deterministic) {
     result.wallSeconds = wall.total;
     result.wallSecondsLongestStep = wall.longest;
@@ -389,9 +425,18 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
     return Error{
         Concat({"jobs must be 1 to ", std::to_string(kMaxJobs), ", got ", std::to_string(options.jobs)})};
   }
-  if (!(options.budgetSeconds >= 0.0 && std::isfinite(options.budgetSeconds))) {
+  if (!(options.budgetSeconds >= 0.0 && options.budgetSeconds <= kMaxBudgetSeconds)) {
+    return Error{Concat({"budget ", FormatNumber(options.budgetSeconds), " s is not in [0, ",
+                         FormatNumber(kMaxBudgetSeconds), "] (0 = none)"})};
+  }
+  if (options.memoryLimitBytes != 0 &&
+      (options.memoryLimitBytes < kMinMemoryLimitBytes || options.memoryLimitBytes > kMaxMemoryLimitBytes)) {
     return Error{
-        Concat({"budget ", FormatNumber(options.budgetSeconds), " s must be finite and >= 0 (0 = none)"})};
+        Concat({"memory limit ", std::to_string(options.memoryLimitBytes), " bytes is not 0 (none) or in [",
+                std::to_string(kMinMemoryLimitBytes), ", ", std::to_string(kMaxMemoryLimitBytes), "]"})};
+  }
+  if (options.memoryLimitBytes != 0 && options.isolation != JobIsolation::Process) {
+    return Error{"a memory limit needs each job in its own process (JobIsolation::Process)"};
   }
   if (options.maxSamples < 1) return Error{"maxSamples must be >= 1"};
   if (options.plotPoints < 2) return Error{"plotPoints must be >= 2"};
@@ -425,6 +470,40 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
   }
   std::vector<RunResult> results(jobs.size());
   std::size_t done = 0;
+  if (options.isolation == JobIsolation::Process) {
+    const ProcessLimits limits{.killAfterSeconds = options.budgetSeconds > 0.0
+                                                       ? options.budgetSeconds + kBudgetKillGraceSeconds
+                                                       : 0.0,
+                               .memoryBytes = options.memoryLimitBytes};
+    const auto work = [&](std::size_t index) {
+      return RunResultToWire(RunOne(registry, *jobs[index].run, jobs[index].backend, options));
+    };
+    const auto collect = [&](std::size_t index, JobOutcome outcome) {
+      const Job& job = jobs[index];
+      if (outcome.finished) {
+        auto answer = RunResultFromWire(outcome.answer);
+        if (answer) {
+          results[index] = std::move(answer).Value();
+        } else {
+          outcome.failure = Concat({"its answer could not be read: ", answer.GetError().message});
+        }
+      }
+      if (!outcome.failure.empty()) {
+        results[index] = ResultIdentity(*job.run, job.backend);
+        results[index].error = StoppedReason(outcome, *job.run, job.backend);
+      }
+      if (options.progress) {
+        ++done;
+        char line[64];
+        std::snprintf(line, sizeof line, " %.2f s", outcome.wallSeconds);
+        options.progress(
+            Concat({"[", std::to_string(done), "/", std::to_string(jobs.size()), "] ", job.run->id, " ",
+                    job.backend, line, results[index].error.empty() ? "" : " (error)"}));
+      }
+    };
+    RunInChildProcesses(jobs.size(), options.jobs, limits, work, collect);
+    return results;
+  }
   const auto execute = [&](std::size_t index) {
     const auto start = std::chrono::steady_clock::now();
     results[index] = RunOne(registry, *jobs[index].run, jobs[index].backend, options);

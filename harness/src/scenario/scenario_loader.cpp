@@ -5,8 +5,8 @@
 // has the right type and range, so the mapping below may read fields without
 // re-checking types and only adds what a schema cannot say (unit
 // quaternions, unique names, exactly one of mass and density, truths naming
-// existing bodies). Each sweep combination is re-validated after its values
-// are written in, so a sweep cannot smuggle in a value the schema forbids.
+// existing bodies, no degenerate body: degenerate_body_check.h). Each sweep combination is re-validated after
+// its values are written in, so a sweep cannot smuggle in a value the schema forbids.
 #include "talus/harness/scenario/scenario_loader.h"
 
 #include <algorithm>
@@ -20,6 +20,7 @@
 #include <unordered_set>
 #include <variant>
 
+#include "scenario/degenerate_body_check.h"
 #include "scenario/scenario_schema_text.h"
 #include "support/text_util.h"
 #include "talus/harness/analytic/hull_rest_analysis.h"
@@ -297,6 +298,8 @@ Result<BodySpec> MapBody(const json& body, std::string_view file, const std::str
   if (body.contains("friction")) spec.friction = body["friction"].get<double>();
   if (body.contains("restitution")) spec.restitution = body["restitution"].get<double>();
   if (auto problem = CheckMagnitudes(spec, file, pointer)) return *problem;
+  if (auto problem = FindDegenerateBody(spec))
+    return FieldError(file, pointer + problem->field, problem->reason);
   return spec;
 }
 

@@ -68,6 +68,11 @@ class MujocoBackend final : public harness::Backend {
 
   [[nodiscard]] std::string Name() const override { return m_profile.name; }
   void Step() override;
+  /// The MuJoCo error or warning that killed the world. Without it the
+  /// runner saw only the NaN states below and named the first body, often
+  /// the static ground ("body \"ground\": non-finite position", issue 26),
+  /// instead of MuJoCo's own reason.
+  [[nodiscard]] std::string StepFailure() const override { return m_failure; }
   [[nodiscard]] int BodyCount() const override { return static_cast<int>(m_bodies.size()); }
   [[nodiscard]] harness::BodyReading GetBodyState(int index) const override;
   [[nodiscard]] std::vector<harness::ContactReading> GetContacts() const override;

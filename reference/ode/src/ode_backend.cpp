@@ -150,7 +150,7 @@ class OdeBackend final : public harness::Backend {
 
   OdeBackend() = default;
   static void NearCallback(void* data, dGeomID geom1, dGeomID geom2);
-  void Collide(const Body& a, const Body& b);
+  [[nodiscard]] std::string Collide(const Body& a, const Body& b);
   [[nodiscard]] bool SlipDirection(const Body& a, const Body& b, const dContactGeom& contact,
                                    dVector3 direction) const;
   Result<bool> AddBody(const BodySpec& spec, const BodyMass& mass, int index);
@@ -324,10 +324,40 @@ bool OdeBackend::SlipDirection(const Body& a, const Body& b, const dContactGeom&
   return true;
 }
 
-void OdeBackend::Collide(const Body& a, const Body& b) {
+// Why ODE must not be stepped with a contact its collider returned: a
+// normal that is not a unit vector (dCollideConvexConvex returns (0, 0, 0)
+// for hull faces that touch exactly, e.g. the blocks of an arch: its
+// Jacobian row is then zero, the solver divides by its zero diagonal and
+// the body's quaternion turns NaN, which dxNormalize4 aborts on; see
+// docs/testbed-backends.md) or a non-finite point or depth. Empty when the
+// contact is sound. Dropping such a contact instead would silently change
+// the physics; the run stops with the reason.
+static std::string UnsoundContact(const std::string& nameA, const std::string& nameB,
+                                  const dContactGeom& contact) {
+  const Vec3 normal(contact.normal[0], contact.normal[1], contact.normal[2]);
+  const Vec3 point(contact.pos[0], contact.pos[1], contact.pos[2]);
+  // ODE normalises its normals to round-off; a real normal is within 1e-6.
+  constexpr double kUnitNormalTolerance = 1e-6;
+  if (normal.allFinite() && std::abs(normal.norm() - 1.0) <= kUnitNormalTolerance && point.allFinite() &&
+      std::isfinite(contact.depth)) {
+    return {};
+  }
+  std::ostringstream problem;
+  problem << "ODE's collider returned a contact between \"" << nameA << "\" and \"" << nameB
+          << "\" with normal (" << normal.x() << ", " << normal.y() << ", " << normal.z() << "), point ("
+          << point.x() << ", " << point.y() << ", " << point.z() << "), depth " << contact.depth
+          << " m; not stepped (the solver would divide by its zero row and ODE abort)";
+  return problem.str();
+}
+
+std::string OdeBackend::Collide(const Body& a, const Body& b) {
   dContact contacts[kOdeMaxContactsPerPair];
   std::memset(contacts, 0, sizeof(contacts));
   const int count = dCollide(a.geom, b.geom, kOdeMaxContactsPerPair, &contacts[0].geom, sizeof(dContact));
+  for (int i = 0; i < count; ++i) {
+    if (std::string problem = UnsoundContact(a.name, b.name, contacts[i].geom); !problem.empty())
+      return problem;
+  }
   const double friction = harness::Combine(m_worldSettings.frictionCombine, a.friction, b.friction);
   const double restitution =
       harness::Combine(m_worldSettings.restitutionCombine, a.restitution, b.restitution);
@@ -350,6 +380,7 @@ void OdeBackend::Collide(const Body& a, const Body& b) {
     m_contacts.push_back({a.index, b.index, Vec3(g.pos[0], g.pos[1], g.pos[2]),
                           Vec3(g.normal[0], g.normal[1], g.normal[2]), g.depth});
   }
+  return {};
 }
 
 // The first dynamic body whose state ODE must not be stepped with: a
@@ -397,7 +428,13 @@ void OdeBackend::Step() {
   // The pairs in the space's own order, geom 1 first (see the file comment).
   dSpaceCollide(m_space, this, &OdeBackend::NearCallback);
   for (const auto& [first, second] : m_pairs) {
-    Collide(*m_bodies[static_cast<size_t>(first)], *m_bodies[static_cast<size_t>(second)]);
+    m_failure = Collide(*m_bodies[static_cast<size_t>(first)], *m_bodies[static_cast<size_t>(second)]);
+    if (!m_failure.empty()) {
+      dJointGroupEmpty(m_contactGroup);
+      m_contacts.clear();
+      tCurrentRun = nullptr;
+      return;
+    }
   }
   dRandSetSeed(m_randomSeed);
   // 0 when ODE could not take the step (it could not allocate its step

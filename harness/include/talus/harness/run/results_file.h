@@ -36,6 +36,14 @@ std::string ResultsToJson(const ResultsFile& file);
 /// missing field \"measured\"") when the text is not a results file.
 Result<ResultsFile> ResultsFromJson(std::string_view text);
 
+/// One RunResult as bytes (CBOR of its results.json entry, with every
+/// number exact: NaN and infinities kept), for an isolated job's answer to
+/// the runner (job_processes.h), and back. Every field results.json
+/// carries travels, so a result that crossed a process boundary writes the
+/// same results.json bytes as one that did not.
+std::string RunResultToWire(const RunResult& result);
+Result<RunResult> RunResultFromWire(std::string_view bytes);
+
 /// Writes / reads the file; errors name the path.
 Result<std::monostate> WriteResultsFile(const std::filesystem::path& path, const ResultsFile& file);
 Result<ResultsFile> ReadResultsFile(const std::filesystem::path& path);

@@ -4,15 +4,22 @@
 // to the backends asked for that its scenario also lists (all asked for
 // when it lists none).
 //
-// Work is split into independent jobs, one per (run, backend), executed by
-// a pool of threads; results come back in job order (runs in file order,
-// backends in the order asked for) whatever the threads' timing, so the
-// output is deterministic. Each backend declares its thread safety where it
-// registers (ThreadSafety, backend.h): the jobs of backends whose worlds
-// share a library's process-wide state (ODE, Bullet, MuJoCo) run in order on
-// one dedicated thread per library, concurrently with the other libraries
-// and with the jobs of independent worlds (Talus's).
+// Work is split into independent jobs, one per (run, backend); results
+// come back in job order (runs in file order, backends in the order asked
+// for) whatever the timing, so the output is deterministic. By default
+// (JobIsolation::Process) each job runs in its own child process
+// (job_processes.h), so an engine that aborts, segfaults, hangs past the
+// budget or runs out of its memory limit stops only its own job, which
+// then records the cause as its error. JobIsolation::InProcess runs the
+// jobs on a pool of threads in this process instead (what the
+// ThreadSanitizer tree checks): each backend declares its thread safety
+// where it registers (ThreadSafety, backend.h), and the jobs of backends
+// whose worlds share a library's process-wide state (ODE, Bullet, MuJoCo)
+// run in order on one dedicated thread per library, concurrently with the
+// other libraries and with the jobs of independent worlds (Talus's).
 #pragma once
+
+#include <cstddef>
 
 #include <functional>
 #include <string>
@@ -75,6 +82,24 @@ struct RunResult {
   Replay replay;      ///< for the 3D replay; empty unless selected (RunnerOptions::replay)
 };
 
+/// Where RunAll's jobs run (see the file comment).
+enum class JobIsolation {
+  Process,    ///< one child process per job: a crash, hang or runaway allocation stops that job only
+  InProcess,  ///< threads of this process: no protection, no fork (ThreadSanitizer, debuggers)
+};
+
+/// Bounds of RunnerOptions::budgetSeconds and memoryLimitBytes (0 = none
+/// for both). A limit below 16 MiB leaves no room for an engine's own
+/// start-up allocations; the upper bounds only keep the numbers sane (11.6
+/// days, 1 TiB).
+inline constexpr double kMaxBudgetSeconds = 1e6;
+inline constexpr std::size_t kMinMemoryLimitBytes = std::size_t{16} << 20;
+inline constexpr std::size_t kMaxMemoryLimitBytes = std::size_t{1} << 40;
+/// With JobIsolation::Process, the runner kills a job's process this long
+/// after its budget: the job's own check (every 1024 steps) normally stops
+/// it first and keeps its plot; the kill ends a job stuck inside one step.
+inline constexpr double kBudgetKillGraceSeconds = 2.0;
+
 struct RunnerOptions {
   /// Backends to run, in output order; each must be registered.
   std::vector<std::string> backends;
@@ -99,10 +124,23 @@ struct RunnerOptions {
   /// as "box_slide bullet: step 120000 of 1000000 (12%), 10.0 s" every
   /// this many seconds (serialised with the other lines).
   double progressSeconds = 10.0;
-  /// Wall-clock budget of one job's recorded run, seconds; 0 = none. A job
-  /// past it stops like a failed step: "step 3072: talus: wall-clock budget
-  /// of 60 s spent" (checked every 1024 steps).
+  /// Wall-clock budget of one job's recorded run, seconds, in [0,
+  /// kMaxBudgetSeconds]; 0 = none. A job past it stops like a failed step:
+  /// "step 3072: talus: wall-clock budget of 60 s spent" (checked every
+  /// 1024 steps). With JobIsolation::Process, a job still running
+  /// kBudgetKillGraceSeconds later (stuck inside one step) is killed:
+  /// "step 12: ode-quickstep: wall-clock budget spent: the runner killed
+  /// the job's process after 62 s".
   double budgetSeconds = 0.0;
+  /// Where the jobs run.
+  JobIsolation isolation = JobIsolation::Process;
+  /// With JobIsolation::Process: the address space each job's process may
+  /// add to what it starts with (RLIMIT_AS), bytes; 0 = none, else in
+  /// [kMinMemoryLimitBytes, kMaxMemoryLimitBytes]. An allocation past it
+  /// fails; a job ended by it records "ran out of memory (std::bad_alloc)
+  /// within the job's limit of 256 MiB" or the engine's own reaction (ODE
+  /// reports a step it could not take). Must be 0 with InProcess.
+  std::size_t memoryLimitBytes = 0;
   /// Called on the calling thread, before any job runs, once per run that
   /// runs on no backend because its scenario's `backends` and `backends`
   /// above have no name in common (such a run has no RunResult), e.g.
@@ -132,7 +170,13 @@ Result<std::vector<std::string>> BackendsForRun(const BackendRegistry& registry,
 /// `options.backends`. An unknown backend name (asked for or in a scenario)
 /// or bad options is an Error before anything runs; a run left with no
 /// backend is passed to options.notice and has no result; a backend
-/// refusing one run is recorded in that RunResult's `error`.
+/// refusing one run is recorded in that RunResult's `error`, and so (with
+/// JobIsolation::Process) is a job whose process died: "step 63: ode-step:
+/// stopped by signal 6 (SIGABRT: Aborted); last message: ...", with the
+/// step it had reached, the signal or limit, and the last lines the engine
+/// wrote to stderr. Such a result keeps its run's identity (scenario, run,
+/// backend, steps, bodies) but no settings, metrics or plot. With Process
+/// isolation the calling thread must be the process's only thread.
 Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std::vector<Run>& runs,
                                       const RunnerOptions& options);
 

@@ -1,0 +1,551 @@
+// Jobs in worker processes (see job_processes.h): fork, limits, the poll
+// loop that hands out jobs and gathers answers and stderr, the kill at the
+// time limit, and the description of how a job's worker died.
+#include "talus/harness/run/job_processes.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <new>
+#include <stdexcept>
+#include <typeinfo>
+#include <vector>
+
+#include "support/text_util.h"
+
+namespace talus::harness {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// In a child: its slot of the shared step page; null everywhere else.
+std::atomic<int>* g_stepSlot = nullptr;
+
+// Bytes of a child's stderr kept for its last message.
+constexpr std::size_t kStderrTail = 4096;
+// Characters of the last message kept in an outcome.
+constexpr std::size_t kLastMessageChars = 600;
+
+// The answer pipe's first byte says what follows.
+constexpr char kAnswerTag = 'R';
+constexpr char kFailureTag = 'E';
+
+void WriteAll(int fd, const char* data, std::size_t size) {
+  while (size > 0) {
+    const ssize_t written = ::write(fd, data, size);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      return;  // the parent is gone or the pipe broke: nothing left to tell
+    }
+    data += written;
+    size -= static_cast<std::size_t>(written);
+  }
+}
+
+// The process's address space in bytes (/proc/self/statm, first field in
+// pages), read with plain syscalls: 0 when it cannot be read.
+std::size_t AddressSpaceBytes() {
+  const int fd = ::open("/proc/self/statm", O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return 0;
+  char text[128] = {};
+  const ssize_t got = ::read(fd, text, sizeof text - 1);
+  ::close(fd);
+  if (got <= 0) return 0;
+  std::size_t pages = 0;
+  for (ssize_t i = 0; i < got && text[i] >= '0' && text[i] <= '9'; ++i) {
+    pages = pages * 10 + static_cast<std::size_t>(text[i] - '0');
+  }
+  return pages * static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+}
+
+std::string MiB(std::size_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
+
+bool ReadAll(int fd, void* data, std::size_t size) {
+  auto* bytes = static_cast<char*>(data);
+  while (size > 0) {
+    const ssize_t got = ::read(fd, bytes, size);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) return false;
+    bytes += got;
+    size -= static_cast<std::size_t>(got);
+  }
+  return true;
+}
+
+// The worker's side: limits, then jobs (an 8-byte index each) until the
+// command pipe closes; each answer is a frame: tag, 8-byte length, bytes.
+// A job that threw leaves the engine's state untrusted, so the worker
+// exits after answering it and the parent starts a fresh one. Never
+// returns.
+[[noreturn]] void BeWorker(const ProcessLimits& limits, const std::function<std::string(std::size_t)>& work,
+                           int commandFd, int answerFd, int stderrFd, std::atomic<int>* stepSlot) {
+  ::dup2(stderrFd, STDERR_FILENO);
+  ::close(stderrFd);
+  ::signal(SIGPIPE, SIG_DFL);  // the parent ignores it; an engine here should not
+  // A crashing engine should not spend seconds writing a core file.
+  const rlimit noCore{0, 0};
+  ::setrlimit(RLIMIT_CORE, &noCore);
+  if (limits.memoryBytes > 0) {
+    const std::size_t cap = AddressSpaceBytes() + limits.memoryBytes;
+    const rlimit memory{cap, cap};
+    ::setrlimit(RLIMIT_AS, &memory);
+  }
+  g_stepSlot = stepSlot;
+  std::uint64_t index = 0;
+  while (ReadAll(commandFd, &index, sizeof index)) {
+    stepSlot->store(kJobNotStepping, std::memory_order_relaxed);
+    char tag = kAnswerTag;
+    std::string message;
+    try {
+      message = work(static_cast<std::size_t>(index));
+    } catch (const std::bad_alloc& e) {
+      tag = kFailureTag;
+      message = limits.memoryBytes > 0
+                    ? Concat({"ran out of memory (", e.what(), ") within the job's limit of ",
+                              MiB(limits.memoryBytes), " (--memory-limit)"})
+                    : Concat({"ran out of memory (", e.what(), ")"});
+    } catch (const std::exception& e) {
+      tag = kFailureTag;
+      message = Concat({"threw ", typeid(e).name(), ": ", e.what()});
+    } catch (...) {
+      tag = kFailureTag;
+      message = "threw an exception of unknown type";
+    }
+    const std::uint64_t size = message.size();
+    WriteAll(answerFd, &tag, 1);
+    WriteAll(answerFd, reinterpret_cast<const char*>(&size), sizeof size);
+    WriteAll(answerFd, message.data(), message.size());
+    if (tag == kFailureTag) break;
+  }
+  ::_exit(0);
+}
+
+const char* SignalName(int number) {
+  switch (number) {
+    case SIGABRT:
+      return "SIGABRT";
+    case SIGSEGV:
+      return "SIGSEGV";
+    case SIGBUS:
+      return "SIGBUS";
+    case SIGFPE:
+      return "SIGFPE";
+    case SIGILL:
+      return "SIGILL";
+    case SIGKILL:
+      return "SIGKILL";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGXCPU:
+      return "SIGXCPU";
+    case SIGTRAP:
+      return "SIGTRAP";
+    default:
+      return "signal";
+  }
+}
+
+// The last two non-empty lines of `tail`, joined with " / ", at most
+// kLastMessageChars (the end kept).
+std::string LastLines(const std::string& tail) {
+  std::vector<std::string> lines;
+  std::size_t end = tail.size();
+  while (end > 0 && lines.size() < 2) {
+    const std::size_t newline = tail.rfind('\n', end - 1);
+    const std::size_t begin = newline == std::string::npos ? 0 : newline + 1;
+    std::string line = tail.substr(begin, end - begin);
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (!line.empty()) lines.insert(lines.begin(), std::move(line));
+    if (newline == std::string::npos) break;
+    end = newline;
+  }
+  std::string joined;
+  for (const std::string& line : lines) joined.append(joined.empty() ? "" : " / ").append(line);
+  if (joined.size() > kLastMessageChars) joined = "..." + joined.substr(joined.size() - kLastMessageChars);
+  return joined;
+}
+
+// One worker process and the job it is running.
+struct Worker {
+  pid_t pid = -1;
+  int commandFd = -1;  // ours to write job indices to
+  int answerFd = -1;
+  int stderrFd = -1;
+  std::size_t slot = 0;
+  bool busy = false;
+  bool retiring = false;  // sent no more jobs: it exits after its answer
+  std::size_t job = 0;
+  Clock::time_point started;
+  bool killedForTime = false;
+  std::string answer;
+  std::string stderrLine;  // the part of a line not yet passed on
+  std::string stderrTail;  // of the current job
+};
+
+// The shared page of step slots, one per worker.
+class StepSlots {
+ public:
+  explicit StepSlots(std::size_t count)
+      : m_bytes(std::max<std::size_t>(1, count) * sizeof(std::atomic<int>)) {
+    void* memory = ::mmap(nullptr, m_bytes, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (memory == MAP_FAILED) {
+      throw std::runtime_error(Concat({"mmap of the step page: ", std::strerror(errno)}));
+    }
+    m_slots = static_cast<std::atomic<int>*>(memory);
+    for (std::size_t i = 0; i < count; ++i) new (&m_slots[i]) std::atomic<int>(kJobNotStepping);
+  }
+  ~StepSlots() { ::munmap(m_slots, m_bytes); }
+  StepSlots(const StepSlots&) = delete;
+  StepSlots& operator=(const StepSlots&) = delete;
+  std::atomic<int>& operator[](std::size_t i) { return m_slots[i]; }
+
+ private:
+  std::size_t m_bytes;
+  std::atomic<int>* m_slots = nullptr;
+};
+
+void CloseFd(int& fd) {
+  if (fd >= 0) ::close(fd);
+  fd = -1;
+}
+
+// SIGPIPE ignored while the pool runs (a job index written to a worker
+// that just died must be an error, not the end of the runner), restored
+// after.
+class IgnoreSigpipe {
+ public:
+  IgnoreSigpipe() {
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    ::sigemptyset(&ignore.sa_mask);
+    ::sigaction(SIGPIPE, &ignore, &m_old);
+  }
+  ~IgnoreSigpipe() { ::sigaction(SIGPIPE, &m_old, nullptr); }
+  IgnoreSigpipe(const IgnoreSigpipe&) = delete;
+  IgnoreSigpipe& operator=(const IgnoreSigpipe&) = delete;
+
+ private:
+  struct sigaction m_old {};
+};
+
+// Kills and reaps whatever is still running when the pool leaves early
+// (an exception from `done`), so no worker outlives the call.
+class Reaper {
+ public:
+  explicit Reaper(std::vector<Worker>& workers) : m_workers(workers) {}
+  ~Reaper() {
+    for (Worker& worker : m_workers) {
+      if (worker.pid > 0) {
+        ::kill(worker.pid, SIGKILL);
+        int status = 0;
+        while (::waitpid(worker.pid, &status, 0) < 0 && errno == EINTR) {
+        }
+      }
+      CloseFd(worker.commandFd);
+      CloseFd(worker.answerFd);
+      CloseFd(worker.stderrFd);
+    }
+  }
+  Reaper(const Reaper&) = delete;
+  Reaper& operator=(const Reaper&) = delete;
+
+ private:
+  std::vector<Worker>& m_workers;
+};
+
+// Passes complete lines of a worker's stderr on to ours (whole lines, so
+// workers do not cut into each other's lines) and keeps the tail.
+void TakeStderr(Worker& worker, const char* data, std::size_t size) {
+  worker.stderrTail.append(data, size);
+  if (worker.stderrTail.size() > 2 * kStderrTail) {
+    worker.stderrTail.erase(0, worker.stderrTail.size() - kStderrTail);
+  }
+  worker.stderrLine.append(data, size);
+  const std::size_t lastNewline = worker.stderrLine.rfind('\n');
+  if (lastNewline == std::string::npos) return;
+  WriteAll(STDERR_FILENO, worker.stderrLine.data(), lastNewline + 1);
+  worker.stderrLine.erase(0, lastNewline + 1);
+}
+
+// Reads what `fd` holds now (non-blocking); false at its end.
+bool Drain(int fd, std::vector<char>& buffer, const std::function<void(const char*, std::size_t)>& take) {
+  while (true) {
+    const ssize_t got = ::read(fd, buffer.data(), buffer.size());
+    if (got > 0) {
+      take(buffer.data(), static_cast<std::size_t>(got));
+      continue;
+    }
+    if (got < 0 && errno == EINTR) continue;
+    return got < 0;  // EAGAIN: open, empty now; 0: closed
+  }
+}
+
+// How a worker's death ended its job.
+std::string DeathReason(const Worker& worker, int status, double killAfter) {
+  if (worker.killedForTime) {
+    return Concat({"wall-clock budget spent: the runner killed the job's process after ",
+                   FormatNumber(killAfter), " s"});
+  }
+  if (WIFSIGNALED(status)) {
+    const int number = WTERMSIG(status);
+    return Concat({"stopped by signal ", std::to_string(number), " (", SignalName(number), ": ",
+                   ::strsignal(number), ")"});
+  }
+  if (WIFEXITED(status)) {
+    return Concat(
+        {"the job's process exited with status ", std::to_string(WEXITSTATUS(status)), " and no answer"});
+  }
+  return "the job's process ended in an unknown way";
+}
+
+}  // namespace
+
+void ReportJobStep(int step) {
+  if (g_stepSlot != nullptr) g_stepSlot->store(step, std::memory_order_relaxed);
+}
+
+void RunInChildProcesses(std::size_t count, int parallel, const ProcessLimits& limits,
+                         const std::function<std::string(std::size_t)>& work,
+                         const std::function<void(std::size_t, JobOutcome)>& done) {
+  const std::size_t slots = std::min<std::size_t>(static_cast<std::size_t>(std::max(1, parallel)), count);
+  if (slots == 0) return;
+  const IgnoreSigpipe sigpipe;
+  StepSlots steps(slots);
+  std::vector<Worker> workers(slots);
+  const Reaper reaper(workers);
+  std::vector<char> buffer(1 << 16);
+  std::size_t next = 0;      // the next job to hand out
+  std::size_t finished = 0;  // jobs whose outcome went to `done`
+
+  // Starts the worker of `slot`; the reason when a pipe or the fork failed.
+  const auto start = [&](std::size_t slot) -> std::string {
+    int command[2];
+    int answer[2];
+    int err[2];
+    if (::pipe2(command, O_CLOEXEC) != 0) return Concat({"pipe: ", std::strerror(errno)});
+    if (::pipe2(answer, O_CLOEXEC) != 0) {
+      const std::string reason = Concat({"pipe: ", std::strerror(errno)});
+      ::close(command[0]);
+      ::close(command[1]);
+      return reason;
+    }
+    if (::pipe2(err, O_CLOEXEC) != 0) {
+      const std::string reason = Concat({"pipe: ", std::strerror(errno)});
+      for (int fd : {command[0], command[1], answer[0], answer[1]}) ::close(fd);
+      return reason;
+    }
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      // The other workers' pipe ends must not stay open here: a worker
+      // holding another's command pipe would keep it from ever seeing its end.
+      for (Worker& other : workers) {
+        for (int fd : {other.commandFd, other.answerFd, other.stderrFd}) {
+          if (fd >= 0) ::close(fd);
+        }
+      }
+      ::close(command[1]);
+      ::close(answer[0]);
+      ::close(err[0]);
+      BeWorker(limits, work, command[0], answer[1], err[1], &steps[slot]);
+    }
+    ::close(command[0]);
+    ::close(answer[1]);
+    ::close(err[1]);
+    if (pid < 0) {
+      const std::string reason = Concat({"fork: ", std::strerror(errno)});
+      for (int fd : {command[1], answer[0], err[0]}) ::close(fd);
+      return reason;
+    }
+    ::fcntl(answer[0], F_SETFL, O_NONBLOCK);
+    ::fcntl(err[0], F_SETFL, O_NONBLOCK);
+    Worker& worker = workers[slot];
+    worker = Worker{};
+    worker.pid = pid;
+    worker.commandFd = command[1];
+    worker.answerFd = answer[0];
+    worker.stderrFd = err[0];
+    worker.slot = slot;
+    return {};
+  };
+
+  // Hands the next job to an idle worker of `slot` (starting it if need
+  // be), or lets it retire when none is left.
+  const auto feed = [&](std::size_t slot) {
+    Worker& worker = workers[slot];
+    if (worker.busy || worker.retiring) return;
+    if (next == count) {
+      if (worker.pid > 0) {
+        worker.retiring = true;
+        CloseFd(worker.commandFd);
+      }
+      return;
+    }
+    if (worker.pid <= 0) {
+      if (const std::string refused = start(slot); !refused.empty()) {
+        JobOutcome outcome;
+        outcome.failure = Concat({"could not start the job's process: ", refused});
+        ++finished;
+        done(next++, std::move(outcome));
+        return;
+      }
+    }
+    const std::uint64_t index = next;
+    worker.busy = true;
+    worker.job = next++;
+    worker.started = Clock::now();
+    worker.killedForTime = false;
+    worker.stderrTail.clear();
+    steps[slot].store(kJobNotStepping, std::memory_order_relaxed);
+    // A worker that died since its last answer shows as EPIPE here and as
+    // the end of its answer pipe below, which ends this job with its cause.
+    WriteAll(worker.commandFd, reinterpret_cast<const char*>(&index), sizeof index);
+  };
+
+  // The worker of `slot` has ended (its answer pipe closed): its job, if
+  // any, ends with the cause; the slot is free for a new worker.
+  const auto bury = [&](std::size_t slot) {
+    Worker& worker = workers[slot];
+    if (worker.stderrFd >= 0) {
+      // Blocking now: the worker is gone or going, its stderr ends with it.
+      ::fcntl(worker.stderrFd, F_SETFL, 0);
+      Drain(worker.stderrFd, buffer,
+            [&](const char* data, std::size_t size) { TakeStderr(worker, data, size); });
+      CloseFd(worker.stderrFd);
+    }
+    if (!worker.stderrLine.empty()) {
+      worker.stderrLine.push_back('\n');
+      WriteAll(STDERR_FILENO, worker.stderrLine.data(), worker.stderrLine.size());
+      worker.stderrLine.clear();
+    }
+    int status = 0;
+    while (::waitpid(worker.pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    CloseFd(worker.commandFd);
+    CloseFd(worker.answerFd);
+    const bool wasBusy = worker.busy;
+    JobOutcome outcome;
+    if (wasBusy) {
+      outcome.failure = DeathReason(worker, status, limits.killAfterSeconds);
+      outcome.killedForTime = worker.killedForTime;
+      outcome.step = steps[slot].load(std::memory_order_relaxed);
+      outcome.lastMessage = LastLines(worker.stderrTail);
+      outcome.wallSeconds = std::chrono::duration<double>(Clock::now() - worker.started).count();
+    }
+    const std::size_t job = worker.job;
+    worker = Worker{};
+    if (wasBusy) {
+      ++finished;
+      done(job, std::move(outcome));
+    }
+  };
+
+  // Complete answer frames in a worker's buffer go to `done`.
+  const auto takeAnswers = [&](std::size_t slot) {
+    Worker& worker = workers[slot];
+    constexpr std::size_t kHeader = 1 + sizeof(std::uint64_t);
+    while (worker.busy && worker.answer.size() >= kHeader) {
+      std::uint64_t size = 0;
+      std::memcpy(&size, worker.answer.data() + 1, sizeof size);
+      if (worker.answer.size() - kHeader < size) return;
+      // Its stderr was written before its answer: take all of it first.
+      if (worker.stderrFd >= 0) {
+        Drain(worker.stderrFd, buffer, [&](const char* data, std::size_t n) { TakeStderr(worker, data, n); });
+      }
+      JobOutcome outcome;
+      outcome.wallSeconds = std::chrono::duration<double>(Clock::now() - worker.started).count();
+      outcome.step = steps[slot].load(std::memory_order_relaxed);
+      const std::string body = worker.answer.substr(kHeader, static_cast<std::size_t>(size));
+      if (worker.answer[0] == kAnswerTag) {
+        outcome.finished = true;
+        outcome.answer = body;
+      } else {
+        outcome.failure = body;
+        outcome.lastMessage = LastLines(worker.stderrTail);
+        worker.retiring = true;  // it exits after a failed job
+        CloseFd(worker.commandFd);
+      }
+      worker.answer.erase(0, kHeader + static_cast<std::size_t>(size));
+      worker.busy = false;
+      const std::size_t job = worker.job;
+      ++finished;
+      done(job, std::move(outcome));
+    }
+  };
+
+  std::vector<pollfd> polled;
+  std::vector<std::size_t> polledSlot;
+  while (finished < count ||
+         std::any_of(workers.begin(), workers.end(), [](const Worker& w) { return w.pid > 0; })) {
+    for (std::size_t slot = 0; slot < slots; ++slot) feed(slot);
+
+    // Wait for output or the nearest time limit.
+    int timeoutMs = -1;
+    const auto now = Clock::now();
+    if (limits.killAfterSeconds > 0.0) {
+      for (const Worker& worker : workers) {
+        if (!worker.busy || worker.killedForTime) continue;
+        const double left =
+            limits.killAfterSeconds - std::chrono::duration<double>(now - worker.started).count();
+        const int ms = left <= 0.0 ? 0 : static_cast<int>(std::min(left * 1000.0 + 1.0, 1e9));
+        timeoutMs = timeoutMs < 0 ? ms : std::min(timeoutMs, ms);
+      }
+    }
+    polled.clear();
+    polledSlot.clear();
+    for (std::size_t slot = 0; slot < slots; ++slot) {
+      const Worker& worker = workers[slot];
+      if (worker.answerFd >= 0) {
+        polled.push_back({worker.answerFd, POLLIN, 0});
+        polledSlot.push_back(slot);
+      }
+      if (worker.stderrFd >= 0) {
+        polled.push_back({worker.stderrFd, POLLIN, 0});
+        polledSlot.push_back(slot);
+      }
+    }
+    if (polled.empty()) continue;
+    if (::poll(polled.data(), polled.size(), timeoutMs) < 0 && errno != EINTR) {
+      throw std::runtime_error(Concat({"poll: ", std::strerror(errno)}));
+    }
+    for (std::size_t i = 0; i < polled.size(); ++i) {
+      if (polled[i].revents == 0) continue;
+      const std::size_t slot = polledSlot[i];
+      Worker& worker = workers[slot];
+      if (polled[i].fd == worker.stderrFd) {
+        const bool open = Drain(worker.stderrFd, buffer,
+                                [&](const char* data, std::size_t n) { TakeStderr(worker, data, n); });
+        if (!open) CloseFd(worker.stderrFd);
+      } else if (polled[i].fd == worker.answerFd) {
+        const bool open = Drain(worker.answerFd, buffer,
+                                [&](const char* data, std::size_t n) { worker.answer.append(data, n); });
+        takeAnswers(slot);
+        if (!open) bury(slot);
+      }
+    }
+    // The time limit: kill; the answer pipe then closes and the worker is buried above.
+    if (limits.killAfterSeconds > 0.0) {
+      const auto later = Clock::now();
+      for (Worker& worker : workers) {
+        if (worker.busy && !worker.killedForTime &&
+            std::chrono::duration<double>(later - worker.started).count() >= limits.killAfterSeconds) {
+          worker.killedForTime = true;
+          ::kill(worker.pid, SIGKILL);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace talus::harness
