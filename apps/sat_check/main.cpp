@@ -14,6 +14,7 @@
 #include <iostream>
 #include <vector>
 
+#include "flag_range.h"
 #include "sat_check.h"
 #include "talus/harness/support/atomic_file.h"
 
@@ -25,12 +26,16 @@ int main(int argc, char** argv) {
   std::string markdownPath;
   app.add_option("--pairs", settings.pairs,
                  "number of random shape pairs (1 to " + std::to_string(validation::kMaxPairs) + ")")
+      ->check(talus::flags::InRange(1, validation::kMaxPairs))
       ->capture_default_str();
   // Read as text and checked by ParseSeed: read as a number, "-1" and
   // overflowing values went through without a word (issue 14).
   std::string seedText = std::to_string(settings.seed);
   app.add_option("--seed", seedText, "generator seed, 0 to 2^64 - 1")->capture_default_str();
+  // A query's time is its repeats' mean, so more repeats smooth the timer's
+  // resolution; past 1000 a run only takes longer.
   app.add_option("--repeats", settings.timingRepeats, "timed repeats per query (0: no timing)")
+      ->check(talus::flags::InRange(0, 1000))
       ->capture_default_str();
   app.add_option("--json", jsonPath, "write the full report as JSON to this file");
   app.add_option("--markdown", markdownPath, "write the Markdown section to this file (default: stdout)");
@@ -66,7 +71,7 @@ int main(int argc, char** argv) {
       return validation::kExitUsage;
     }
   }
-  std::vector<talus::harness::FileToWrite> files;
+  std::vector<talus::harness::FileText> files;
   if (!jsonPath.empty()) files.push_back({jsonPath, json});
   if (!markdownPath.empty()) files.push_back({markdownPath, markdown});
   const auto written = talus::harness::WriteFilesAtomically(files);

@@ -21,15 +21,19 @@
 // peer runs once, on one thread.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "flag_range.h"
 #include "report_writer.h"
 #include "talus/harness/scenes/bench_perturb.h"
 #include "talus/harness/scenes/bench_run.h"
@@ -82,6 +86,19 @@ struct Setting {
   talus::harness::BenchSolver solver;
 };
 
+// Writes one line to stdout and pushes it out at once (a series runs for
+// minutes and each line is a finished result). False, after saying why on
+// stderr, when stdout cannot take it (a full disk, a file that is a
+// directory): the output would be incomplete, so the program stops.
+bool PrintLine(const std::string& line) {
+  errno = 0;
+  std::cout << line << '\n' << std::flush;
+  if (std::cout) return true;
+  std::cerr << "talus-scenes: stdout: cannot write (" << (errno != 0 ? std::strerror(errno) : "write failed")
+            << ")\n";
+  return false;
+}
+
 // One (scene, parameter) pair to run on every engine.
 struct Job {
   const BenchScene* scene;
@@ -91,15 +108,19 @@ struct Job {
 }  // namespace
 
 int main(int argc, char** argv) {
+  namespace harness = talus::harness;
+  using talus::flags::InRange;
   Options options;
   CLI::App app{"talus-scenes: the reference benchmark scenes (pyramid, hull_pile) on every engine"};
   app.add_option("--scene", options.scene, "pyramid or hull_pile (with --series: only that scene's series)")
       ->check(CLI::IsMember({"pyramid", "hull_pile"}));
-  // 0 is "not given" inside the program, so a given 0 (or a negative) is refused by the range.
+  // 0 is "not given" inside the program, so a given 0 (or a negative) is refused by the range;
+  // each scene checks its own range again when it is built (bench_scenes.h).
   app.add_option("--param", options.parameter, "H for pyramid (default 15), L for hull_pile (default 10)")
-      ->check(CLI::PositiveNumber);
+      ->check(InRange(std::min(harness::kPyramidMinHeight, harness::kHullPileMinSide),
+                      std::max(harness::kPyramidMaxHeight, harness::kHullPileMaxSide)));
   app.add_option("--engines", options.engines, "comma-separated backends (default: every registered one)");
-  app.add_option("--steps", options.steps, "steps per run")->check(CLI::Range(1, 1000000));
+  app.add_option("--steps", options.steps, "steps per run")->check(InRange(1, 1000000));
   app.add_option("--format", options.format, "csv or jsonl")->check(CLI::IsMember({"csv", "jsonl"}));
   app.add_flag("--series", options.series,
                "run the scaling series (pyramid H = 10, 15, 20, 30; hull_pile L = 10, 20, 40); progress on "
@@ -108,7 +129,7 @@ int main(int argc, char** argv) {
                  "comma-separated thread counts of the Talus backends' worlds (WorldSettings::threads), "
                  "each Talus engine run once per count; peers run once, on one thread")
       ->delimiter(',')
-      ->check(CLI::Range(1, talus::kMaxThreads));
+      ->check(InRange(1, talus::kMaxThreads));
   app.add_option(
       "--perturb", options.perturb,
       "move every dynamic body's initial position by a seeded uniform offset in [-A, A) m per axis "
@@ -118,7 +139,7 @@ int main(int argc, char** argv) {
       "with --perturb: runs per scene and engine, repeat r seeded with --perturb-seed + r (1 to 1000)");
   app.add_option("--perturb-seed", options.perturbSeed,
                  "with --perturb: the first repeat's SplitMix64 seed (default 0)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(InRange<std::uint64_t>(0, std::numeric_limits<std::uint64_t>::max()));
   app.add_option(
          "--iterations", options.iterations,
          "comma-separated solver iteration counts, one run each (0: the engine's default, else 1 to " +
@@ -132,7 +153,12 @@ int main(int argc, char** argv) {
                      std::to_string(talus::harness::kBenchMaxSubsteps) +
                      "): every engine takes N steps of h / N per scene step, timed as one")
       ->delimiter(',');
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    // --help exits 0; a refused argument exits 2, as every other bad input here does.
+    return app.exit(error) == 0 ? 0 : 2;
+  }
 
   if (!options.perturb && (options.repeats || options.perturbSeed)) {
     std::cerr
@@ -220,7 +246,7 @@ int main(int argc, char** argv) {
   }
 
   const bool csv = options.format == "csv";
-  if (csv) std::cout << talus::scenes::CsvHeader(options.perturb.has_value()) << '\n' << std::flush;
+  if (csv && !PrintLine(talus::scenes::CsvHeader(options.perturb.has_value()))) return 1;
   int failures = 0;
   for (const Job& job : jobs) {
     for (const std::string& engine : engines) {
@@ -271,10 +297,10 @@ int main(int argc, char** argv) {
           if (options.series && !report.Value().skipped.empty()) {
             std::cerr << runLabel << ": skipped: " << report.Value().skipped << '\n';
           }
-          std::cout << (csv ? talus::scenes::FormatCsv(report.Value())
-                            : talus::scenes::FormatJson(report.Value()))
-                    << '\n'
-                    << std::flush;
+          if (!PrintLine(csv ? talus::scenes::FormatCsv(report.Value())
+                             : talus::scenes::FormatJson(report.Value()))) {
+            return 1;  // nothing more can be told: stop rather than run for nothing
+          }
           const bool skipped = !report.Value().skipped.empty();
           series.push_back(std::move(report.Value()));
           if (skipped) break;  // every repeat would be skipped for the same reason

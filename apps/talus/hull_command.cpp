@@ -7,15 +7,19 @@
 
 #include <CLI/CLI.hpp>
 #include <atomic>
+#include <cerrno>
 #include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <iostream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string_view>
 
+#include "flag_range.h"
 #include "point_file.h"
 #include "talus/hull_builder.h"
 #include "talus/mass_properties.h"
@@ -77,15 +81,19 @@ std::string FormatJson(const Hull& hull, const MassProperties& props, double den
 // temporary file: each renames its own complete text into place.
 Result<bool> WriteWhole(const std::string& path, const std::string& text) {
   const std::string temporary = TemporarySibling(path);
+  const auto reason = [](const char* otherwise) { return errno != 0 ? std::strerror(errno) : otherwise; };
   {
+    errno = 0;
     std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    if (!file) return Error{path + ": cannot open for writing"};
+    if (!file)
+      return Error{path + ": cannot open for writing (" + reason("cannot create a file there") + ")"};
     file << text;
-    file.flush();
+    file.close();  // flushes: a full disk shows here
     if (!file) {
+      const std::string why = reason("write failed");
       std::error_code ignored;
       std::filesystem::remove(temporary, ignored);
-      return Error{path + ": write failed"};
+      return Error{path + ": cannot write (" + why + ")"};
     }
   }
   std::error_code error;
@@ -142,10 +150,14 @@ void AddHullCommand(CLI::App& app, HullOptions& options, int& exitCode) {
                    "Point file format (auto: by extension and contents)")
       ->check(CLI::IsMember({"auto", "xyz", "obj"}))
       ->capture_default_str();
+  // 1 to 3 fall inside the range but are refused by MakeOutput: no hull
+  // has fewer than 4 vertices.
   hull->add_option("--max-vertices", options.maxVertices,
                    "Keep at most N hull vertices (0: no cap, else >= 4)")
+      ->check(flags::InRange(0, std::numeric_limits<int>::max()))
       ->capture_default_str();
   hull->add_option("--density", options.density, "Density in kg/m^3 for the JSON mass figures")
+      ->check(flags::InRange(0.0, std::numeric_limits<double>::max(), /*lowerOpen=*/true))
       ->capture_default_str();
   hull->callback([&options, &exitCode] { exitCode = RunHull(options); });
 }
@@ -157,10 +169,14 @@ int RunHull(const HullOptions& options) {
     return 1;
   }
   if (options.output.empty()) {
+    // The flush shows a full disk or a closed stream; the text is not done
+    // until it has been handed over whole.
+    errno = 0;
     std::cout << output.Value();
     std::cout.flush();
     if (!std::cout) {
-      std::cerr << "talus hull: cannot write to stdout\n";
+      std::cerr << "talus hull: stdout: cannot write ("
+                << (errno != 0 ? std::strerror(errno) : "write failed") << ")\n";
       return 1;
     }
     return 0;

@@ -2,6 +2,8 @@
 // (hull_command.cpp, ...). main only wires them together and returns the
 // exit status of the subcommand that ran.
 #include <CLI/CLI.hpp>
+#include <iostream>
+#include <string>
 
 #include "hull_command.h"
 
@@ -11,6 +13,25 @@ int main(int argc, char** argv) {
   int exitCode = 0;
   talus::cli::HullOptions hullOptions;
   talus::cli::AddHullCommand(app, hullOptions, exitCode);
-  CLI11_PARSE(app, argc, argv);
+  // CLI11 would say "A subcommand is required" about `talus frobnicate
+  // FILE`: name the word it did not know, and the known ones.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string known;
+    bool found = false;
+    for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+      found = found || command->get_name() == argv[1];
+      known.append(known.empty() ? "" : ", ").append(command->get_name());
+    }
+    if (!found) {
+      std::cerr << "talus: unknown subcommand \"" << argv[1] << "\" (known: " << known << ")\n";
+      return 2;
+    }
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    // --help exits 0; every refused argument exits 2, as an unknown subcommand does.
+    return app.exit(error) == 0 ? 0 : 2;
+  }
   return exitCode;
 }

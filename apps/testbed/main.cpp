@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <limits>
 #include <string>
 
 #include "sweep_commands.h"
@@ -11,6 +12,7 @@
 #include "talus/harness/support/number_text.h"
 #include "talus/world_settings.h"
 #include "testbed_commands.h"
+#include "testbed_flags.h"
 
 namespace {
 
@@ -51,19 +53,20 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   runCommand
       ->add_option("--time-step", run.timeSteps, "run each scenario at these time steps (s, comma-separated)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(kTimeStepRange);
   runCommand
       ->add_option("--iterations", run.iterations,
                    "run each scenario with these solver iterations (0 = default)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(kIterationsRange);
   runCommand->add_option("-o,--out", run.out, "output folder for results.json")->capture_default_str();
-  runCommand->add_option("-j,--jobs", run.jobs, "threads (0 = every core)")
-      ->check(CLI::Range(0, harness::kMaxJobs));
+  runCommand->add_option("-j,--jobs", run.jobs, "threads (0 = every core)")->check(kJobsRange);
   runCommand
       ->add_option("--threads", run.threads,
                    "threads inside each Talus world (WorldSettings::threads; results are bit-identical, "
                    "only wall time changes)")
-      ->check(CLI::Range(1, talus::kMaxThreads));
+      ->check(InRange(1, talus::kMaxThreads));
   runCommand
       ->add_option("--budget", run.budget,
                    "wall-clock seconds per job; a job past it stops with the reason, one stuck inside a step "
@@ -117,8 +120,7 @@ int main(int argc, char** argv) {
           "-b,--backend", check.backends,
           "backends whose metrics are checked (repeat or comma-separate; default: every Talus variant)")
       ->delimiter(',');
-  checkCommand->add_option("-j,--jobs", check.jobs, "threads (0 = every core)")
-      ->check(CLI::Range(0, harness::kMaxJobs));
+  checkCommand->add_option("-j,--jobs", check.jobs, "threads (0 = every core)")->check(kJobsRange);
   checkCommand->add_flag("-q,--quiet", check.quiet, "no progress on stderr");
 
   CommandAction chosen;
@@ -145,8 +147,15 @@ int main(int argc, char** argv) {
     const int code = app.exit(error);
     return code == 0 ? kExitOk : kExitBadInput;
   }
-  if (chosen) return chosen();
-  if (*runCommand) return RunCommand(run);
-  if (*reportCommand) return ReportCommand(report);
-  return CheckCommand(check);
+  int code = kExitOk;
+  if (chosen) {
+    code = chosen();
+  } else if (*runCommand) {
+    code = RunCommand(run);
+  } else if (*reportCommand) {
+    code = ReportCommand(report);
+  } else {
+    code = CheckCommand(check);
+  }
+  return FinishStdout(code);
 }

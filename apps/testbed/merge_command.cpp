@@ -46,14 +46,11 @@ int Merge(const MergeOptions& options) {
   }
   const std::vector<harness::SweepGroup> groups =
       harness::AnalyseSweep(merged.Value(), harness::kSweepSingleSetting);
-  const std::pair<const char*, std::string> files[] = {
-      {"results.json", harness::ResultsToJson(merged.Value())},
-      {"sweep.json", harness::SweepToJson(groups)},
-      {"sweep.md", harness::SweepMarkdown(groups)},
-  };
-  for (const auto& [name, text] : files) {
-    if (!WriteText(fs::path(options.out) / name, text)) return kExitBadInput;
-  }
+  const fs::path out(options.out);
+  std::vector<harness::FileText> files = harness::ResultsFileTexts(out / "results.json", merged.Value());
+  files.push_back({out / "sweep.json", harness::SweepToJson(groups)});
+  files.push_back({out / "sweep.md", harness::SweepMarkdown(groups)});
+  if (!WriteTexts(files)) return kExitBadInput;
   std::cout << "merged " << shards.size() << " shards: " << merged.Value().results.size()
             << " results\nresults: " << (fs::path(options.out) / "results.json").string() << "\n";
   return kExitOk;

@@ -88,13 +88,11 @@ int Stress(const StressOptions& options) {
     }
   }
   const std::string markdown = harness::StressMarkdown(entries);
-  const std::pair<const char*, std::string> files[] = {
-      {"stress.md", markdown},
-      {"stress.json", harness::StressJson(entries)},
-      {"stress.html", harness::StressHtml(entries)},
-  };
-  for (const auto& [name, text] : files) {
-    if (!WriteText(fs::path(options.out) / name, text)) return kExitBadInput;
+  const fs::path out(options.out);
+  if (!WriteTexts({{out / "stress.md", markdown},
+                   {out / "stress.json", harness::StressJson(entries)},
+                   {out / "stress.html", harness::StressHtml(entries)}})) {
+    return kExitBadInput;
   }
   std::cout << markdown << "\nstress: " << (fs::path(options.out) / "stress.html").string() << "\n";
   return kExitOk;

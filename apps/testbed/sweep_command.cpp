@@ -18,6 +18,7 @@
 #include "talus/harness/sweep/sweep.h"
 #include "talus/reference/all_backends.h"
 #include "testbed_commands.h"
+#include "testbed_flags.h"
 
 namespace talus::testbed {
 namespace {
@@ -128,11 +129,10 @@ int Sweep(const SweepOptions& options) {
   const std::vector<harness::SweepGroup> groups =
       harness::AnalyseSweep(part.results, harness::kSweepSingleSetting);
   const std::string markdown = harness::SweepMarkdown(groups);
-  if (!WriteText(out / "results.json", harness::ResultsToJson(part.results)) ||
-      !WriteText(out / "sweep.json", harness::SweepToJson(groups)) ||
-      !WriteText(out / "sweep.md", markdown)) {
-    return kExitBadInput;
-  }
+  std::vector<harness::FileText> files = harness::ResultsFileTexts(out / "results.json", part.results);
+  files.push_back({out / "sweep.json", harness::SweepToJson(groups)});
+  files.push_back({out / "sweep.md", markdown});
+  if (!WriteTexts(files)) return kExitBadInput;
   std::cout << markdown << "\nresults: " << (out / "results.json").string()
             << " (talus-testbed report draws the charts)\nsweep: " << (out / "sweep.json").string() << ", "
             << (out / "sweep.md").string() << "\n";
@@ -141,10 +141,15 @@ int Sweep(const SweepOptions& options) {
 
 }  // namespace
 
-bool WriteText(const fs::path& path, const std::string& text) {
-  std::error_code error;
-  if (!path.parent_path().empty()) fs::create_directories(path.parent_path(), error);
-  auto written = harness::WriteFileAtomically(path, text);
+bool WriteText(const fs::path& path, const std::string& text) { return WriteTexts({{path, text}}); }
+
+bool WriteTexts(const std::vector<harness::FileText>& files) {
+  for (const harness::FileText& file : files) {
+    // A folder that cannot be made shows as the file's own error below.
+    std::error_code ignored;
+    if (!file.path.parent_path().empty()) fs::create_directories(file.path.parent_path(), ignored);
+  }
+  auto written = harness::WriteFilesAtomically(files);
   if (!written) std::cerr << "talus-testbed: " << written.GetError().message << "\n";
   return static_cast<bool>(written);
 }
@@ -157,14 +162,15 @@ void AddSweepCommand(CLI::App& app, CommandAction& chosen) {
   command->add_option("-b,--backend", options->backends, "backends (default: all)")->delimiter(',');
   command->add_option("--time-step", options->timeSteps, "time steps, s")
       ->delimiter(',')
+      ->check(kTimeStepRange)
       ->capture_default_str();
   command->add_option("--iterations", options->iterations, "solver iterations (0 = engine default)")
       ->delimiter(',')
+      ->check(kIterationsRange)
       ->capture_default_str();
   command->add_option("--shard", options->shard, "run only shard i of n (i/n), into a shard file for merge");
   command->add_option("-o,--out", options->out, "output folder")->capture_default_str();
-  command->add_option("-j,--jobs", options->jobs, "threads (0 = every core)")
-      ->check(CLI::Range(0, harness::kMaxJobs));
+  command->add_option("-j,--jobs", options->jobs, "threads (0 = every core)")->check(kJobsRange);
   command
       ->add_option(
           "--perturb-copies", options->perturbCopies,

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "talus/harness/backend/backend.h"
+#include "talus/harness/support/atomic_file.h"
 
 namespace talus::testbed {
 
@@ -22,7 +23,12 @@ void AddMergeCommand(CLI::App& app, CommandAction& chosen);
 void AddStressCommand(CLI::App& app, CommandAction& chosen);
 
 /// Writes `text` to `path`, creating its folder; false (after printing
-/// "talus-testbed: PATH: cannot write" on stderr) when it fails.
+/// "talus-testbed: PATH: cannot write (REASON)" on stderr) when it fails.
 bool WriteText(const std::filesystem::path& path, const std::string& text);
+
+/// Writes every file of `files` or none (harness WriteFilesAtomically),
+/// creating their folders; false (after printing the first failing file
+/// and why on stderr) when it fails.
+bool WriteTexts(const std::vector<harness::FileText>& files);
 
 }  // namespace talus::testbed

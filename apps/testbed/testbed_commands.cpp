@@ -3,7 +3,12 @@
 // file only wires it to files and the terminal.
 #include "testbed_commands.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -114,7 +119,8 @@ int RunCommand(const RunOptions& options) {
   std::error_code error;
   fs::create_directories(options.out, error);
   if (error) {
-    std::cerr << "talus-testbed: " << options.out << ": " << error.message() << "\n";
+    std::cerr << "talus-testbed: " << options.out << ": cannot make the output folder (" << error.message()
+              << ")\n";
     return kExitBadInput;
   }
   const fs::path path = fs::path(options.out) / "results.json";
@@ -244,6 +250,23 @@ int CheckCommand(const CheckOptions& options) {
     }
   }
   return ok ? kExitOk : kExitFailed;
+}
+
+int FinishStdout(int code) {
+  // std::cout writes through stdio's stdout, so the flush shows a failure
+  // of the last buffer. A write that failed earlier left cout bad and
+  // stdio's error flag set, but its errno is long gone: one more byte
+  // written straight to the descriptor (into an output that is already
+  // incomplete) fails the same way and says why.
+  std::cout.flush();
+  errno = 0;
+  const bool flushed = std::fflush(stdout) == 0;
+  int error = errno;
+  if (std::cout && flushed && std::ferror(stdout) == 0) return code;
+  if (error == 0 && ::write(STDOUT_FILENO, "\n", 1) < 0) error = errno;
+  std::cerr << "talus-testbed: stdout: cannot write (" << (error != 0 ? std::strerror(error) : "write failed")
+            << ")\n";
+  return code == kExitOk ? kExitBadInput : code;
 }
 
 }  // namespace talus::testbed

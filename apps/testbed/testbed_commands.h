@@ -10,7 +10,8 @@
 namespace talus::testbed {
 
 /// Exit codes: 0 success; 1 a check found regressions or a run failed;
-/// 2 bad input (arguments, scenario files, results files).
+/// 2 bad input (arguments, scenario files, results files) or an output
+/// (a file or stdout) that could not be written.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailed = 1;
 inline constexpr int kExitBadInput = 2;
@@ -60,5 +61,10 @@ struct CheckOptions {
   bool quiet = false;
 };
 int CheckCommand(const CheckOptions& options);
+
+/// The exit code once stdout has been flushed: `code`, or kExitBadInput
+/// (after "talus-testbed: stdout: cannot write (REASON)" on stderr) when
+/// stdout did not take everything printed (a full disk, a directory).
+int FinishStdout(int code);
 
 }  // namespace talus::testbed

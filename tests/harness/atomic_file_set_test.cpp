@@ -41,7 +41,7 @@ std::vector<std::string> Names(const fs::path& dir) {
 TEST(AtomicFileSet, WritesEveryFileAndLeavesNoTemporary) {
   const fs::path dir = FreshDir("all");
   std::ofstream(dir / "a.json") << "old";
-  const std::vector<FileToWrite> files = {{dir / "a.json", "new a"}, {dir / "b.md", "new b"}};
+  const std::vector<FileText> files = {{dir / "a.json", "new a"}, {dir / "b.md", "new b"}};
   ASSERT_TRUE(WriteFilesAtomically(files));
   EXPECT_EQ(Read(dir / "a.json"), "new a");
   EXPECT_EQ(Read(dir / "b.md"), "new b");
@@ -54,7 +54,7 @@ TEST(AtomicFileSet, AFullDeviceLeavesNoFileOfTheSet) {
   // would replace the device with a plain file).
   const fs::path dir = FreshDir("full");
   std::ofstream(dir / "kept.json") << "old";
-  const std::vector<FileToWrite> files = {
+  const std::vector<FileText> files = {
       {dir / "new.json", "a"}, {dir / "kept.json", "b"}, {"/dev/full", "markdown"}};
   const auto written = WriteFilesAtomically(files);
   ASSERT_FALSE(written);
@@ -69,7 +69,7 @@ TEST(AtomicFileSet, AFullDeviceLeavesNoFileOfTheSet) {
 
 TEST(AtomicFileSet, ADeviceThatTakesTheTextIsWrittenDirectly) {
   const fs::path dir = FreshDir("null");
-  const std::vector<FileToWrite> files = {{"/dev/null", "discarded"}, {dir / "a.json", "a"}};
+  const std::vector<FileText> files = {{"/dev/null", "discarded"}, {dir / "a.json", "a"}};
   ASSERT_TRUE(WriteFilesAtomically(files));
   EXPECT_EQ(Read(dir / "a.json"), "a");
   EXPECT_TRUE(fs::is_character_file("/dev/null"));
@@ -78,7 +78,7 @@ TEST(AtomicFileSet, ADeviceThatTakesTheTextIsWrittenDirectly) {
 TEST(AtomicFileSet, AFolderAsATargetIsRefusedBeforeAnythingIsWritten) {
   const fs::path dir = FreshDir("folder");
   fs::create_directories(dir / "report");
-  const std::vector<FileToWrite> files = {{dir / "a.json", "a"}, {dir / "report", "b"}};
+  const std::vector<FileText> files = {{dir / "a.json", "a"}, {dir / "report", "b"}};
   const auto written = WriteFilesAtomically(files);
   ASSERT_FALSE(written);
   EXPECT_EQ(written.GetError().message, (dir / "report").string() + ": cannot write (it is a folder)");
@@ -87,7 +87,7 @@ TEST(AtomicFileSet, AFolderAsATargetIsRefusedBeforeAnythingIsWritten) {
 
 TEST(AtomicFileSet, AMissingFolderFailsTheSetAndRemovesTheTemporariesWritten) {
   const fs::path dir = FreshDir("missing");
-  const std::vector<FileToWrite> files = {{dir / "a.json", "a"}, {dir / "no" / "b.md", "b"}};
+  const std::vector<FileText> files = {{dir / "a.json", "a"}, {dir / "no" / "b.md", "b"}};
   const auto written = WriteFilesAtomically(files);
   ASSERT_FALSE(written);
   EXPECT_NE(written.GetError().message.find((dir / "no" / "b.md").string() + ": cannot write ("),
@@ -97,7 +97,7 @@ TEST(AtomicFileSet, AMissingFolderFailsTheSetAndRemovesTheTemporariesWritten) {
 
 TEST(AtomicFileSet, OnePathNamedTwiceIsRefused) {
   const fs::path dir = FreshDir("twice");
-  const std::vector<FileToWrite> files = {{dir / "a.json", "a"}, {dir / "." / "a.json", "b"}};
+  const std::vector<FileText> files = {{dir / "a.json", "a"}, {dir / "." / "a.json", "b"}};
   const auto written = WriteFilesAtomically(files);
   ASSERT_FALSE(written);
   EXPECT_NE(written.GetError().message.find("named twice"), std::string::npos);

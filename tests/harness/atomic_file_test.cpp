@@ -1,8 +1,14 @@
 // WriteFileAtomically: a file is replaced whole or not at all, failures
 // leave no temporary behind, and concurrent writers never interleave.
+// WriteFilesAtomically: a set of files is replaced whole or not at all.
 #include "talus/harness/support/atomic_file.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
 
 #include <algorithm>
 #include <filesystem>
@@ -106,6 +112,65 @@ TEST(AtomicFile, ConcurrentWritersOfOneFileNeverInterleave) {
   for (int w = 0; w < kWriters; ++w) EXPECT_EQ(failures[w], 0);
   EXPECT_NE(std::find(texts.begin(), texts.end(), Read(target)), texts.end());
   EXPECT_TRUE(Others(dir, "results.json").empty());
+}
+
+TEST(AtomicFileSet, WritesEveryFileAndReplacesTheOldOnes) {
+  const fs::path dir = FreshDir("set_writes");
+  std::ofstream(dir / "summary.md") << "old summary";
+  ASSERT_TRUE(WriteFilesAtomically({{dir / "summary.md", "new summary"}, {dir / "report.html", "<html>"}}));
+  EXPECT_EQ(Read(dir / "summary.md"), "new summary");
+  EXPECT_EQ(Read(dir / "report.html"), "<html>");
+  std::vector<std::string> names = Others(dir, "");
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"report.html", "summary.md"}));
+}
+
+TEST(AtomicFileSet, ARenameThatFailsMidwayPutsBackTheFilesRenamedBeforeIt) {
+  // The third target is a non-empty folder: every text is written, the
+  // first two are renamed into place, the third rename fails. The first
+  // file must be its old self again and the second, new, must be gone.
+  const fs::path dir = FreshDir("set_rename_fails");
+  std::ofstream(dir / "summary.md") << "old summary";
+  fs::create_directories(dir / "report.html");
+  std::ofstream(dir / "report.html" / "inside") << "kept";
+  const auto written = WriteFilesAtomically(
+      {{dir / "summary.md", "new summary"}, {dir / "results.csv", "a,b\n"}, {dir / "report.html", "<html>"}});
+  ASSERT_FALSE(written);
+  EXPECT_EQ(written.GetError().message.rfind((dir / "report.html").string() + ": cannot write (", 0), 0u)
+      << written.GetError().message;
+  EXPECT_EQ(Read(dir / "summary.md"), "old summary");
+  EXPECT_FALSE(fs::exists(dir / "results.csv"));
+  EXPECT_EQ(Read(dir / "report.html" / "inside"), "kept");
+  std::vector<std::string> names = Others(dir, "");
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"report.html", "summary.md"}));  // no temporary, no kept copy
+}
+
+TEST(AtomicFileSet, AFullDiskChangesNoFileOfTheSet) {
+  // A full disk, made in a child process by a file size limit of 64 kB
+  // (writes past it fail with EFBIG once SIGXFSZ is ignored): the small
+  // file fits, the large one does not, and neither target may change.
+  const fs::path dir = FreshDir("set_full_disk");
+  std::ofstream(dir / "summary.md") << "old summary";
+  const pid_t child = ::fork();
+  ASSERT_NE(child, -1);
+  if (child == 0) {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{64 * 1024, 64 * 1024};
+    if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(3);
+    const auto written = WriteFilesAtomically(
+        {{dir / "summary.md", "new summary"}, {dir / "report.html", std::string(1 << 20, 'x')}});
+    if (written) ::_exit(1);
+    const std::string expected = (dir / "report.html").string() + ": cannot write (File too large)";
+    ::_exit(written.GetError().message == expected ? 0 : 2);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  // 1: the set was written; 2: the error did not name report.html and EFBIG; 3: no limit could be set.
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(Read(dir / "summary.md"), "old summary");
+  EXPECT_TRUE(Others(dir, "summary.md").empty());
 }
 
 }  // namespace

@@ -67,4 +67,22 @@ check "a broad-phase funnel chart (talus)" '"funnelCharts":1'
 check "one scaling chart per large scene" '"scalingCharts":2'
 check "one speed-against-accuracy chart (pyramid H = 4)" '"tradeoffCharts":1'
 check "the scorecard's pass-fraction chart" '"scorecardCharts":1'
+
+# Without report-data.js beside it (the plots' series and the replays),
+# the page still loads and says what is missing.
+rm "$work/report-data.js"
+dom="$(timeout 120 "$browser" --headless --no-sandbox --disable-gpu --use-angle=swiftshader \
+      --enable-unsafe-swiftshader --disable-background-networking --disable-component-update \
+      --disable-sync --no-first-run --user-data-dir="$work/profile" --virtual-time-budget=10000 \
+      --dump-dom "file://$work/report.html" 2>>"$work/chromium.log")" || dom=""
+status="$(printf '%s' "$dom" | sed -n 's:.*<pre id="report-status"[^>]*>\(.*\)</pre>.*:\1:p' | head -1)"
+echo "page status without report-data.js: $status"
+check "a missing report-data.js is the one error" '"errors":\["report-data.js was not found beside the page"\]'
+printf '%s\n' "$dom" >"$work/dom-without-data.html"
+if grep -q 'The replay data (report-data.js' "$work/dom-without-data.html"; then
+  echo "ok: the replay section names report-data.js"
+else
+  echo "FAIL: the replay section does not name report-data.js" >&2
+  fail=1
+fi
 exit $fail

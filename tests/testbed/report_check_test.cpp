@@ -307,22 +307,25 @@ TEST(Report, FilesAreWrittenAndWellFormed) {
   }
   EXPECT_NE(summary.find("### talus-writeup"), std::string::npos);
 
-  // HTML: one document, the library inlined without its closing tag, the
-  // plot data parseable, no external resource.
+  // HTML: one document, the library inlined without its closing tag, no
+  // external resource but its data file beside it, whose plot data parses.
   const std::string html = ReadText(dir / "out" / "report.html");
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(html.find("window.Chart = function"), std::string::npos);
   EXPECT_EQ(html.find("// </script>"), std::string::npos);
   EXPECT_EQ(html.find("http"), std::string::npos);
   EXPECT_NE(html.find("</html>"), std::string::npos);
-  const std::string open = "<script type=\"application/json\" id=\"plot-data\">";
-  const auto start = html.find(open);
+  EXPECT_NE(html.find("<script src=\"report-data.js\"></script>"), std::string::npos);
+  const std::string script = ReadText(dir / "out" / "report-data.js");
+  const std::string open = "window.talusReportData = ";
+  const auto start = script.find(open);
   ASSERT_NE(start, std::string::npos);
-  const auto end = html.find("</script>", start);
-  std::string data = html.substr(start + open.size(), end - start - open.size());
-  const auto plot = nlohmann::json::parse(data, nullptr, false);
-  ASSERT_FALSE(plot.is_discarded());
-  EXPECT_EQ(plot["runs"].size(), 7u);  // box_rest and the 6 box_slide runs
+  ASSERT_EQ(script.substr(script.size() - 2), ";\n");
+  const std::string data = script.substr(start + open.size(), script.size() - 2 - start - open.size());
+  const auto parsed = nlohmann::json::parse(data, nullptr, false);
+  ASSERT_FALSE(parsed.is_discarded());
+  EXPECT_EQ(parsed["plots"]["runs"].size(), 7u);  // box_rest and the 6 box_slide runs
+  EXPECT_TRUE(parsed["replays"].empty());         // none recorded
   // Missing charting library: a clear error naming the file.
   auto missing = WriteReport(SmallResults(), dir / "out2", dir / "missing.js");
   ASSERT_FALSE(missing);
@@ -359,6 +362,8 @@ TEST(TestbedCommand, RunWritesDeterministicResultsAndRefusesBadArguments) {
   ASSERT_EQ(Shell(binary + common + (dir / "a").string() + " -j 1"), 0);
   ASSERT_EQ(Shell(binary + common + (dir / "b").string() + " -j 3"), 0);
   EXPECT_EQ(ReadText(dir / "a" / "results.json"), ReadText(dir / "b" / "results.json"));
+  EXPECT_EQ(ReadText(dir / "a" / "results.trajectories.json"),
+            ReadText(dir / "b" / "results.trajectories.json"));
   EXPECT_EQ(Shell(binary + " run " + scenario + " -q -b havok -o " + (dir / "c").string()), 2);
   EXPECT_EQ(Shell(binary + " run /nonexistent.json -q -o " + (dir / "c").string()), 2);
   EXPECT_EQ(Shell(binary + " run --jobs -3"), 2);

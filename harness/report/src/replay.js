@@ -1,12 +1,17 @@
 // The report's 3D views (docs/testbed-report.md): the replay of recorded
 // runs, one viewport per engine on one WebGL canvas, with contacts drawn as
 // points and normals; the Quickhull trace (the write-up's figure 1); the
-// broad-phase funnel per step (figure 2). Writes what it managed into
-// #report-status, which the headless-browser test reads.
+// broad-phase funnel per step (figure 2). The replays' frames come from
+// report-data.js beside the page (window.talusReportData.replays). Writes what
+// it managed into #report-status, which the headless-browser test reads.
 (function () {
   'use strict';
   const status = window.talusReport;
   const data = JSON.parse(document.getElementById('replay-data').textContent);
+  // The replays come from report-data.js beside the page, loaded before
+  // this script (the plots' script reports a missing file).
+  const replayFileFound = Boolean(window.talusReportData);
+  data.runs = replayFileFound ? window.talusReportData.replays : [];
   const palette = [0x1f77b4, 0xd62728, 0x2ca02c, 0xff7f0e, 0x9467bd, 0x8c564b, 0xe377c2, 0x17becf];
   const background = 0xf4f4f4;
 
@@ -102,6 +107,11 @@
   // ---- Replay ----
   function setupReplay() {
     const root = document.getElementById('replay');
+    if (!replayFileFound) {
+      root.textContent = 'The replay data (report-data.js, written beside report.html) was not found: ' +
+        'keep the two files together.';
+      return;
+    }
     if (!data.runs.length) {
       root.textContent = 'No run was recorded for replay: run with talus-testbed run --replay NAME (or all).';
       return;

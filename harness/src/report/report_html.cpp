@@ -52,10 +52,19 @@ table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:
 th{background:#eee}td.ok{background:#e6f4e6}td.fail{background:#f8d7d7;font-weight:bold}
 .plots{display:flex;flex-wrap:wrap;gap:1em}.plot{width:44em;height:22em}code{background:#f4f4f4})";
 
+// The plots; their series come from report-data.js (kReportDataFile),
+// loaded before this script, and a missing file is said in their place.
 constexpr const char* kScript = R"(
-const data = JSON.parse(document.getElementById('plot-data').textContent);
-const palette = ['#1f77b4','#d62728','#2ca02c','#ff7f0e','#9467bd','#8c564b','#e377c2','#7f7f7f'];
+(function () {
 const section = document.getElementById('plots');
+if (!window.talusReportData) {
+  section.textContent = 'The plot data (report-data.js, written beside report.html) was not found: ' +
+    'keep the two files together.';
+  window.talusReport.errors.push('report-data.js was not found beside the page');
+  return;
+}
+const data = window.talusReportData.plots;
+const palette = ['#1f77b4','#d62728','#2ca02c','#ff7f0e','#9467bd','#8c564b','#e377c2','#7f7f7f'];
 function addChart(title, config) {
   const box = document.createElement('div'); box.className = 'plot';
   const canvas = document.createElement('canvas'); box.appendChild(canvas); section.appendChild(box);
@@ -91,6 +100,7 @@ for (const run of data.runs) {
 }
 addChart('median wall time per step (us)', {type:'bar', data:timeBars,
   options:{scales:{y:{type:'logarithmic',title:{display:true,text:'us'}}}}});
+})();
 )";
 
 // The end of the <script> element starting at `at`, past its closing tag.
@@ -183,8 +193,8 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, s
   tables.insert(tables.find("<h2 id=\"overview\">"), ScorecardChartHtml(card));
   out << tables;
   out << "<h2>Plots</h2>\n<div class=\"plots\" id=\"plots\"></div>\n";
-  out << "<script type=\"application/json\" id=\"plot-data\">" << ScriptSafe(PlotData(file).dump())
-      << "</script>\n";
+  // The series and replays: most of a report's bytes, in their own file.
+  out << "<script src=\"" << kReportDataFile << "\"></script>\n";
   out << "<script>\n" << ScriptSafe(std::string(chartLibrary)) << "\n</script>\n";
   out << ReplaySections(file, threeLibrary);
   out << "<script>" << kScript << "</script>\n";
@@ -195,6 +205,16 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, s
   if (extras.scenes != nullptr) out << BenchHtmlSection(*extras.scenes);
   out << "</body>\n</html>\n";
   return WithUniqueHeadingIds(out.str());
+}
+
+std::string ReportDataScript(const ResultsFile& file) {
+  nlohmann::ordered_json data;
+  data["plots"] = PlotData(file);
+  data["replays"] = ReplayRunsForPage(file);
+  return Concat(
+      {"// The plot series and replays of report.html (talus-testbed report), loaded by the "
+       "page.\nwindow.talusReportData = ",
+       data.dump(), ";\n"});
 }
 
 Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesystem::path& folder,
@@ -221,18 +241,18 @@ Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesyste
   }
   std::error_code error;
   std::filesystem::create_directories(folder, error);
-  if (error) return Error{Concat({folder.string(), ": ", error.message()})};
-  const std::pair<const char*, std::string> files[] = {
-      {"summary.md", SummaryMarkdown(file, extras)},
-      {"results.csv", ResultsCsv(file)},
-      {"results.json", ResultsToJson(file)},
-      {"report.html", ReportHtml(file, js.str(), three.str(), extras)},
+  if (error)
+    return Error{Concat({folder.string(), ": cannot make the report folder (", error.message(), ")"})};
+  // One set: a full disk or a failed rename leaves the folder as it was,
+  // never a new summary beside an old page.
+  std::vector<FileText> files = {
+      {folder / "summary.md", SummaryMarkdown(file, extras)},
+      {folder / "results.csv", ResultsCsv(file)},
   };
-  for (const auto& [name, text] : files) {
-    auto written = WriteFileAtomically(folder / name, text);
-    if (!written) return written;
-  }
-  return std::monostate{};
+  for (FileText& text : ResultsFileTexts(folder / "results.json", file)) files.push_back(std::move(text));
+  files.push_back({folder / "report.html", ReportHtml(file, js.str(), three.str(), extras)});
+  files.push_back({folder / kReportDataFile, ReportDataScript(file)});
+  return WriteFilesAtomically(files);
 }
 
 }  // namespace talus::harness

@@ -1,10 +1,14 @@
 // The report's replay and figure sections (see report_html_replay.h).
 //
-// Data for the page, as JSON in a <script type="application/json"> element:
-//   runs       per run recorded for replay: its id, the body shapes (same
-//              for every backend), and per backend the frames (poses,
-//              contacts, step counters) as results.json holds them;
-//   hullTrace  a Quickhull build traced step by step (talus/
+// Data for the page:
+//   runs       (in kReportDataFile beside the page, a script setting
+//              window.talusReportData.replays) per run recorded for replay: its id,
+//              the body shapes (same for every backend), and per backend
+//              the frames (poses, contacts, step counters) as the replay
+//              file holds them, rounded for drawing. They are most of a
+//              report's bytes, so the page itself stays small;
+//   hullTrace  (as JSON in a <script type="application/json"> element)
+//              a Quickhull build traced step by step (talus/
 //              hull_build_trace.h) on a fixed point cloud: the points, every
 //              step (faces as point loops, which the eye sees, the horizon)
 //              and the finished hull's faces as loops of input indices.
@@ -13,6 +17,8 @@
 #include "report/report_html_replay.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -80,6 +86,20 @@ Json HullTraceJson() {
     }
   }
   return j;
+}
+
+// `value` with every number rounded to 7 significant digits (%.7g read
+// back), the precision the page draws at (report_html_replay.h).
+Json RoundedForDrawing(Json value) {
+  if (value.is_number_float()) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.7g", value.get<double>());
+    return Json(std::strtod(text, nullptr));
+  }
+  if (value.is_structured()) {
+    for (Json& item : value) item = RoundedForDrawing(std::move(item));
+  }
+  return value;
 }
 
 Json ReplayRunsJson(const ResultsFile& file) {
@@ -156,7 +176,6 @@ std::string StructureThatRan(const Replay& replay) {
 
 std::string ReplaySections(const ResultsFile& file, std::string_view threeLibrary) {
   Json data;
-  data["runs"] = ReplayRunsJson(file);
   data["hullTrace"] = HullTraceJson();
   std::ostringstream out;
   out << "<style>" << kStyle << "</style>\n";
@@ -181,5 +200,7 @@ std::string ReplaySections(const ResultsFile& file, std::string_view threeLibrar
   out << "<script>" << ScriptSafe(kReportReplayScript) << "</script>\n";
   return out.str();
 }
+
+Json ReplayRunsForPage(const ResultsFile& file) { return RoundedForDrawing(ReplayRunsJson(file)); }
 
 }  // namespace talus::harness

@@ -2,9 +2,11 @@
 // of runs recorded with --replay, the Quickhull trace (write-up figure 1)
 // and the broad-phase funnel per step (figure 2), plus the page status the
 // headless-browser test reads. report_html.cpp inserts the whole as one
-// block after the charting library and before its own plotting script.
+// block after the charting library and before its own plotting script, and
+// puts the replays into the page's data file (kReportDataFile, report.h).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 
@@ -18,8 +20,17 @@ namespace talus::harness {
 /// tree in 2 of 60 recorded steps"; empty when the replay has none.
 std::string StructureThatRan(const Replay& replay);
 
-/// The sections' HTML: headings, containers, data, `threeLibrary` (three.js,
-/// inlined; empty leaves the 3D views with a message saying so) and scripts.
+/// The sections' HTML: headings, containers, the Quickhull trace's data,
+/// `threeLibrary` (three.js, inlined; empty leaves the 3D views with a
+/// message saying so) and scripts. The replays' frames are not in it: the
+/// page reads them from kReportDataFile (ReplayRunsForPage).
 std::string ReplaySections(const ResultsFile& file, std::string_view threeLibrary);
+
+/// The replays as the page reads them: per run recorded for replay, its
+/// id, bodies and shapes, and per backend its counters and frames, every
+/// number rounded to 7 significant digits (the page draws them in WebGL's
+/// 32-bit floats, whose 24-bit significand holds about 7; more digits
+/// cannot move a pixel, and they doubled the data).
+nlohmann::ordered_json ReplayRunsForPage(const ResultsFile& file);
 
 }  // namespace talus::harness

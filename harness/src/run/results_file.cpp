@@ -1,6 +1,7 @@
-// Writing and reading results.json (see results_file.h). Reading walks the
-// document with a path so that a malformed file is reported at the exact
-// place; the walk throws a local exception that never leaves this file.
+// Writing and reading results.json and its trajectory file (see
+// results_file.h). Reading walks the document with a path so that a
+// malformed file is reported at the exact place; the walk throws a local
+// exception that never leaves this file.
 #include "talus/harness/run/results_file.h"
 
 #include "talus/harness/support/atomic_file.h"
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -54,7 +56,20 @@ Json MetricToJson(const MetricResult& m) {
   return j;
 }
 
-Json ResultToJson(const RunResult& r) {
+// A result's trajectory: its plot series and, when recorded, its replay.
+void TrajectoryToJson(const RunResult& r, Json& j) {
+  Json series;
+  series["time"] = r.series.time;
+  series["heights"] = r.series.heights;
+  series["energy"] = Json::array();
+  for (double e : r.series.energy) series["energy"].push_back(Number(e));
+  j["series"] = series;
+  // Only runs recorded for replay carry one, so other files are unchanged.
+  if (!r.replay.frames.empty()) j["replay"] = ReplayToJson(r.replay);
+}
+
+// The result; its trajectory too when `withTrajectory` (the one-text form).
+Json ResultToJson(const RunResult& r, bool withTrajectory) {
   Json j;
   j["scenario"] = r.scenario;
   j["file"] = r.file;
@@ -89,14 +104,7 @@ Json ResultToJson(const RunResult& r) {
                       {"runSeconds", r.perturbed.runSeconds},
                       {"errors", NumbersOrNull(r.perturbed.errors)}};
   }
-  Json series;
-  series["time"] = r.series.time;
-  series["heights"] = r.series.heights;
-  series["energy"] = Json::array();
-  for (double e : r.series.energy) series["energy"].push_back(Number(e));
-  j["series"] = series;
-  // Only runs recorded for replay carry one, so other files are unchanged.
-  if (!r.replay.frames.empty()) j["replay"] = ReplayToJson(r.replay);
+  if (withTrajectory) TrajectoryToJson(r, j);
   return j;
 }
 
@@ -185,7 +193,27 @@ MetricResult MetricFromJson(const Json& j, const std::string& where) {
   return m;
 }
 
-RunResult ResultFromJson(const Json& j, const std::string& where) {
+// Reads the trajectory fields (series, and replay if present) of `j` into `r`.
+void TrajectoryFromJson(const Json& j, const std::string& where, RunResult& r) {
+  const Json& series = Field(j, "series", where);
+  const std::string at = Place(where, "series");
+  r.series.time = GetNumbers(series, "time", at);
+  r.series.energy = GetNumbers(series, "energy", at);
+  const Json& heights = GetArray(series, "heights", at);
+  for (std::size_t i = 0; i < heights.size(); ++i) {
+    Json wrapper;
+    wrapper["h"] = heights[i];
+    r.series.heights.push_back(GetNumbers(wrapper, "h", Concat({at, "/heights/", std::to_string(i)})));
+  }
+  if (j.contains("replay")) {
+    auto replay = ReplayFromJson(j["replay"], Place(where, "replay"));
+    if (!replay) throw ParseFailure{replay.GetError().message};
+    r.replay = std::move(replay).Value();
+  }
+}
+
+// The result; its trajectory too when `withTrajectory` (the one-text form).
+RunResult ResultFromJson(const Json& j, const std::string& where, bool withTrajectory) {
   RunResult r;
   r.scenario = GetString(j, "scenario", where);
   r.file = GetString(j, "file", where);
@@ -255,40 +283,85 @@ RunResult ResultFromJson(const Json& j, const std::string& where) {
       throw ParseFailure{Concat({place, ": need copies >= 1, copies + 1 runSeconds and errorSpread >= 0"})};
     }
   }
-  const Json& series = Field(j, "series", where);
-  const std::string at = Place(where, "series");
-  r.series.time = GetNumbers(series, "time", at);
-  r.series.energy = GetNumbers(series, "energy", at);
-  const Json& heights = GetArray(series, "heights", at);
-  for (std::size_t i = 0; i < heights.size(); ++i) {
-    Json wrapper;
-    wrapper["h"] = heights[i];
-    r.series.heights.push_back(GetNumbers(wrapper, "h", Concat({at, "/heights/", std::to_string(i)})));
-  }
-  if (j.contains("replay")) {
-    auto replay = ReplayFromJson(j["replay"], Place(where, "replay"));
-    if (!replay) throw ParseFailure{replay.GetError().message};
-    r.replay = std::move(replay).Value();
-  }
+  if (withTrajectory) TrajectoryFromJson(j, where, r);
   return r;
 }
 
-}  // namespace
-
-std::string ResultsToJson(const ResultsFile& file) {
+// results.json's top level, and each result with or without its trajectory.
+Json ResultsJson(const ResultsFile& file, bool withTrajectories) {
   Json j;
   j["format"] = kResultsFormat;
   j["version"] = kResultsVersion;
   j["deterministic"] = file.deterministic;
   j["backends"] = file.backends;
+  // Only the file form says so: its trajectories are in the trajectory file.
+  if (!withTrajectories) j["trajectories"] = file.results.size();
   j["results"] = Json::array();
-  for (const RunResult& r : file.results) j["results"].push_back(ResultToJson(r));
-  return j.dump(2) + "\n";
+  for (const RunResult& r : file.results) j["results"].push_back(ResultToJson(r, withTrajectories));
+  return j;
 }
 
-Result<ResultsFile> ResultsFromJson(std::string_view text) {
+// The trajectory file's text: one line per result (compact: a trajectory
+// is hundreds to thousands of numbers, which an indented file would put one
+// per line), in the results' order.
+std::string TrajectoriesToJson(const ResultsFile& file) {
+  Json head;
+  head["format"] = kTrajectoriesFormat;
+  head["version"] = kResultsVersion;
+  std::string text = head.dump();
+  text.pop_back();  // the closing brace: the trajectories follow
+  text += ",\"trajectories\":[";
+  for (std::size_t i = 0; i < file.results.size(); ++i) {
+    const RunResult& r = file.results[i];
+    Json line;
+    line["result"] = i;
+    line["run"] = r.runId;
+    line["backend"] = r.backend;
+    TrajectoryToJson(r, line);
+    text += Concat({i == 0 ? "\n" : ",\n", line.dump()});
+  }
+  return text + "\n]}\n";
+}
+
+// Puts each line of the trajectory file into its result, checking that
+// there is one per result, in order, naming the result's run and backend.
+void ReadTrajectories(const Json& j, ResultsFile& file) {
+  if (GetString(j, "format", "") != kTrajectoriesFormat) {
+    throw ParseFailure{Concat({"/format: not a \"", kTrajectoriesFormat, "\" file"})};
+  }
+  if (GetInt(j, "version", "") != kResultsVersion) {
+    throw ParseFailure{Concat({"/version: unsupported, expected ", std::to_string(kResultsVersion)})};
+  }
+  const Json& lines = GetArray(j, "trajectories", "");
+  if (lines.size() != file.results.size()) {
+    throw ParseFailure{
+        Concat({"/trajectories: ", std::to_string(lines.size()), " trajectories for a results file of ",
+                std::to_string(file.results.size()), " results"})};
+  }
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string where = Concat({"/trajectories/", std::to_string(i)});
+    RunResult& r = file.results[i];
+    if (GetInt(lines[i], "result", where) != static_cast<int>(i) ||
+        GetString(lines[i], "run", where) != r.runId || GetString(lines[i], "backend", where) != r.backend) {
+      throw ParseFailure{Concat({where, ": not the trajectory of result ", std::to_string(i), " (", r.runId,
+                                 " with ", r.backend, ")"})};
+    }
+    TrajectoryFromJson(lines[i], where, r);
+  }
+}
+
+// The trajectory file's text, read only when results.json is in the file
+// form, and the name its errors carry.
+struct TrajectorySource {
+  std::string name;
+  std::function<Result<std::string>()> read;
+};
+
+Result<ResultsFile> ParseResults(std::string_view text, const TrajectorySource& source) {
   const Json j = Json::parse(text, nullptr, false);
   if (j.is_discarded()) return Error{"not valid JSON"};
+  ResultsFile file;
+  bool split = false;
   try {
     if (GetString(j, "format", "") != kResultsFormat) {
       return Error{Concat({"/format: not a \"", kResultsFormat, "\" file"})};
@@ -296,27 +369,63 @@ Result<ResultsFile> ResultsFromJson(std::string_view text) {
     if (GetInt(j, "version", "") != kResultsVersion) {
       return Error{Concat({"/version: unsupported, expected ", std::to_string(kResultsVersion)})};
     }
-    ResultsFile file;
     file.deterministic = GetBool(j, "deterministic", "");
     for (const Json& name : GetArray(j, "backends", "")) {
       if (!name.is_string()) return Error{"/backends: expected strings"};
       file.backends.push_back(name.get<std::string>());
     }
+    split = j.contains("trajectories");
     const Json& results = GetArray(j, "results", "");
-    for (std::size_t i = 0; i < results.size(); ++i) {
-      file.results.push_back(ResultFromJson(results[i], Concat({"/results/", std::to_string(i)})));
+    if (split && GetInt(j, "trajectories", "") != static_cast<int>(results.size())) {
+      return Error{"/trajectories: expected the number of results"};
     }
-    return file;
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      file.results.push_back(ResultFromJson(results[i], Concat({"/results/", std::to_string(i)}), !split));
+    }
   } catch (const ParseFailure& failure) {
     return Error{failure.message};
   }
+  if (!split) return file;
+  auto trajectoryText = source.read();
+  if (!trajectoryText) return Error{Concat({"its trajectories: ", trajectoryText.GetError().message})};
+  const Json trajectories = Json::parse(trajectoryText.Value(), nullptr, false);
+  if (trajectories.is_discarded()) return Error{Concat({source.name, ": not valid JSON"})};
+  try {
+    ReadTrajectories(trajectories, file);
+  } catch (const ParseFailure& failure) {
+    return Error{Concat({source.name, ": ", failure.message})};
+  }
+  return file;
+}
+
+}  // namespace
+
+std::string ResultsToJson(const ResultsFile& file) { return ResultsJson(file, true).dump(2) + "\n"; }
+
+Result<ResultsFile> ResultsFromJson(std::string_view text, std::string_view trajectoryText) {
+  return ParseResults(text, {"trajectory file", [trajectoryText]() -> Result<std::string> {
+                               if (trajectoryText.empty()) return Error{"no trajectory file was given"};
+                               return std::string(trajectoryText);
+                             }});
+}
+
+std::filesystem::path TrajectoryFilePath(const std::filesystem::path& resultsPath) {
+  std::filesystem::path path = resultsPath;
+  if (path.extension() == ".json") path.replace_extension();
+  path += ".trajectories.json";
+  return path;
+}
+
+std::vector<FileText> ResultsFileTexts(const std::filesystem::path& path, const ResultsFile& file) {
+  return {{path, ResultsJson(file, false).dump(2) + "\n"},
+          {TrajectoryFilePath(path), TrajectoriesToJson(file)}};
 }
 
 std::string RunResultToWire(const RunResult& result) {
   tExactNumbers = true;
   std::vector<std::uint8_t> bytes;
   try {
-    bytes = Json::to_cbor(ResultToJson(result));
+    bytes = Json::to_cbor(ResultToJson(result, true));
   } catch (...) {
     tExactNumbers = false;
     throw;
@@ -329,22 +438,23 @@ Result<RunResult> RunResultFromWire(std::string_view bytes) {
   const Json j = Json::from_cbor(bytes.begin(), bytes.end(), true, false);
   if (j.is_discarded()) return Error{"not a serialised run result"};
   try {
-    return ResultFromJson(j, "result");
+    return ResultFromJson(j, "result", true);
   } catch (const ParseFailure& failure) {
     return Error{failure.message};
   }
 }
 
 Result<std::monostate> WriteResultsFile(const std::filesystem::path& path, const ResultsFile& file) {
-  return WriteFileAtomically(path, ResultsToJson(file));
+  return WriteFilesAtomically(ResultsFileTexts(path, file));
 }
 
 Result<ResultsFile> ReadResultsFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{Concat({path.string(), ": cannot read"})};
-  std::ostringstream text;
-  text << in.rdbuf();
-  auto file = ResultsFromJson(text.str());
+  auto text = ReadTextFile(path, "the results file");
+  if (!text) return text.GetError();
+  const std::filesystem::path trajectoryPath = TrajectoryFilePath(path);
+  auto file = ParseResults(text.Value(), {trajectoryPath.string(), [&trajectoryPath] {
+                                            return ReadTextFile(trajectoryPath, "the trajectory file");
+                                          }});
   if (!file) return Error{Concat({path.string(), ": ", file.GetError().message})};
   return file;
 }

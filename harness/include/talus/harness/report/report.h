@@ -3,14 +3,17 @@
 //                 its time per step, pass/fail against the file's
 //                 tolerances; then each engine's settings
 //   results.csv   one row per (run, backend, metric), every number
-//   results.json  the results file itself (results_file.h)
+//   results.json  the results file itself, with its trajectory file
+//                 (results_file.h)
 //   report.html   the tables plus plots (heights and energy over time per
-//                 run, time per step per engine), self-contained: the
-//                 charting library (Chart.js, from harness/report's npm
-//                 lock) is inlined, so it opens from disk with no network;
-//                 with three.js inlined too, the 3D replay of runs recorded
-//                 with --replay, the Quickhull trace and the broad-phase
-//                 funnel (docs/testbed-report.md); with the extras
+//                 run, time per step per engine), self-contained but for
+//                 report-data.js beside it (the plots' series and the
+//                 replays, kReportDataFile): the charting library (Chart.js, from
+//                 harness/report's npm lock) is inlined, so it opens from
+//                 disk with no network; with three.js inlined too, the 3D
+//                 replay of runs recorded with --replay, the Quickhull
+//                 trace and the broad-phase funnel
+//                 (docs/testbed-report.md); with the extras
 //                 (ReportExtras), the SAT validation, a separate sweep's
 //                 run-time-against-error charts, the stability envelope
 //                 and the large scenes with their scaling charts, so one
@@ -32,6 +35,12 @@
 #include "talus/result.h"
 
 namespace talus::harness {
+
+/// The file beside report.html that holds the plots' series and the
+/// replays' frames (most of a report's bytes), which the page loads with
+/// a <script src> (a page opened from disk may load a script beside it,
+/// but not fetch a JSON file).
+inline constexpr std::string_view kReportDataFile = "report-data.js";
 
 /// The analyses a report can add after the run's own sections, each read
 /// from its own program's output; a null pointer leaves its section out.
@@ -73,8 +82,15 @@ std::string ResultsCsv(const ResultsFile& file);
 std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary,
                        std::string_view threeLibrary = {}, const ReportExtras& extras = {});
 
-/// Writes the four files into `folder` (created if missing), reading the
-/// charting library from `chartLibraryPath` and three.js from
+/// kReportDataFile's text: a script setting window.talusReportData to
+/// {"plots": the series per run and backend, "replays": the replays as
+/// report_html_replay.h's ReplayRunsForPage gives them}.
+std::string ReportDataScript(const ResultsFile& file);
+
+/// Writes summary.md, results.csv, results.json (and its trajectory file),
+/// report.html and kReportDataFile into `folder` (created if missing), as
+/// one set: all of them or, on any failure, none (WriteFilesAtomically).
+/// Reads the charting library from `chartLibraryPath` and three.js from
 /// `threeLibraryPath` (empty: none); errors name the file. The extras add
 /// their sections to summary.md and report.html.
 Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesystem::path& folder,

@@ -4,6 +4,18 @@
 // integrator answer) are written as null and read back as NaN. Writing is
 // deterministic: fixed key order, numbers in shortest round-trip form, so
 // equal results give byte-identical files.
+//
+// On disk the file is two: results.json holds everything but each result's
+// trajectory, and "results.trajectories.json" beside it (TrajectoryFilePath)
+// holds the trajectories, one line per result: the plot series, and for
+// runs recorded with --replay the replay (poses, contacts and counters of
+// every frame). The trajectories are most of a run's bytes (the default
+// report's results.json was 65 MB with them, docs/testbed-report.md
+// "Sizes"), and only the report's plots and replay read them. The two are
+// written as one set (WriteFilesAtomically) and read back together.
+// ResultsToJson is the one-text form with the trajectories inside each
+// result (the form shard files embed, and how results.json was written
+// before the split); the readers take both forms.
 #pragma once
 
 #include <filesystem>
@@ -13,6 +25,7 @@
 #include <vector>
 
 #include "talus/harness/run/runner.h"
+#include "talus/harness/support/atomic_file.h"
 #include "talus/result.h"
 
 namespace talus::harness {
@@ -29,12 +42,19 @@ struct ResultsFile {
   std::vector<RunResult> results;     ///< runs x backends, run-major
 };
 
-/// The results as JSON text (2-space indented, ends with a newline).
+/// The trajectory file's "format" value, checked on reading.
+inline constexpr std::string_view kTrajectoriesFormat = "talus-testbed-trajectories";
+
+/// The results as one JSON text, trajectories inside each result (2-space
+/// indented, ends with a newline).
 std::string ResultsToJson(const ResultsFile& file);
 
-/// Parses results JSON; an Error names the place (e.g. "results/3/metrics/0:
-/// missing field \"measured\"") when the text is not a results file.
-Result<ResultsFile> ResultsFromJson(std::string_view text);
+/// Parses results JSON of either form; the file form ("trajectories" at
+/// the top) needs `trajectoryText`, its trajectory file's text. An Error
+/// names the place (e.g. "results/3/metrics/0: missing field
+/// \"measured\"", "trajectory file: /trajectories/2: ...") when a text is
+/// not what it should be.
+Result<ResultsFile> ResultsFromJson(std::string_view text, std::string_view trajectoryText = {});
 
 /// One RunResult as bytes (CBOR of its results.json entry, with every
 /// number exact: NaN and infinities kept), for an isolated job's answer to
@@ -44,7 +64,17 @@ Result<ResultsFile> ResultsFromJson(std::string_view text);
 std::string RunResultToWire(const RunResult& result);
 Result<RunResult> RunResultFromWire(std::string_view bytes);
 
-/// Writes / reads the file; errors name the path.
+/// Where the trajectories of the results file at `resultsPath` go: beside
+/// it, its name with ".json" replaced by ".trajectories.json".
+std::filesystem::path TrajectoryFilePath(const std::filesystem::path& resultsPath);
+
+/// The two files that hold `file` at `path`: results.json without the
+/// trajectories, and the trajectory file. For writers of a larger set of
+/// files (the report, the sweep).
+std::vector<FileText> ResultsFileTexts(const std::filesystem::path& path, const ResultsFile& file);
+
+/// Writes the two files as one set / reads them back (or a one-text
+/// results file); errors name the path.
 Result<std::monostate> WriteResultsFile(const std::filesystem::path& path, const ResultsFile& file);
 Result<ResultsFile> ReadResultsFile(const std::filesystem::path& path);
 

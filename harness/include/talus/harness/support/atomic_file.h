@@ -5,13 +5,15 @@
 // replaces the target in one step, so a reader, a crash, a full disk or a
 // second program writing the same file at the same moment sees either the
 // old file or one complete new one, never a mixture or a truncated file.
-// Every file the testbed programs write goes through WriteFileAtomically.
+// Every file the testbed programs write goes through WriteFileAtomically,
+// or WriteFilesAtomically for a set of files that belong together.
 #pragma once
 
 #include <filesystem>
-#include <span>
+#include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 #include "talus/result.h"
 
@@ -22,32 +24,30 @@ namespace talus::harness {
 /// temporary file and leaves any existing `path` untouched.
 Result<std::monostate> WriteFileAtomically(const std::filesystem::path& path, std::string_view text);
 
+/// One file of a set: where it goes and its whole text.
+struct FileText {
+  std::filesystem::path path;
+  std::string text;
+};
+
+/// Writes every file of `files` or none of them (a report's summary.md,
+/// results.csv and report.html; talus-sat-check's JSON and Markdown). A set
+/// naming one path twice, or a path that is a folder, is refused before
+/// anything is written. Every text for a regular target (a new name or an
+/// existing regular file) is first written to its temporary sibling, so a
+/// full disk fails before any target changes; a target that exists and is
+/// not a regular file (a device such as /dev/stdout or /dev/full, a pipe)
+/// is written directly, since renaming over it would swap the device for a
+/// plain file. Then the temporaries are renamed into place one by one. If a
+/// rename fails, the files already renamed are put back as they were (the
+/// previous file, kept as a hard link, or no file where there was none). On
+/// failure returns the first failing file's error ("<path>: cannot write
+/// (<reason>)"), and no temporary is left behind. The folders must exist.
+Result<std::monostate> WriteFilesAtomically(const std::vector<FileText>& files);
+
 /// The temporary name WriteFileAtomically uses for `path`: "<name>.tmp-"
 /// then the process id and a per-process counter, so two writers (threads
 /// or processes) never share one.
 std::filesystem::path TemporarySibling(const std::filesystem::path& path);
-
-/// One file of a set written by WriteFilesAtomically.
-struct FileToWrite {
-  std::filesystem::path path;
-  std::string_view text;
-};
-
-/// Writes every file of `files` or none of them (a program's outputs as
-/// one set: a report never beside a missing summary). In order:
-/// 1. refuses a set naming one path twice, or a path that is a folder;
-/// 2. writes each regular target (new or an existing regular file) to its
-///    TemporarySibling;
-/// 3. writes each target that exists and is not a regular file (a device
-///    such as /dev/stdout or /dev/full, a pipe) directly: it cannot be
-///    replaced by a rename, and renaming over it would swap the device
-///    for a plain file;
-/// 4. renames the temporaries over their targets, in order.
-/// A failure in 1-3 removes every temporary and leaves every regular
-/// target as it was; a failed rename in 4 also removes the targets
-/// already renamed, so no partial set is left (their old contents are
-/// gone then). Returns "<path>: cannot write (<reason>)" for the first
-/// file that failed.
-Result<std::monostate> WriteFilesAtomically(std::span<const FileToWrite> files);
 
 }  // namespace talus::harness
