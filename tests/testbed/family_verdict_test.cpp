@@ -73,7 +73,8 @@ struct FileBuilder {
   }
 };
 
-const FamilyPair& OnlyPair(const std::vector<SweepGroup>& groups) {
+// A copy, not a reference: callers pass the temporary Analyse() returns.
+FamilyPair OnlyPair(const std::vector<SweepGroup>& groups) {
   EXPECT_EQ(groups.size(), 1u);
   EXPECT_EQ(groups.at(0).families.pairs.size(), 1u);
   return groups.at(0).families.pairs.at(0);
@@ -186,7 +187,7 @@ TEST(FamilyVerdictIssue24, AnUnstableTalusIsNotBetterThanAStablePeer) {
   FileBuilder overlap;
   FileBuilder::WithCopies(overlap.Add("talus", "Talus (double)", 0.01, 1.0, 0.9), {0.9, 0.1, 0.5});
   FileBuilder::WithCopies(overlap.Add("bullet", "Bullet 324", 0.01, 1.0, 0.1), {0.1, 0.1, 0.1});
-  const FamilyPair& tie = OnlyPair(overlap.Analyse());
+  const FamilyPair tie = OnlyPair(overlap.Analyse());
   EXPECT_EQ(tie.outcome, PairOutcome::kTie);
   EXPECT_EQ(tie.firstBest, 0.1);
   EXPECT_EQ(tie.firstWorst, 0.9);
