@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#ifdef TALUS_SAT_CHECK_BINARY
 namespace {
 
 namespace fs = std::filesystem;
@@ -96,3 +97,4 @@ TEST(SatCheckOutputs, AFullStandardOutputIsAnError) {
 }
 
 }  // namespace
+#endif  // TALUS_SAT_CHECK_BINARY
