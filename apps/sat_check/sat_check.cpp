@@ -455,10 +455,14 @@ Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {
         }
       }
       if (talus && answer.intersecting && !answer.pointDepths.empty()) {
-        // The deepest point carries the manifold's depth.
+        // No point is deeper than the manifold's depth (the projections'
+        // overlap). The deepest point carries it unless the SAT's deepest
+        // vertex lies outside the other shape; shallower is counted, not
+        // gated (sat_check.h).
         const double deepest = *std::max_element(answer.pointDepths.begin(), answer.pointDepths.end());
-        const double gap = std::abs(deepest - answer.depth);
-        if (gap > roundOff + kExactRelative * pair.size && out.deepestPointOff++ == 0)
+        const double bound = roundOff + kExactRelative * pair.size;
+        if (deepest < answer.depth - bound) ++out.deepestPointShallower;
+        if (deepest > answer.depth + bound && out.deepestPointDeeper++ == 0)
           report.failures.push_back(out.name + ": deepest point " + Sci(deepest) + " m, manifold depth " +
                                     Sci(answer.depth) + " m on pair " + std::to_string(pair.index) + " (" +
                                     configuration + ")");

@@ -103,9 +103,14 @@ struct MethodReport {
   Distribution timeNs;          ///< time per query (ns)
   // The gate (Talus methods; see docs/collision-validation.md): counts of
   // pairs or points beyond the stated bounds.
-  int depthOverBound = 0;   ///< |depth - true| > preference band + exact + round-off
-  int normalOverBound = 0;  ///< normal excess > the same bound
-  int deepestPointOff = 0;  ///< deepest point's depth != manifold depth beyond round-off
+  int depthOverBound = 0;      ///< |depth - true| > preference band + exact + round-off
+  int normalOverBound = 0;     ///< normal excess > the same bound
+  int deepestPointDeeper = 0;  ///< deepest point deeper than the manifold depth beyond round-off
+  /// Measured, not gated: manifolds whose deepest point is shallower than
+  /// the depth beyond round-off. The depth is the projections' overlap;
+  /// when the SAT's deepest vertex lies outside the other shape no point of
+  /// the intersection need be that deep (docs/collision-narrow-phase.md).
+  int deepestPointShallower = 0;
   /// Points outside either shape beyond round-off; gated for the Clipped
   /// modes (issue 26: inside both shapes), measured for WriteUp.
   int pointsOutsideEither = 0;

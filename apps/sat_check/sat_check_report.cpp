@@ -96,9 +96,10 @@ std::string ReportToJson(const SatCheckReport& report) {
                        {"gate",
                         {{"depthOverBound", m.depthOverBound},
                          {"normalOverBound", m.normalOverBound},
-                         {"deepestPointOff", m.deepestPointOff},
+                         {"deepestPointDeeper", m.deepestPointDeeper},
                          {"pointsOutsideEither", m.pointsOutsideEither},
                          {"pointsOutsideBoth", m.pointsOutsideBoth}}},
+                       {"deepestPointShallower", m.deepestPointShallower},
                        {"families", FamiliesToJson(m.families)},
                        {"timeNs", ToJson(m.timeNs)},
                        {"timeVsAccuracy",
@@ -190,7 +191,12 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
   out << "\n### Gate\n\n" << SummaryLine(report) << "\n";
   for (const std::string& line : report.truthBroken) out << "- truth broken: " << line << "\n";
   for (const std::string& line : report.failures) out << "- " << line << "\n";
-  out << "\n### Worst cases\n\n";
+  out << "\nMeasured, not gated: manifolds whose deepest point is shallower than the depth (the SAT's "
+         "deepest vertex outside the other shape, so no point of the intersection is that deep):";
+  for (const MethodReport& m : report.methods) {
+    if (m.family == "talus") out << " " << m.name << " " << m.deepestPointShallower << ";";
+  }
+  out << "\n\n### Worst cases\n\n";
   for (const MethodReport& m : report.methods) {
     if (m.disagreements.empty() && (m.worstDepth.empty() || m.worstDepth.front().value < 1e-6)) continue;
     out << "- **" << m.name << "**";

@@ -57,12 +57,18 @@ void CheckPair(const Pair& p, SatMode satMode, ManifoldMode manifoldMode, bool c
   const double oracle = test::BruteMinimumOverlap(a, b);
   EXPECT_GE(m.depth, oracle - 1e-9 * size - roundOff);
   EXPECT_LE(m.depth, oracle + AxisPreferenceBand(p.a.GetHull(), p.b.GetHull()) + 1e-9 * size + roundOff);
-  // The deepest point carries the depth.
+  // No point is deeper than the depth, and on these families (faces or
+  // edges meeting inside a shape, never a vertex beside a small face by
+  // more than the band) the deepest point is as deep as the exact minimum
+  // up to the preference band: where the SAT prefers a face inside the
+  // band, its deepest vertex can lie beside the reference face, out of
+  // contact, and the points then carry the intersection's own depth.
   ASSERT_GE(m.pointCount, 1);
   double deepest = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < m.pointCount; ++i)
     deepest = std::max(deepest, m.points[static_cast<std::size_t>(i)].depth);
-  EXPECT_NEAR(deepest, m.depth, roundOff + 1e-9 * size);
+  EXPECT_LE(deepest, m.depth + roundOff + 1e-9 * size);
+  EXPECT_GE(deepest, oracle - AxisPreferenceBand(p.a.GetHull(), p.b.GetHull()) - 1e-9 * size - roundOff);
   const double slack = 1e-9 * size + roundOff;
   if (!checkPoints) return;
   for (int i = 0; i < m.pointCount; ++i) {

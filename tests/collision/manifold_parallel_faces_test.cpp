@@ -111,6 +111,7 @@ struct Tally {
   int touching = 0;
   int points = 0;
   int outside = 0;
+  int shallower = 0;  // pairs whose deepest point is shallower than the depth
   double worst = 0.0;
   std::string first;
 };
@@ -139,10 +140,13 @@ void CheckPoints(const Pair& p, int index, const NarrowPhaseSettings& settings, 
       tally->worst = std::max(tally->worst, outside);
     }
   }
-  // The deepest point carries the reported depth (pair_query.h), and the
-  // depth is the least overlap over every axis (brute force, sharing no
-  // code with the SAT), up to the SAT's preference band.
-  EXPECT_NEAR(deepest, c.Depth(), bound) << "pair " << index;
+  // No point is deeper than the reported depth (pair_query.h: the deepest
+  // vertex beside the reference face may be out of contact, so the points
+  // can be shallower), and the depth is the least overlap over every axis
+  // (brute force, sharing no code with the SAT), up to the SAT's
+  // preference band.
+  EXPECT_LE(deepest, c.Depth() + bound) << "pair " << index;
+  if (deepest < c.Depth() - bound) ++tally->shallower;
   const double oracle =
       test::BruteMinimumOverlap(PosedHull::Make(p.a.GetHull(), p.xfA), PosedHull::Make(p.b.GetHull(), p.xfB));
   EXPECT_GE(c.Depth(), oracle - bound) << "pair " << index;
@@ -168,7 +172,8 @@ TEST(ManifoldParallelFaces, EveryClippedPointIsInsideBothShapes) {
     // touching and go either way, and a small face of a round hull moved
     // sideways can miss the other face (217 of 400 touch).
     EXPECT_GE(tally.touching, 200);
-    EXPECT_EQ(tally.outside, 0) << tally.outside << " of " << tally.points << " points, worst " << tally.worst
+    EXPECT_EQ(tally.outside, 0) << tally.outside << " of " << tally.points << " points (" << tally.shallower
+                                << " pairs with every point shallower than the depth), worst " << tally.worst
                                 << " m; first: " << tally.first;
   }
 }

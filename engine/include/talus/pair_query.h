@@ -13,7 +13,10 @@
 // SAT's own bounds (docs/collision-narrow-phase.md):
 // - `depth` is the SAT's minimum overlap, within kAxisPreferenceRelative x
 //   the pair's size of the exact minimum translation distance;
-// - the deepest point's depth equals `depth` (to round-off);
+// - no point is deeper than `depth`, and the deepest point's depth equals
+//   it (to round-off) unless the SAT's deepest vertex lies outside the
+//   other shape: then no point of the intersection is that deep along the
+//   normal, and the points carry their own, shallower depths;
 // - every point lies inside both shapes (to round-off).
 #pragma once
 

@@ -30,7 +30,7 @@ struct ContactPoint {
 
 struct ContactManifold {
   Vec3 normal;   // world space unit normal, pointing from B towards A
-  double depth;  // the SAT's minimum overlap (metres)
+  double depth;  // the SAT's minimum overlap (metres); no point is deeper
   int pointCount;
   std::array<ContactPoint, kMaxManifoldPoints> points;
 };

@@ -250,11 +250,11 @@ void ClipAgainst(const PosedHull& ref, const std::vector<ClipVertex>& in, const 
   }
 }
 
-// Fills `points` and returns their count; `*carriedDepth` (set to `depth`
-// by the caller) is lowered to the deepest point's when the SAT's deepest
-// vertex is not in contact.
+// Fills `points` and returns their count. The manifold keeps the SAT's
+// depth; the deepest point carries it unless the SAT's deepest vertex is
+// not in contact (see below).
 int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double depth, double margin,
-                       ContactPoint* points, double* carriedDepth) {
+                       ContactPoint* points) {
   const PosedHull& ref = *contact.reference;
   const PosedHull& inc = *contact.incident;
   const Vec3& n = contact.plane.normal;
@@ -329,13 +329,17 @@ int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double de
     //
     // Unless its normal line misses the intersection of the two shapes:
     // then the vertex is not in contact, and no point of the intersection
-    // is as deep as the SAT measured. It happens on faces within the
-    // preference band of parallel (issue 26: hulls 5 m across, faces 1e-7
-    // rad apart, the vertex beside the reference face by metres, and the
-    // point it gave up to 1.1 m outside a shape); the kept points then hold
-    // the contact, and the manifold carries the deepest of them
-    // (*carriedDepth), which still bounds the exact minimum from above:
-    // the SAT's depth minus the vertex's lead over it.
+    // need be as deep along the normal as the projections overlap. It
+    // happens on faces within the preference band of parallel (issue 26:
+    // hulls 5 m across, faces 1e-7 rad apart, the vertex beside the
+    // reference face by metres, and the point it gave up to 1.1 m outside
+    // a shape), and on any pair whose deepest incident vertex lies beside
+    // a small reference face. The kept points then hold the contact with
+    // their own, shallower depths, and the manifold still reports the
+    // SAT's depth: the projections' overlap, which is what separates the
+    // shapes. (Carrying the deepest kept point's depth instead reported
+    // less than the minimum translation distance: 0.1718 m against 0.1767
+    // m on fuzz finding clipped_vertex_missed_depth_below_minimum_overlap.)
     const double s = contact.plane.SignedDistance(deepestVertex);
     bool missed = false;
     const Vec3 position = InsideBoth(a, b, normal, deepestVertex - 0.5 * s * n, &missed);
@@ -345,8 +349,6 @@ int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double de
            .depth = std::max(-s, depth),
            .featureId = OrderedFeatureId(contact, PackFeature(FeatureType::Face, contact.referenceFace),
                                          PackFeature(FeatureType::Vertex, deepest))});
-    } else {
-      *carriedDepth = deepestKept;
     }
   }
   return ReduceContactPoints(kept, n, kClippedMaxPoints, points);
@@ -466,10 +468,7 @@ void BuildPolyhedronManifold(const PosedHull& a, const PosedHull& b, const SatRe
     // No vertex qualifies (e.g. two bars crossed face to face): the
     // write-up's rule finds nothing, so use the clipped points instead.
   }
-  double carriedDepth = out->depth;
-  out->pointCount =
-      BuildClippedPoints(contact, out->normal, out->depth, margin, out->points.data(), &carriedDepth);
-  out->depth = carriedDepth;
+  out->pointCount = BuildClippedPoints(contact, out->normal, out->depth, margin, out->points.data());
 }
 
 }  // namespace talus
