@@ -6,6 +6,7 @@
 #include <string>
 
 #include "hull_command.h"
+#include "unknown_subcommand.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"talus: convex hulls, mass properties and the physics testbed"};
@@ -15,17 +16,9 @@ int main(int argc, char** argv) {
   talus::cli::AddHullCommand(app, hullOptions, exitCode);
   // CLI11 would say "A subcommand is required" about `talus frobnicate
   // FILE`: name the word it did not know, and the known ones.
-  if (argc > 1 && argv[1][0] != '-') {
-    std::string known;
-    bool found = false;
-    for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
-      found = found || command->get_name() == argv[1];
-      known.append(known.empty() ? "" : ", ").append(command->get_name());
-    }
-    if (!found) {
-      std::cerr << "talus: unknown subcommand \"" << argv[1] << "\" (known: " << known << ")\n";
-      return 2;
-    }
+  if (const auto unknown = talus::cli::UnknownSubcommand(app, argc, argv)) {
+    std::cerr << "talus: " << *unknown << "\n";
+    return 2;
   }
   try {
     app.parse(argc, argv);

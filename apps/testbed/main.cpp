@@ -13,6 +13,7 @@
 #include "talus/world_settings.h"
 #include "testbed_commands.h"
 #include "testbed_flags.h"
+#include "unknown_subcommand.h"
 
 namespace {
 
@@ -129,17 +130,9 @@ int main(int argc, char** argv) {
   AddStressCommand(app, chosen);
 
   // CLI11 would only say the word "was not expected": name it as a subcommand.
-  if (argc > 1 && argv[1][0] != '-') {
-    std::string known;
-    bool found = false;
-    for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
-      found = found || command->get_name() == argv[1];
-      known.append(known.empty() ? "" : ", ").append(command->get_name());
-    }
-    if (!found) {
-      std::cerr << "talus-testbed: unknown subcommand \"" << argv[1] << "\" (known: " << known << ")\n";
-      return kExitBadInput;
-    }
+  if (const auto unknown = talus::cli::UnknownSubcommand(app, argc, argv)) {
+    std::cerr << "talus-testbed: " << *unknown << "\n";
+    return kExitBadInput;
   }
   try {
     app.parse(argc, argv);

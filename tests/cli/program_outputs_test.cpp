@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "support/command_outcome.h"
+#include "support/scratch_files.h"
 
 namespace {
 
@@ -32,18 +33,10 @@ std::string Quote(const fs::path& path) {
 }
 
 fs::path Fresh(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("talus_program_outputs_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return talus::testing_support::FreshScratchDir("program_outputs_" + name);
 }
 
-std::string Read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string Read(const fs::path& path) { return talus::testing_support::ReadWholeFile(path); }
 
 // RunCommand sends stdout to its log; this sends it to `target` and keeps
 // stderr in the log.

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "support/scratch_files.h"
 #include "talus/harness/support/atomic_file.h"
 
 namespace talus::harness {
@@ -17,19 +18,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path FreshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("talus_atomic_set_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path FreshDir(const std::string& name) { return testing_support::FreshScratchDir("atomic_set_" + name); }
 
-std::string Read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string Read(const fs::path& path) { return testing_support::ReadWholeFile(path); }
 
 std::vector<std::string> Names(const fs::path& dir) {
   std::vector<std::string> names;

@@ -2,6 +2,7 @@
 // leave no temporary behind, and concurrent writers never interleave.
 // WriteFilesAtomically: a set of files is replaced whole or not at all.
 #include "talus/harness/support/atomic_file.h"
+#include "support/scratch_files.h"
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>
@@ -23,19 +24,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path FreshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("talus_atomic_file_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path FreshDir(const std::string& name) { return testing_support::FreshScratchDir("atomic_file_" + name); }
 
-std::string Read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string Read(const fs::path& path) { return testing_support::ReadWholeFile(path); }
 
 // Names in `dir` other than `keep`: leftovers of a write.
 std::vector<std::string> Others(const fs::path& dir, const std::string& keep) {

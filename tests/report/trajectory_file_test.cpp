@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "support/scratch_files.h"
 #include "talus/harness/run/results_file.h"
 
 namespace talus::harness {
@@ -47,18 +48,10 @@ ResultsFile TwoResultsOneReplay() {
   return file;
 }
 
-std::string Read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string Read(const fs::path& path) { return testing_support::ReadWholeFile(path); }
 
 fs::path FreshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("talus_trajectory_file_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return testing_support::FreshScratchDir("trajectory_file_" + name);
 }
 
 TEST(TrajectoryFile, ResultsJsonHoldsNoSeriesAndNoFrame) {

@@ -22,6 +22,8 @@
 #include "talus/harness/scenario/scenario_loader.h"
 #include "talus/reference/talus_backend.h"
 
+#include "support/scratch_files.h"
+
 namespace talus::harness {
 namespace {
 
@@ -105,12 +107,7 @@ ResultsFile Doctored() {
   return file;
 }
 
-fs::path ScratchDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("talus_testbed_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path ScratchDir(const std::string& name) { return testing_support::FreshScratchDir("testbed_" + name); }
 
 // Fields of one CSV line, honouring RFC 4180 quotes.
 std::size_t CsvFieldCount(const std::string& line) {
@@ -123,12 +120,7 @@ std::size_t CsvFieldCount(const std::string& line) {
   return fields;
 }
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string ReadText(const fs::path& path) { return testing_support::ReadWholeFile(path); }
 
 TEST(ResultsFile, RoundTripsToTheSameBytesWithNaNAsNull) {
   ResultsFile file = SmallResults();

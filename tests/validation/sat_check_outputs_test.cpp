@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include "support/scratch_files.h"
+
 #ifdef TALUS_SAT_CHECK_BINARY
 namespace {
 
@@ -37,10 +39,7 @@ ProgramRun SatCheck(const std::string& arguments, const fs::path& dir) {
 }
 
 fs::path FreshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("talus_sat_check_outputs_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return talus::testing_support::FreshScratchDir("sat_check_outputs_" + name);
 }
 
 TEST(SatCheckOutputs, WritesBothReportsAndPasses) {
