@@ -14,6 +14,7 @@
 // only what it uses.
 #pragma once
 
+#include <cstddef>
 #include <limits>
 
 #include "talus/body.h"
@@ -21,9 +22,14 @@
 
 namespace talus {
 
-struct BodySim {
+// The quaternions are aligned to 32 bytes explicitly: Eigen aligns a Quat
+// to 16 bytes in an SSE2 translation unit and to 32 in the one compiled
+// with -mavx2 (TALUS_SIMD=AVX2, engine/CMakeLists.txt), so without it the
+// two would lay BodySim out differently (principalFrame at byte 400 or
+// 416) while sharing one definition.
+struct alignas(32) BodySim {
   Vec3 center = Vec3::Zero();  ///< centre of mass, world space, metres
-  Quat orientation = Quat::Identity();
+  alignas(32) Quat orientation = Quat::Identity();
   Vec3 linearVelocity = Vec3::Zero();   ///< m/s
   Vec3 angularVelocity = Vec3::Zero();  ///< rad/s, world space
   Vec3 force = Vec3::Zero();            ///< N, accumulated for the next step
@@ -34,7 +40,7 @@ struct BodySim {
   Mat3 invInertiaWorld = Mat3::Zero();  ///< 1/(kg m^2), world axes
   /// Principal axes of inertiaLocal: a body-axes vector is principalFrame *
   /// (the same vector in principal axes). Identity for a diagonal inertia.
-  Quat principalFrame = Quat::Identity();
+  alignas(32) Quat principalFrame = Quat::Identity();
   Vec3 principalInertia = Vec3::Zero();  ///< kg m^2, the principal moments
   double invMass = 0.0;                  ///< 1/kg; 0 for static and kinematic bodies
   BodyType type = BodyType::Static;
@@ -71,5 +77,12 @@ struct BodySim {
     invInertiaWorld = r * invInertiaLocal * r.transpose();
   }
 };
+
+// One layout in every translation unit, SSE2 or AVX2 (see above): 640
+// bytes, ten cache lines. A sweep never reads it (SolverBodies gathers the
+// velocities, solver_body.h); the integrator and the row preparation do.
+static_assert(sizeof(BodySim) == 640 && alignof(BodySim) == 32, "BodySim: 640 bytes, 32-byte aligned");
+static_assert(offsetof(BodySim, principalFrame) == 416 && offsetof(BodySim, pseudoAngular) == 608,
+              "BodySim: the same offsets in the SSE2 and the AVX2 translation unit");
 
 }  // namespace talus

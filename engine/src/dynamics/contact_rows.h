@@ -62,10 +62,10 @@ struct PatternRow {
 struct JointBlockRows {
   PatternRow pattern[3];
   /// B Knp: the normal block's pseudo-inverse times the normal-pattern coupling.
-  Eigen::Matrix<double, 4, 3> blockTimesCoupling = Eigen::Matrix<double, 4, 3>::Zero();
+  Eigen::Matrix<double, 4, 3, Eigen::DontAlign> blockTimesCoupling = Eigen::Matrix<double, 4, 3>::Zero();
   /// Row i: point i's offset from the patterns' centre of pressure along
   /// t1 and t2, metres (where the accepted friction is shared out).
-  Eigen::Matrix<double, 4, 2> plane = Eigen::Matrix<double, 4, 2>::Zero();
+  Eigen::Matrix<double, 4, 2, Eigen::DontAlign> plane = Eigen::Matrix<double, 4, 2>::Zero();
   Eigen::Matrix3d schurInverse = Eigen::Matrix3d::Zero();  ///< (Kpp - Kpn B Knp)^-1
   bool spin = false;    ///< the spin pattern is used (some lever, some body can turn)
   bool usable = false;  ///< the Schur complement was positive definite

@@ -2,7 +2,7 @@
 // read and write, one small entry per body that takes part in a contact
 // this step (Bullet's btSolverBody, Box2D v3's b2BodyState).
 //
-// Why. A BodySim is ~430 bytes over several cache lines (pose, forces,
+// Why. A BodySim is 640 bytes, ten cache lines (pose, forces,
 // three inertia matrices); a sweep touches only the two velocities. Each
 // row update used to load and store them through the BodySim; gathered
 // into 48-byte entries the ~1,240 bodies of the pyramid fit in L2 and a
