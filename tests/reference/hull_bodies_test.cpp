@@ -97,7 +97,7 @@ RestLimits HullRestLimits(const std::string& backend) {
   if (backend == "bullet") return {0.003, 0.01, 0.04};
   // ODE: -0.7 mm for a box on the box ground (box_rest) but -34 mm here and
   // -12 mm for a cube written as a hull, still rocking at ~8 cm/s after 4 s
-  // with "LCP internal error" messages: its convex-box collider (libccd)
+  // with "LCP internal error" messages: its convex-box collider
   // gives one contact point per step instead of a face patch, so the hull
   // rocks on it, sunk in the ground. A frame or centroid error would be off
   // by the 0.3 m / 0.2 m shift of the points and fail this all the same.

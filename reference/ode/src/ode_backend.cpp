@@ -36,6 +36,7 @@
 
 #include "talus/harness/scenario/scenario_limits.h"
 #include "talus/reference/body_mass.h"
+#include "talus/reference/point_hull.h"
 
 namespace talus::reference {
 namespace {
@@ -176,6 +177,58 @@ class OdeBackend final : public harness::Backend {
   std::vector<harness::Setting> m_settings;
 };
 
+// One face of a hull for dConvex: its plane (outward unit normal, offset
+// n . x) and its corners counter-clockwise seen from outside.
+struct HullFace {
+  Vec3 normal;
+  double offset = 0.0;
+  std::vector<int> corners;
+};
+
+// The hull's faces as polygons, as dCreateConvex takes them ("the number of
+// vertices of the polygon, followed by the vertex indices", one polygon per
+// plane): qhull's triangles whose planes agree to round-off are merged into
+// one face, whose corners are ordered by angle about its centre: a flat
+// face is then one polygon to ODE's convex colliders, as its user would
+// write it, not several triangles (measured: no verdict changes,
+// docs/testbed-backends.md).
+std::vector<HullFace> HullFaces(const PointHull& hull) {
+  // Coplanar triangles of exact input agree to a few ulps; the hull's
+  // neighbouring faces differ by far more (a degenerate sliver would be
+  // merged by qhull itself).
+  constexpr double kSameNormal = 1e-9;
+  double size = 0.0;
+  for (const Vec3& v : hull.vertices) size = std::max(size, v.cwiseAbs().maxCoeff());
+  std::vector<HullFace> faces;
+  for (const auto& triangle : hull.triangles) {
+    const Vec3& a = hull.vertices[triangle[0]];
+    const Vec3 normal = (hull.vertices[triangle[1]] - a).cross(hull.vertices[triangle[2]] - a).normalized();
+    const double offset = normal.dot(a);
+    auto same = std::find_if(faces.begin(), faces.end(), [&](const HullFace& face) {
+      return (face.normal - normal).norm() <= kSameNormal &&
+             std::abs(face.offset - offset) <= kSameNormal * size;
+    });
+    if (same == faces.end()) same = faces.insert(faces.end(), HullFace{normal, offset, {}});
+    for (const int corner : triangle) {
+      if (std::find(same->corners.begin(), same->corners.end(), corner) == same->corners.end())
+        same->corners.push_back(corner);
+    }
+  }
+  for (HullFace& face : faces) {
+    Vec3 centre = Vec3::Zero();
+    for (const int corner : face.corners) centre += hull.vertices[corner];
+    centre /= static_cast<double>(face.corners.size());
+    const Vec3 u = (hull.vertices[face.corners[0]] - centre).normalized();
+    const Vec3 v = face.normal.cross(u);
+    auto angle = [&](int corner) {
+      const Vec3 d = hull.vertices[corner] - centre;
+      return std::atan2(d.dot(v), d.dot(u));
+    };
+    std::sort(face.corners.begin(), face.corners.end(), [&](int p, int q) { return angle(p) < angle(q); });
+  }
+  return faces;
+}
+
 Result<bool> OdeBackend::AddBody(const BodySpec& spec, const BodyMass& mass, int index) {
   auto body = std::make_unique<Body>();
   body->index = index;
@@ -198,14 +251,11 @@ Result<bool> OdeBackend::AddBody(const BodySpec& spec, const BodyMass& mass, int
     if (!hull) return Error{"ode: body \"" + spec.name + "\": " + hull.GetError().message};
     for (const Vec3& v : hull.Value().vertices)
       body->points.insert(body->points.end(), {v.x(), v.y(), v.z()});
-    for (const auto& triangle : hull.Value().triangles) {
-      const Vec3& a = hull.Value().vertices[triangle[0]];
-      const Vec3 normal =
-          (hull.Value().vertices[triangle[1]] - a).cross(hull.Value().vertices[triangle[2]] - a).normalized();
-      body->planes.insert(body->planes.end(), {normal.x(), normal.y(), normal.z(), normal.dot(a)});
-      body->polygons.insert(body->polygons.end(),
-                            {3u, static_cast<unsigned>(triangle[0]), static_cast<unsigned>(triangle[1]),
-                             static_cast<unsigned>(triangle[2])});
+    for (const HullFace& face : HullFaces(hull.Value())) {
+      body->planes.insert(body->planes.end(),
+                          {face.normal.x(), face.normal.y(), face.normal.z(), face.offset});
+      body->polygons.push_back(static_cast<unsigned>(face.corners.size()));
+      for (const int corner : face.corners) body->polygons.push_back(static_cast<unsigned>(corner));
     }
     body->geom = dCreateConvex(m_space, body->planes.data(), static_cast<unsigned>(body->planes.size() / 4),
                                body->points.data(), static_cast<unsigned>(body->points.size() / 3),
@@ -527,7 +577,7 @@ void OdeBackend::AddSettings(const Run& run) {
                     "the scenario asks for no gyroscopic term (angular velocity exactly constant)"},
       {"damping", "linear 0, angular 0"},
       {"auto disable", "off"},
-      {"hull shapes", "dConvex from the qhull triangulation, centred on the centroid"},
+      {"hull shapes", "dConvex from the qhull hull, one polygon per face, centred on the centroid"},
       {"mass properties", "from talus::reference::ComputeBodyMass (exact), principal axes"},
   };
 }
