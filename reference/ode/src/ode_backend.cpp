@@ -36,6 +36,7 @@
 
 #include "talus/harness/scenario/scenario_limits.h"
 #include "talus/reference/body_mass.h"
+#include "talus/reference/ode_hull_faces.h"
 #include "talus/reference/point_hull.h"
 
 namespace talus::reference {
@@ -177,58 +178,6 @@ class OdeBackend final : public harness::Backend {
   std::vector<harness::Setting> m_settings;
 };
 
-// One face of a hull for dConvex: its plane (outward unit normal, offset
-// n . x) and its corners counter-clockwise seen from outside.
-struct HullFace {
-  Vec3 normal;
-  double offset = 0.0;
-  std::vector<int> corners;
-};
-
-// The hull's faces as polygons, as dCreateConvex takes them ("the number of
-// vertices of the polygon, followed by the vertex indices", one polygon per
-// plane): qhull's triangles whose planes agree to round-off are merged into
-// one face, whose corners are ordered by angle about its centre: a flat
-// face is then one polygon to ODE's convex colliders, as its user would
-// write it, not several triangles (measured: no verdict changes,
-// docs/testbed-backends.md).
-std::vector<HullFace> HullFaces(const PointHull& hull) {
-  // Coplanar triangles of exact input agree to a few ulps; the hull's
-  // neighbouring faces differ by far more (a degenerate sliver would be
-  // merged by qhull itself).
-  constexpr double kSameNormal = 1e-9;
-  double size = 0.0;
-  for (const Vec3& v : hull.vertices) size = std::max(size, v.cwiseAbs().maxCoeff());
-  std::vector<HullFace> faces;
-  for (const auto& triangle : hull.triangles) {
-    const Vec3& a = hull.vertices[triangle[0]];
-    const Vec3 normal = (hull.vertices[triangle[1]] - a).cross(hull.vertices[triangle[2]] - a).normalized();
-    const double offset = normal.dot(a);
-    auto same = std::find_if(faces.begin(), faces.end(), [&](const HullFace& face) {
-      return (face.normal - normal).norm() <= kSameNormal &&
-             std::abs(face.offset - offset) <= kSameNormal * size;
-    });
-    if (same == faces.end()) same = faces.insert(faces.end(), HullFace{normal, offset, {}});
-    for (const int corner : triangle) {
-      if (std::find(same->corners.begin(), same->corners.end(), corner) == same->corners.end())
-        same->corners.push_back(corner);
-    }
-  }
-  for (HullFace& face : faces) {
-    Vec3 centre = Vec3::Zero();
-    for (const int corner : face.corners) centre += hull.vertices[corner];
-    centre /= static_cast<double>(face.corners.size());
-    const Vec3 u = (hull.vertices[face.corners[0]] - centre).normalized();
-    const Vec3 v = face.normal.cross(u);
-    auto angle = [&](int corner) {
-      const Vec3 d = hull.vertices[corner] - centre;
-      return std::atan2(d.dot(v), d.dot(u));
-    };
-    std::sort(face.corners.begin(), face.corners.end(), [&](int p, int q) { return angle(p) < angle(q); });
-  }
-  return faces;
-}
-
 Result<bool> OdeBackend::AddBody(const BodySpec& spec, const BodyMass& mass, int index) {
   auto body = std::make_unique<Body>();
   body->index = index;
@@ -251,7 +200,7 @@ Result<bool> OdeBackend::AddBody(const BodySpec& spec, const BodyMass& mass, int
     if (!hull) return Error{"ode: body \"" + spec.name + "\": " + hull.GetError().message};
     for (const Vec3& v : hull.Value().vertices)
       body->points.insert(body->points.end(), {v.x(), v.y(), v.z()});
-    for (const HullFace& face : HullFaces(hull.Value())) {
+    for (const HullFace& face : OdeHullFaces(hull.Value())) {
       body->planes.insert(body->planes.end(),
                           {face.normal.x(), face.normal.y(), face.normal.z(), face.offset});
       body->polygons.push_back(static_cast<unsigned>(face.corners.size()));
