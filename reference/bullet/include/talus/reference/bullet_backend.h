@@ -47,7 +47,8 @@ enum class BulletTuning { Defaults, Tuned };
 /// Measured effect of the tuned margin, for Settings() and the report.
 inline constexpr const char* kBulletMarginEffect =
     "hulls are inflated by the margin, so the 4 cm default holds hull_rest 0.040 m high (FAIL); 1 mm "
-    "holds it 0.001 m high (1 FAIL removed). Boxes keep their size either way (the margin is subtracted "
+    "alone holds it 0.001 m high (1 FAIL removed), and the tuned hull, shrunk by the margin first (see hull "
+    "shapes), rests at its geometric height. Boxes keep their size either way (the margin is subtracted "
     "inside) and spheres use their radius: no other verdict changes";
 
 /// Measured effect of shrinking the tuned hulls by the margin, as above.
