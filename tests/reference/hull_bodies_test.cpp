@@ -87,14 +87,17 @@ struct RestLimits {
   double offset = 0.0;  ///< metres the engine's margin holds the hull above the analytic height
 };
 RestLimits HullRestLimits(const std::string& backend) {
-  // Bullet tuned: measured +1.0 mm (it keeps its 1 mm collision margin
-  // between shapes) and at rest. Its defaults inflate the hull by the 4 cm
-  // default margin: measured +40.0 mm, so 40 mm +- the same 3 mm.
-  if (backend == "bullet-tuned") return {0.003, 0.01};
+  // Bullet tuned shrinks the hull by its 1 mm margin before the margin is
+  // added back, so it rests at the geometric height: measured -0.007 mm.
+  // A quarter of the margin (0.25 mm) is far above that resting depth and
+  // fails a hull left grown by the margin (+1.000 mm before the shrink).
+  // Its defaults inflate the hull by the 4 cm default margin: measured
+  // +40.0 mm, so 40 mm +- 3 mm.
+  if (backend == "bullet-tuned") return {0.25 * kBulletCollisionMargin, 0.01};
   if (backend == "bullet") return {0.003, 0.01, 0.04};
   // ODE: -0.7 mm for a box on the box ground (box_rest) but -34 mm here and
   // -12 mm for a cube written as a hull, still rocking at ~8 cm/s after 4 s
-  // with "LCP internal error" messages: its convex-box collider (libccd)
+  // with "LCP internal error" messages: its convex-box collider
   // gives one contact point per step instead of a face patch, so the hull
   // rocks on it, sunk in the ground. A frame or centroid error would be off
   // by the 0.3 m / 0.2 m shift of the points and fail this all the same.
@@ -117,6 +120,23 @@ TEST_P(HullBodies, HullComesToRestOnItsBottomFaceAtTheAnalyticHeight) {
   const Vec3 normal = state.orientation * bottom.normal;
   EXPECT_LT(std::acos(std::clamp(-normal.y(), -1.0, 1.0)), 0.05);
   EXPECT_LT(state.linearVelocity.norm(), limits.speed);
+}
+
+TEST(BulletTunedHull, RefusesAHullThinnerThanTwiceTheMarginItIsShrunkBy) {
+  harness::Run run = HullRun();
+  // A slab 1.5 mm thick: shrinking each face by the 1 mm margin would empty
+  // it, so the tuned configuration names the body; the defaults, which do
+  // not shrink, build it.
+  run.scenario.bodies[1].shape = harness::HullShape{
+      {Vec3(0, 0, 0), Vec3(0.5, 0, 0), Vec3(0, 0, 0.5), Vec3(0.5, 0, 0.5), Vec3(0, 0.0015, 0),
+       Vec3(0.5, 0.0015, 0), Vec3(0, 0.0015, 0.5), Vec3(0.5, 0.0015, 0.5)}};
+  auto tuned = test::PeerRegistry().Create("bullet-tuned", run);
+  ASSERT_FALSE(tuned);
+  EXPECT_NE(
+      tuned.GetError().message.find("bullet: body \"hull\": the hull is too thin to shrink by the 0.001 m"),
+      std::string::npos)
+      << tuned.GetError().message;
+  EXPECT_TRUE(test::PeerRegistry().Create("bullet", run));
 }
 
 INSTANTIATE_TEST_SUITE_P(Peers, HullBodies, ::testing::ValuesIn(test::BulletAndOdePeers()),

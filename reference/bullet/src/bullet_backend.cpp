@@ -94,12 +94,13 @@ void RegisterBulletBackends(harness::BackendRegistry& registry) {
   registry.Register("bullet",
                     "Bullet 3 (double): discrete dynamics world, sequential impulse solver (defaults)",
                     bullet, [](const Run& run) { return CreateDouble(run, BulletTuning::Defaults); });
-  registry.Register("bullet-tuned", "Bullet 3 (double), tuned: 1 mm collision margin", bullet,
-                    [](const Run& run) { return CreateDouble(run, BulletTuning::Tuned); });
+  registry.Register("bullet-tuned", "Bullet 3 (double), tuned: 1 mm collision margin, hulls shrunk by it",
+                    bullet, [](const Run& run) { return CreateDouble(run, BulletTuning::Tuned); });
 #ifdef TALUS_BULLET_F32_MODULE
   registry.Register("bullet-f32", "Bullet 3 (single precision, the default build): defaults", bullet,
                     [](const Run& run) { return CreateSingle(run, BulletTuning::Defaults); });
-  registry.Register("bullet-f32-tuned", "Bullet 3 (single precision, the default build), tuned: 1 mm margin",
+  registry.Register("bullet-f32-tuned",
+                    "Bullet 3 (single precision, the default build), tuned: 1 mm margin, hulls shrunk by it",
                     bullet, [](const Run& run) { return CreateSingle(run, BulletTuning::Tuned); });
 #endif
 }

@@ -19,6 +19,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <LinearMath/btConvexHullComputer.h>
 #include <mutex>
 #include <sstream>
 
@@ -100,19 +101,51 @@ class BulletBackend final : public harness::Backend {
   std::vector<harness::Setting> m_settings;
 };
 
-std::unique_ptr<btCollisionShape> MakeShape(const BodySpec& spec, const BodyMass& mass, BulletTuning tuning) {
+// The hull's points in the centre-of-mass frame on principal axes. Tuned:
+// the hull shrunk by the collision margin first, so that the shape Bullet
+// collides (the points' hull plus the margin all round) is the scenario's
+// hull with its edges rounded by the margin, not the hull grown by it.
+// Bullet's own practice: its ConvexDecompositionDemo moves every face plane
+// in by the margin ("due to collision margin, convex objects overlap,
+// compensate for it here"); btConvexHullComputer's shrink does the same
+// ("each face is moved by shrink length units towards the center along its
+// normal") exactly, where btGeometryUtil's plane search has fixed 1 cm and
+// 2.6 degree tolerances.
+Result<std::vector<btVector3>> HullPoints(const BodySpec& spec, const BodyMass& mass, BulletTuning tuning) {
+  const Mat3 toPrincipal = mass.principalRotation.toRotationMatrix().transpose();
+  std::vector<btVector3> points;
+  for (const Vec3& point : std::get<harness::HullShape>(spec.shape).points) {
+    points.push_back(ToBt(toPrincipal * (point - mass.centroid)));
+  }
+  if (tuning == BulletTuning::Defaults) return points;
+  btConvexHullComputer shrunk;
+  const btScalar margin = static_cast<btScalar>(kBulletCollisionMargin);
+  const btScalar moved = shrunk.compute(&points[0].getX(), static_cast<int>(sizeof(btVector3)),
+                                        static_cast<int>(points.size()), margin, btScalar(0));
+  // The computer returns the distance it moved the faces: less than the
+  // margin (or negative) when the hull is thinner than twice the margin.
+  if (!(moved >= margin) || shrunk.vertices.size() < 4) {
+    return Error{"body \"" + spec.name + "\": the hull is too thin to shrink by the " +
+                 SettingNumber(kBulletCollisionMargin) +
+                 " m collision margin (btConvexHullComputer moved its faces " +
+                 SettingNumber(static_cast<double>(moved)) + " m)"};
+  }
+  return std::vector<btVector3>(&shrunk.vertices[0], &shrunk.vertices[0] + shrunk.vertices.size());
+}
+
+Result<std::unique_ptr<btCollisionShape>> MakeShape(const BodySpec& spec, const BodyMass& mass,
+                                                    BulletTuning tuning) {
   std::unique_ptr<btCollisionShape> shape;
   if (const auto* box = std::get_if<harness::BoxShape>(&spec.shape)) {
     shape = std::make_unique<btBoxShape>(ToBt(box->halfExtents));
   } else if (const auto* sphere = std::get_if<harness::SphereShape>(&spec.shape)) {
     // A sphere's margin is its radius; setMargin would change nothing.
-    return std::make_unique<btSphereShape>(sphere->radius);
+    return std::unique_ptr<btCollisionShape>(std::make_unique<btSphereShape>(sphere->radius));
   } else {
+    auto points = HullPoints(spec, mass, tuning);
+    if (!points) return points.GetError();
     auto hull = std::make_unique<btConvexHullShape>();
-    const Mat3 toPrincipal = mass.principalRotation.toRotationMatrix().transpose();
-    for (const Vec3& point : std::get<harness::HullShape>(spec.shape).points) {
-      hull->addPoint(ToBt(toPrincipal * (point - mass.centroid)), false);
-    }
+    for (const btVector3& point : points.Value()) hull->addPoint(point, false);
     hull->recalcLocalAabb();
     shape = std::move(hull);
   }
@@ -156,7 +189,10 @@ Result<std::unique_ptr<harness::Backend>> BulletBackend::Create(const Run& run,
     auto body = std::make_unique<Body>();
     body->mass = masses[i];
     body->material = {spec.friction, spec.restitution, &backend->m_worldSettings, &backend->m_host};
-    body->shape = MakeShape(spec, body->mass, tuning);
+    auto shape = MakeShape(spec, body->mass, tuning);
+    if (!shape)
+      return Error{std::string(kSinglePrecision ? "bullet-f32" : "bullet") + ": " + shape.GetError().message};
+    body->shape = std::move(shape).Value();
     const Mat3 rotation = spec.orientation.toRotationMatrix();
     const Vec3 com = spec.position + rotation * body->mass.centroid;
     const Quat comOrientation = (spec.orientation * body->mass.principalRotation).normalized();
@@ -202,7 +238,7 @@ void BulletBackend::AddSettings(const Run& run) {
   const bool tuned = m_tuning == BulletTuning::Tuned;
   const std::string version = "Bullet " + std::to_string(btGetVersion());
   m_settings = {
-      {"configuration", tuned ? "tuned (collision margin scaled to the scene's bodies)"
+      {"configuration", tuned ? "tuned (collision margin scaled to the scene's bodies, hulls shrunk by it)"
                               : "defaults (what a new Bullet user gets)"},
       kSinglePrecision
           ? Setting{"engine", version + " (single precision: the default build, pkg-config bullet)"}
@@ -237,7 +273,8 @@ void BulletBackend::AddSettings(const Run& run) {
        "would not bounce"},
       tuned ? Setting{"collision margin (m)",
                       SettingNumber(kBulletCollisionMargin) +
-                          " (boxes exact, hulls inflated by it, spheres: radius)",
+                          " (boxes exact, hulls shrunk by it first so hull + margin is the hull with rounded "
+                          "edges, spheres: radius)",
                       "0.04 (CONVEX_DISTANCE_MARGIN)", kBulletMarginEffect}
             : Setting{"collision margin (m)",
                       "0.04 (boxes exact with corners rounded by it, hulls inflated by "
@@ -253,7 +290,13 @@ void BulletBackend::AddSettings(const Run& run) {
        "needed to measure the engine: a sleeping body is frozen, which would hide the jitter and drift "
        "the rest and stacking truths measure (Talus and ODE do not sleep either)"},
       {"max rotation per step (rad)", SettingNumber(0.25 * SIMD_PI) + " (Bullet clamps faster spins)"},
-      {"hull shapes", "btConvexHullShape with initializePolyhedralFeatures, centred on the centroid"},
+      tuned
+          ? Setting{"hull shapes",
+                    "btConvexHullShape of the hull shrunk by the margin (btConvexHullComputer shrink), with "
+                    "initializePolyhedralFeatures, centred on the centroid",
+                    "btConvexHullShape of the points (grown by the margin)", kBulletHullShrinkEffect}
+          : Setting{"hull shapes",
+                    "btConvexHullShape with initializePolyhedralFeatures, centred on the centroid"},
       {"mass properties", "from talus::reference::ComputeBodyMass (exact), principal axes"},
   };
 }

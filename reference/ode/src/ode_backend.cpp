@@ -36,6 +36,8 @@
 
 #include "talus/harness/scenario/scenario_limits.h"
 #include "talus/reference/body_mass.h"
+#include "talus/reference/ode_hull_faces.h"
+#include "talus/reference/point_hull.h"
 
 namespace talus::reference {
 namespace {
@@ -198,14 +200,11 @@ Result<bool> OdeBackend::AddBody(const BodySpec& spec, const BodyMass& mass, int
     if (!hull) return Error{"ode: body \"" + spec.name + "\": " + hull.GetError().message};
     for (const Vec3& v : hull.Value().vertices)
       body->points.insert(body->points.end(), {v.x(), v.y(), v.z()});
-    for (const auto& triangle : hull.Value().triangles) {
-      const Vec3& a = hull.Value().vertices[triangle[0]];
-      const Vec3 normal =
-          (hull.Value().vertices[triangle[1]] - a).cross(hull.Value().vertices[triangle[2]] - a).normalized();
-      body->planes.insert(body->planes.end(), {normal.x(), normal.y(), normal.z(), normal.dot(a)});
-      body->polygons.insert(body->polygons.end(),
-                            {3u, static_cast<unsigned>(triangle[0]), static_cast<unsigned>(triangle[1]),
-                             static_cast<unsigned>(triangle[2])});
+    for (const HullFace& face : OdeHullFaces(hull.Value())) {
+      body->planes.insert(body->planes.end(),
+                          {face.normal.x(), face.normal.y(), face.normal.z(), face.offset});
+      body->polygons.push_back(static_cast<unsigned>(face.corners.size()));
+      for (const int corner : face.corners) body->polygons.push_back(static_cast<unsigned>(corner));
     }
     body->geom = dCreateConvex(m_space, body->planes.data(), static_cast<unsigned>(body->planes.size() / 4),
                                body->points.data(), static_cast<unsigned>(body->points.size() / 3),
@@ -527,7 +526,7 @@ void OdeBackend::AddSettings(const Run& run) {
                     "the scenario asks for no gyroscopic term (angular velocity exactly constant)"},
       {"damping", "linear 0, angular 0"},
       {"auto disable", "off"},
-      {"hull shapes", "dConvex from the qhull triangulation, centred on the centroid"},
+      {"hull shapes", "dConvex from the qhull hull, one polygon per face, centred on the centroid"},
       {"mass properties", "from talus::reference::ComputeBodyMass (exact), principal axes"},
   };
 }

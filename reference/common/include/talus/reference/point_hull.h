@@ -3,7 +3,7 @@
 // wants planes and polygons and because a hull's mass properties come from
 // its boundary; Bullet builds its own polyhedral features from the points.
 // Coplanar facets come out as several triangles: harmless for mass
-// properties and for ODE's convex collider, which tests each plane.
+// properties; the ODE backend merges them back into face polygons.
 #pragma once
 
 #include <array>

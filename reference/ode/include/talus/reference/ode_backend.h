@@ -15,8 +15,8 @@
 // Settings() lists every value with the engine default it replaces and the
 // measured effect (docs/testbed-backends.md has the table).
 //
-// Shapes: dBox, dSphere and dConvex (planes, points and triangles of the
-// qhull hull, in the centre-of-mass frame). Contacts are dContact joints
+// Shapes: dBox, dSphere and dConvex (planes, points and face polygons of
+// the qhull hull, in the centre-of-mass frame). Contacts are dContact joints
 // with dContactApprox1 (mu is a coefficient, not a force limit) and
 // dContactBounce from restitution. ODE's library state is initialised once
 // per process (dInitODE2) and closed at exit; worlds are built and stepped
