@@ -5,8 +5,8 @@
 // in the browser by the inlined charting library from the results' plot
 // series, embedded as JSON in a <script type="application/json"> element:
 // per run, the height of every body that moves and the total energy over
-// time, one line per backend and body; and the median time per step of
-// every backend per run, as bars.
+// time, one line per backend and body; and the total wall time of every
+// backend's run, as bars.
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -38,7 +38,7 @@ nlohmann::ordered_json PlotData(const ResultsFile& file) {
     }
     nlohmann::ordered_json entry;
     entry["backend"] = r.backend;
-    entry["medianStepSeconds"] = r.wallSecondsPerStepMedian;
+    entry["wallSeconds"] = r.wallSeconds;
     entry["time"] = r.series.time;
     entry["heights"] = r.series.heights;
     entry["energy"] = r.series.energy;
@@ -95,11 +95,11 @@ for (const run of data.runs) {
   timeBars.labels.push(run.id);
   timeBars.datasets.forEach(d => {
     const r = run.results.find(x => x.backend === d.label);
-    d.data.push(r ? r.medianStepSeconds * 1e6 : null);
+    d.data.push(r ? r.wallSeconds * 1e3 : null);
   });
 }
-addChart('median wall time per step (us)', {type:'bar', data:timeBars,
-  options:{scales:{y:{type:'logarithmic',title:{display:true,text:'us'}}}}});
+addChart('wall time of the run (ms)', {type:'bar', data:timeBars,
+  options:{scales:{y:{type:'logarithmic',title:{display:true,text:'ms'}}}}});
 })();
 )";
 

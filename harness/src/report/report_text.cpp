@@ -123,7 +123,11 @@ std::string OverviewTable(const ResultsFile& file, bool linkFails) {
   std::vector<std::string> header = {"run", "metric", "truth"};
   for (const std::string& b : file.backends) header.push_back(b);
   Header(out, header);
-  std::map<std::string, std::vector<double>> medians;
+  // Cost is what a user waits for: each backend's total wall time over the
+  // runs that every backend of the table finished (a run one of them
+  // failed would make the sums unlike).
+  std::map<std::string, double> totals;
+  int finishedByAll = 0;
   const std::map<std::string, std::string> anchors = RunAnchors(file);
   for (const RunGroup& group : GroupByRun(file)) {
     // The checked metrics of the run, named by whichever backend has them.
@@ -135,7 +139,15 @@ std::string OverviewTable(const ResultsFile& file, bool linkFails) {
       for (const MetricResult& m : it->second->metrics) {
         if (m.checked && seen.insert(m.name).second) metrics.push_back(&m);
       }
-      if (it->second->error.empty()) medians[b].push_back(it->second->wallSecondsPerStepMedian);
+    }
+    const bool allFinished =
+        std::all_of(file.backends.begin(), file.backends.end(), [&](const std::string& b) {
+          const auto it = group.byBackend.find(b);
+          return it != group.byBackend.end() && it->second->error.empty();
+        });
+    if (allFinished) {
+      ++finishedByAll;
+      for (const std::string& b : file.backends) totals[b] += group.byBackend.at(b)->wallSeconds;
     }
     for (const MetricResult* m : metrics) {
       std::vector<std::string> row = {
@@ -149,15 +161,11 @@ std::string OverviewTable(const ResultsFile& file, bool linkFails) {
       Row(out, row);
     }
   }
-  std::vector<std::string> timeRow = {"all runs", "median time per step (us)", "-"};
+  std::vector<std::string> timeRow = {
+      Concat({"the ", std::to_string(finishedByAll), " runs every backend finished"}), "total wall time (s)",
+      "-"};
   for (const std::string& b : file.backends) {
-    std::vector<double>& values = medians[b];
-    if (values.empty()) {
-      timeRow.push_back("-");
-      continue;
-    }
-    std::sort(values.begin(), values.end());
-    timeRow.push_back(Microseconds(values[values.size() / 2]));
+    timeRow.push_back(finishedByAll == 0 ? "-" : FormatNumber(totals[b], 3));
   }
   Row(out, timeRow);
   return out.str();
@@ -215,15 +223,15 @@ std::string SummaryRuns(const ResultsFile& file) {
       }
       Row(out, row);
     }
-    std::vector<std::string> time = {"time per step, median / mean (us)", "-", "-"};
+    std::vector<std::string> time = {"wall time, total (ms) / longest step (us)", "-", "-"};
     for (const std::string& b : file.backends) {
       const auto it = group.byBackend.find(b);
       if (it == group.byBackend.end() || !it->second->error.empty()) {
         time.push_back(it == group.byBackend.end() ? "-" : "error");
         continue;
       }
-      time.push_back(Concat({Microseconds(it->second->wallSecondsPerStepMedian), " / ",
-                             Microseconds(it->second->wallSecondsPerStepMean)}));
+      time.push_back(Concat({FormatNumber(it->second->wallSeconds * 1e3, 3), " / ",
+                             Microseconds(it->second->wallSecondsLongestStep)}));
     }
     Row(out, time);
     for (const auto& [backend, result] : group.byBackend) {
