@@ -221,6 +221,24 @@ TEST_P(AppliedLoads, AKinematicPlatformCarriesABoxToItsSpeed) {
   EXPECT_NEAR(box.centerOfMass.y(), 0.35, 0.01);
 }
 
+TEST_P(AppliedLoads, AKinematicBodyAtRestHoldsABoxUp) {
+  // A kinematic slab with no velocity is a floor of infinite mass (MuJoCo:
+  // a mocap body left in place): a box dropped 5 cm onto it rests with its
+  // centre at 0.1 + 0.25 m. 1 cm bounds each engine's resting
+  // penetration (Bullet's margin, MuJoCo's soft contact, a slop).
+  const std::string bodies = R"({"name": "slab", "shape": {"kind": "box", "halfExtents": [3, 0.1, 3]},
+      "motion": "kinematic", "position": [0, 0, 0]},
+    {"name": "box", "shape": {"kind": "box", "halfExtents": [0.25, 0.25, 0.25]}, "motion": "dynamic",
+      "position": [0, 0.4, 0], "mass": 1})";
+  const harness::Run run = Scene(bodies, "", "[0, -9.81, 0]");
+  auto backend = Build(GetParam(), run);
+  ASSERT_TRUE(backend);
+  StepAll(*backend, run.steps);
+  EXPECT_NEAR(backend->GetBodyState(1).centerOfMass.y(), 0.35, 0.01);
+  EXPECT_LT(backend->GetBodyState(1).linearVelocity.norm(), 0.05);
+  EXPECT_EQ(backend->GetBodyState(0).origin, Vec3::Zero());
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryBackend, AppliedLoads, ::testing::ValuesIn(AllBackends()), test::PeerTestName);
 
 }  // namespace
