@@ -94,6 +94,8 @@ std::string ScenarioDifference(const Scenario& a, const Scenario& b) {
   }
   if (a.backends != b.backends) return "backends";
   if (a.measure != b.measure) return "measure";
+  if (a.loads != b.loads) return "loads";
+  if (a.impulses != b.impulses) return "impulses";
   if (a.truths.size() != b.truths.size()) return "truth count";
   for (std::size_t i = 0; i < a.truths.size(); ++i) {
     const harness::Truth& x = a.truths[i];

@@ -259,6 +259,16 @@ TEST(RunMetrics, ClosedSystemDriftsAreZeroForExactFreeFall) {
   run.scenario.bodies.erase(run.scenario.bodies.begin());
   EXPECT_TRUE(IsClosedSystem(run));
   EXPECT_FALSE(IsClosedSystem(MakeRun(0.01, 10)));
+  // A load, an impulse or a kinematic body acts from outside as a static body does.
+  ScenarioRun pushed = run;
+  pushed.scenario.loads.push_back(AppliedLoad{.body = 0, .force = Vec3(1, 0, 0)});
+  EXPECT_FALSE(IsClosedSystem(pushed));
+  ScenarioRun struck = run;
+  struck.scenario.impulses.push_back(AppliedImpulse{.body = 0, .linear = Vec3(1, 0, 0)});
+  EXPECT_FALSE(IsClosedSystem(struck));
+  ScenarioRun carried = MakeRun(0.01, 10);
+  carried.scenario.bodies.front().motion = Motion::Kinematic;
+  EXPECT_FALSE(IsClosedSystem(carried));
   Trajectory trajectory;
   trajectory.timeStep = 0.01;
   for (int n = 0; n <= 10; ++n) {

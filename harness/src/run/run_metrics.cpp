@@ -51,8 +51,11 @@ double AngleBetween(const Quat& a, const Quat& b) {
 }  // namespace
 
 bool IsClosedSystem(const Run& run) {
-  return std::none_of(run.scenario.bodies.begin(), run.scenario.bodies.end(),
-                      [](const BodySpec& body) { return body.motion == Motion::Static; });
+  // A kinematic body, a load or an impulse exchanges momentum with the
+  // outside as a static body does.
+  return run.scenario.loads.empty() && run.scenario.impulses.empty() &&
+         std::none_of(run.scenario.bodies.begin(), run.scenario.bodies.end(),
+                      [](const BodySpec& body) { return body.motion != Motion::Dynamic; });
 }
 
 std::vector<MetricResult> EnergyDrift(const Trajectory& trajectory) {

@@ -271,7 +271,10 @@ Result<BodySpec> MapBody(const json& body, std::string_view file, const std::str
   BodySpec spec;
   spec.name = body["name"].get<std::string>();
   spec.shape = MapShape(body["shape"]).Value();
-  spec.motion = body["motion"] == "static" ? Motion::Static : Motion::Dynamic;
+  const std::string motion = body["motion"].get<std::string>();
+  spec.motion = motion == "static"      ? Motion::Static
+                : motion == "kinematic" ? Motion::Kinematic
+                                        : Motion::Dynamic;
   spec.position = ReadVec3(body["position"]);
   if (body.contains("orientation")) {
     auto orientation = MapOrientation(body["orientation"], file, pointer + "/orientation");
@@ -291,8 +294,11 @@ Result<BodySpec> MapBody(const json& body, std::string_view file, const std::str
     if (hasDensity) spec.density = body["density"].get<double>();
   } else if (hasMass || hasDensity) {
     return FieldError(file, pointer + (hasMass ? "/mass" : "/density"),
-                      "a static body takes no mass or density");
-  } else if (body.contains("linearVelocity") || body.contains("angularVelocity")) {
+                      spec.motion == Motion::Kinematic
+                          ? "a kinematic body takes no mass or density (it has infinite mass to contacts)"
+                          : "a static body takes no mass or density");
+  } else if (spec.motion == Motion::Static &&
+             (body.contains("linearVelocity") || body.contains("angularVelocity"))) {
     return FieldError(file, pointer, "a static body cannot move (no velocities)");
   }
   if (body.contains("friction")) spec.friction = body["friction"].get<double>();
@@ -654,6 +660,119 @@ Result<TruthKind> MapTruthKind(const TruthContext& c) {
   return TruthKind(ConvergedReferenceTruth{divisor});
 }
 
+// The body a load or impulse at `pointer` names: an existing dynamic body.
+Result<int> MapLoadedBody(const json& entry, const std::vector<BodySpec>& bodies, const BodyIndex& names,
+                          std::string_view file, const std::string& pointer, std::string_view what) {
+  const std::string name = entry["body"].get<std::string>();
+  const int body = FindBody(names, name);
+  if (body < 0) return FieldError(file, pointer + "/body", "no body named " + Quoted(name));
+  const Motion motion = bodies[static_cast<std::size_t>(body)].motion;
+  if (motion != Motion::Dynamic) {
+    return FieldError(
+        file, pointer + "/body",
+        Concat({"body ", Quoted(name), " is ", motion == Motion::Static ? "static" : "kinematic", "; ", what,
+                " moves only a dynamic body"}));
+  }
+  return body;
+}
+
+// The run's duration in seconds, as the steps give it.
+double RunSeconds(const WorldSpec& world) { return world.steps * world.timeStep; }
+
+// The file's "loads": each names a dynamic body, has a force or a torque,
+// a point only with a force, and a window inside the run.
+Result<std::vector<AppliedLoad>> MapLoads(const json& doc, const std::vector<BodySpec>& bodies,
+                                          const BodyIndex& names, const WorldSpec& world,
+                                          std::string_view file) {
+  std::vector<AppliedLoad> loads;
+  if (!doc.contains("loads")) return loads;
+  const double runEnd = RunSeconds(world);
+  for (size_t i = 0; i < doc["loads"].size(); ++i) {
+    const json& entry = doc["loads"][i];
+    const std::string pointer = "/loads/" + std::to_string(i);
+    AppliedLoad load;
+    auto body = MapLoadedBody(entry, bodies, names, file, pointer, "a load");
+    if (!body) return body.GetError();
+    load.body = body.Value();
+    if (!entry.contains("force") && !entry.contains("torque")) {
+      return FieldError(file, pointer, "a load needs \"force\", \"torque\" or both");
+    }
+    if (entry.contains("force")) load.force = ReadVec3(entry["force"]);
+    if (entry.contains("torque")) load.torque = ReadVec3(entry["torque"]);
+    if (entry.contains("frame") && entry["frame"] == "body") load.frame = LoadFrame::Body;
+    if (entry.contains("at")) {
+      if (!entry.contains("force")) {
+        return FieldError(file, pointer + "/at", "a point of application needs a \"force\" to apply there");
+      }
+      load.point = ReadVec3(entry["at"]);
+      if (const double far = load.point->cwiseAbs().maxCoeff(); far > kMaxLength) {
+        return FieldError(file, pointer + "/at",
+                          Concat({"coordinate ", FormatNumber(far), " m is beyond the limit of ",
+                                  FormatNumber(kMaxLength), " m"}));
+      }
+    }
+    if (entry.contains("start")) load.start = entry["start"].get<double>();
+    if (entry.contains("end")) load.end = entry["end"].get<double>();
+    // Within round-off of the run's end counts as the end: a duration in
+    // seconds is rounded to whole steps.
+    const double slack = 1e-9 * runEnd;
+    if (load.start >= runEnd - slack) {
+      return FieldError(file, pointer + "/start",
+                        Concat({"starts at ", FormatNumber(load.start), " s, not before the run ends at ",
+                                FormatNumber(runEnd), " s: it would never act"}));
+    }
+    if (entry.contains("end")) {
+      if (load.end <= load.start) {
+        return FieldError(file, pointer + "/end",
+                          Concat({"ends at ", FormatNumber(load.end), " s, not after its start at ",
+                                  FormatNumber(load.start), " s"}));
+      }
+      if (load.end > runEnd + slack) {
+        return FieldError(file, pointer + "/end",
+                          Concat({"ends at ", FormatNumber(load.end), " s, after the run ends at ",
+                                  FormatNumber(runEnd), " s (leave \"end\" out to act to the end)"}));
+      }
+    }
+    loads.push_back(load);
+  }
+  return loads;
+}
+
+// The file's "impulses": each names a dynamic body and a time inside the run.
+Result<std::vector<AppliedImpulse>> MapImpulses(const json& doc, const std::vector<BodySpec>& bodies,
+                                                const BodyIndex& names, const WorldSpec& world,
+                                                std::string_view file) {
+  std::vector<AppliedImpulse> impulses;
+  if (!doc.contains("impulses")) return impulses;
+  for (size_t i = 0; i < doc["impulses"].size(); ++i) {
+    const json& entry = doc["impulses"][i];
+    const std::string pointer = "/impulses/" + std::to_string(i);
+    AppliedImpulse impulse;
+    auto body = MapLoadedBody(entry, bodies, names, file, pointer, "an impulse");
+    if (!body) return body.GetError();
+    impulse.body = body.Value();
+    impulse.linear = ReadVec3(entry["linear"]);
+    if (entry.contains("at")) {
+      impulse.point = ReadVec3(entry["at"]);
+      if (const double far = impulse.point->cwiseAbs().maxCoeff(); far > kMaxLength) {
+        return FieldError(file, pointer + "/at",
+                          Concat({"coordinate ", FormatNumber(far), " m is beyond the limit of ",
+                                  FormatNumber(kMaxLength), " m"}));
+      }
+    }
+    if (entry.contains("time")) impulse.time = entry["time"].get<double>();
+    // Given at the start of the step nearest its time, which must be a step of the run.
+    if (std::round(impulse.time / world.timeStep) >= static_cast<double>(world.steps)) {
+      return FieldError(
+          file, pointer + "/time",
+          Concat({"at ", FormatNumber(impulse.time), " s is not before the run's last step, at ",
+                  FormatNumber((world.steps - 1) * world.timeStep), " s"}));
+    }
+    impulses.push_back(impulse);
+  }
+  return impulses;
+}
+
 // Maps a schema-valid document to a Scenario, adding the semantic checks.
 Result<Scenario> MapScenario(const json& doc, std::string_view file) {
   if (auto pointer = FindNonFinite(doc, "")) return FieldError(file, *pointer, "must be a finite number");
@@ -674,6 +793,12 @@ Result<Scenario> MapScenario(const json& doc, std::string_view file) {
     }
     scenario.bodies.push_back(std::move(body).Value());
   }
+  auto loads = MapLoads(doc, scenario.bodies, names, scenario.world, file);
+  if (!loads) return loads.GetError();
+  scenario.loads = std::move(loads).Value();
+  auto impulses = MapImpulses(doc, scenario.bodies, names, scenario.world, file);
+  if (!impulses) return impulses.GetError();
+  scenario.impulses = std::move(impulses).Value();
   if (doc.contains("backends")) {
     for (size_t i = 0; i < doc["backends"].size(); ++i) {
       const std::string name = doc["backends"][i].get<std::string>();

@@ -70,15 +70,18 @@ ordered_json BodyJson(const BodySpec& body) {
   out["name"] = body.name;
   out["shape"] = ShapeJson(body.shape);
   const bool dynamic = body.motion == Motion::Dynamic;
-  out["motion"] = dynamic ? "dynamic" : "static";
+  out["motion"] = dynamic ? "dynamic" : body.motion == Motion::Kinematic ? "kinematic" : "static";
   out["position"] = Vec(body.position);
   const Quat& q = body.orientation;
   out["orientation"] = {{"quaternion", {q.w(), q.x(), q.y(), q.z()}}};
-  if (dynamic) {
-    // A static body takes neither velocities nor a mass (the loader refuses
-    // them); a dynamic one has exactly one of mass and density.
+  if (body.motion != Motion::Static) {
+    // A static body takes no velocities (the loader refuses them); a
+    // kinematic one's are its prescribed motion.
     out["linearVelocity"] = Vec(body.linearVelocity);
     out["angularVelocity"] = Vec(body.angularVelocity);
+  }
+  if (dynamic) {
+    // Only a dynamic body has a mass: exactly one of mass and density.
     if (body.mass > 0.0) {
       out["mass"] = body.mass;
     } else {
@@ -87,6 +90,29 @@ ordered_json BodyJson(const BodySpec& body) {
   }
   out["friction"] = body.friction;
   out["restitution"] = body.restitution;
+  return out;
+}
+
+ordered_json LoadJson(const AppliedLoad& load, const std::vector<BodySpec>& bodies) {
+  ordered_json out;
+  out["body"] = bodies[static_cast<std::size_t>(load.body)].name;
+  out["force"] = Vec(load.force);
+  out["torque"] = Vec(load.torque);
+  out["frame"] = load.frame == LoadFrame::Body ? "body" : "world";
+  // The loader refuses a point without a force; a zero force written out
+  // reloads the same.
+  if (load.point) out["at"] = Vec(*load.point);
+  out["start"] = load.start;
+  if (std::isfinite(load.end)) out["end"] = load.end;
+  return out;
+}
+
+ordered_json ImpulseJson(const AppliedImpulse& impulse, const std::vector<BodySpec>& bodies) {
+  ordered_json out;
+  out["body"] = bodies[static_cast<std::size_t>(impulse.body)].name;
+  out["linear"] = Vec(impulse.linear);
+  if (impulse.point) out["at"] = Vec(*impulse.point);
+  out["time"] = impulse.time;
   return out;
 }
 
@@ -224,6 +250,17 @@ std::string ScenarioToJson(const Scenario& scenario) {
   ordered_json bodies = ordered_json::array();
   for (const BodySpec& body : scenario.bodies) bodies.push_back(BodyJson(body));
   out["bodies"] = bodies;
+  if (!scenario.loads.empty()) {
+    ordered_json loads = ordered_json::array();
+    for (const AppliedLoad& load : scenario.loads) loads.push_back(LoadJson(load, scenario.bodies));
+    out["loads"] = loads;
+  }
+  if (!scenario.impulses.empty()) {
+    ordered_json impulses = ordered_json::array();
+    for (const AppliedImpulse& impulse : scenario.impulses)
+      impulses.push_back(ImpulseJson(impulse, scenario.bodies));
+    out["impulses"] = impulses;
+  }
   if (!scenario.backends.empty()) out["backends"] = scenario.backends;
   ordered_json measure = ordered_json::array();
   for (Quantity quantity : scenario.measure) measure.push_back(QuantityName(quantity));

@@ -23,6 +23,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "talus/harness/scenario/applied_loads.h"
 #include "talus/reference/body_mass.h"
 #include "talus/reference/setting_text.h"
 
@@ -70,7 +71,7 @@ class BulletBackend final : public harness::Backend {
     return std::string(kSinglePrecision ? "bullet-f32" : "bullet") +
            (m_tuning == BulletTuning::Tuned ? "-tuned" : "");
   }
-  void Step() override { m_world->stepSimulation(m_timeStep, 0); }
+  void Step() override;
   [[nodiscard]] int BodyCount() const override { return static_cast<int>(m_bodies.size()); }
   [[nodiscard]] harness::BodyReading GetBodyState(int index) const override;
   [[nodiscard]] std::vector<harness::ContactReading> GetContacts() const override;
@@ -83,6 +84,7 @@ class BulletBackend final : public harness::Backend {
     std::unique_ptr<btRigidBody> body;
     Material material;
     BodyMass mass;
+    const BodySpec* spec = nullptr;  // the run's, for a kinematic body's prescribed motion
   };
 
   BulletBackend() = default;
@@ -99,6 +101,10 @@ class BulletBackend final : public harness::Backend {
   std::unique_ptr<btDiscreteDynamicsWorld> m_world;
   std::vector<std::unique_ptr<Body>> m_bodies;  // stable addresses: Material is pointed to
   std::vector<harness::Setting> m_settings;
+  std::vector<harness::BodySpec> m_specs;           // the run's bodies (kinematic motion)
+  std::vector<harness::AppliedLoad> m_loads;        // the scenario's, applied each step
+  std::vector<harness::AppliedImpulse> m_impulses;  // the scenario's, each at its step
+  long long m_stepIndex = 0;                        // steps taken
 };
 
 // The hull's points in the centre-of-mass frame on principal axes. Tuned:
@@ -184,9 +190,13 @@ Result<std::unique_ptr<harness::Backend>> BulletBackend::Create(const Run& run,
   // Bullet's own default, set so the record does not depend on the version.
   info.m_restitutionVelocityThreshold = static_cast<btScalar>(kRestitutionVelocityThreshold);
 
+  backend->m_specs = run.scenario.bodies;
+  backend->m_loads = run.scenario.loads;
+  backend->m_impulses = run.scenario.impulses;
   for (size_t i = 0; i < run.scenario.bodies.size(); ++i) {
     const BodySpec& spec = run.scenario.bodies[i];
     auto body = std::make_unique<Body>();
+    body->spec = &backend->m_specs[i];
     body->mass = masses[i];
     body->material = {spec.friction, spec.restitution, &backend->m_worldSettings, &backend->m_host};
     auto shape = MakeShape(spec, body->mass, tuning);
@@ -218,6 +228,12 @@ Result<std::unique_ptr<harness::Backend>> BulletBackend::Create(const Run& run,
     rigid.setUserPointer(&body->material);
     rigid.setUserIndex(static_cast<int>(i));
     rigid.setActivationState(DISABLE_DEACTIVATION);
+    if (spec.motion == harness::Motion::Kinematic) {
+      // Bullet's kinematic body: mass 0 (infinite to contacts), moved by
+      // its motion state, from which stepSimulation derives the velocity
+      // the contacts see (Step).
+      rigid.setCollisionFlags(rigid.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    }
     if (dynamic) {
       rigid.setLinearVelocity(ToBt(spec.linearVelocity));
       rigid.setAngularVelocity(ToBt(spec.angularVelocity));
@@ -227,6 +243,48 @@ Result<std::unique_ptr<harness::Backend>> BulletBackend::Create(const Run& run,
   }
   backend->AddSettings(run);
   return std::unique_ptr<harness::Backend>(std::move(backend));
+}
+
+// One step as a Bullet user drives it: each kinematic body's motion state
+// set to its prescribed pose at the step's end (stepSimulation's
+// saveKinematicState turns the change into the velocity the contacts
+// see), the impulses due now through applyImpulse, each load's share of
+// the step through applyForce (at a point) or applyCentralForce and
+// applyTorque, then one stepSimulation, which clears the forces.
+void BulletBackend::Step() {
+  const double t = static_cast<double>(m_stepIndex) * m_timeStep;
+  for (auto& body : m_bodies) {
+    if (body->spec->motion != harness::Motion::Kinematic) continue;
+    const harness::KinematicPose pose = harness::KinematicPoseAt(*body->spec, t + m_timeStep);
+    const Vec3 com = pose.origin + pose.orientation.toRotationMatrix() * body->mass.centroid;
+    const Quat comOrientation = (pose.orientation * body->mass.principalRotation).normalized();
+    body->motionState->setWorldTransform(btTransform(ToBt(comOrientation), ToBt(com)));
+  }
+  for (const harness::AppliedImpulse& impulse : m_impulses) {
+    if (!harness::AppliedImpulseAtStep(impulse, m_stepIndex, m_timeStep)) continue;
+    const harness::BodyReading state = GetBodyState(impulse.body);
+    btRigidBody& rigid = *m_bodies[static_cast<size_t>(impulse.body)]->body;
+    if (const auto point = harness::ImpulseWorldPoint(impulse, state.origin, state.orientation)) {
+      rigid.applyImpulse(ToBt(impulse.linear), ToBt(*point - state.centerOfMass));
+    } else {
+      rigid.applyCentralImpulse(ToBt(impulse.linear));
+    }
+  }
+  for (const harness::AppliedLoad& load : m_loads) {
+    const double share = harness::AppliedLoadShare(load, t, m_timeStep);
+    if (share == 0.0) continue;
+    const harness::BodyReading state = GetBodyState(load.body);
+    const harness::WorldLoad world = harness::ToWorldLoad(load, share, state.origin, state.orientation);
+    btRigidBody& rigid = *m_bodies[static_cast<size_t>(load.body)]->body;
+    if (world.point) {
+      rigid.applyForce(ToBt(world.force), ToBt(*world.point - state.centerOfMass));
+    } else {
+      rigid.applyCentralForce(ToBt(world.force));
+    }
+    rigid.applyTorque(ToBt(world.torque));
+  }
+  m_world->stepSimulation(m_timeStep, 0);
+  ++m_stepIndex;
 }
 
 BulletBackend::~BulletBackend() {
@@ -299,6 +357,20 @@ void BulletBackend::AddSettings(const Run& run) {
                     "btConvexHullShape with initializePolyhedralFeatures, centred on the centroid"},
       {"mass properties", "from talus::reference::ComputeBodyMass (exact), principal axes"},
   };
+  // Listed only where the scenario uses them, so other runs' records stay as they were.
+  if (!run.scenario.loads.empty() || !run.scenario.impulses.empty()) {
+    m_settings.push_back({"loads and impulses",
+                          "applyForce (at a point) or applyCentralForce and applyTorque before each "
+                          "stepSimulation, scaled by the step's share of the window; applyImpulse at the "
+                          "impulse's step"});
+  }
+  for (const BodySpec& spec : run.scenario.bodies) {
+    if (spec.motion != harness::Motion::Kinematic) continue;
+    m_settings.push_back({"kinematic bodies",
+                          "mass 0 with CF_KINEMATIC_OBJECT; the motion state set to the prescribed pose at "
+                          "each step's end, stepSimulation deriving the contacts' velocity from it"});
+    break;
+  }
 }
 
 harness::BodyReading BulletBackend::GetBodyState(int index) const {

@@ -106,8 +106,11 @@ void WriteBody(const BodySpec& spec, const BodyMass& mass, int index, const Run&
     geomOrientation = mass.principalRotation.conjugate();
     geomPosition = -(geomOrientation * mass.centroid);
   } else {
-    out += "    <body name=\"b" + id + "\" pos=\"" + Vec(spec.position) + "\" quat=\"" +
-           QuatText(spec.orientation) + "\">\n";
+    // A kinematic body is a mocap body at the scenario frame, moved by the
+    // backend each step (mujoco_backend.cpp); a static one a fixed body.
+    const bool mocap = spec.motion == harness::Motion::Kinematic;
+    out += "    <body name=\"b" + id + "\"" + (mocap ? " mocap=\"true\"" : "") + " pos=\"" +
+           Vec(spec.position) + "\" quat=\"" + QuatText(spec.orientation) + "\">\n";
   }
   out += "      <geom name=\"g" + id + "\"";
   if (const auto* box = std::get_if<harness::BoxShape>(&spec.shape)) {

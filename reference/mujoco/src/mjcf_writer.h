@@ -6,7 +6,8 @@
 // free joint and an explicit <inertial> (mass and principal moments), so
 // every peer gets the same mass properties; its geom sits at the scenario
 // frame inside it (pos -P^T c, quat P^T). A static body is a fixed body
-// (no joint) at the scenario frame. A hull is a mesh asset "m<i>" of the
+// (no joint) at the scenario frame; a kinematic one the same as a mocap
+// body, which the backend moves. A hull is a mesh asset "m<i>" of the
 // scenario's points in the body frame; MuJoCo's compiler takes their convex
 // hull (qhull) for collision.
 //

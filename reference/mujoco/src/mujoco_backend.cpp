@@ -22,6 +22,7 @@
 
 #include "mjcf_writer.h"
 #include "mujoco_guard.h"
+#include "talus/harness/scenario/applied_loads.h"
 #include "talus/reference/body_mass.h"
 
 namespace talus::reference {
@@ -83,6 +84,10 @@ class MujocoBackend final : public harness::Backend {
   struct Body {
     BodyMass mass;
     bool dynamic = false;
+    int mocap = -1;                      // a kinematic body's mocap index, -1 otherwise
+    Vec3 linearVelocity = Vec3::Zero();  // a kinematic body's prescribed velocities
+    Vec3 angularVelocity = Vec3::Zero();
+    int bodyId = -1;       // MuJoCo's body id (xfrc_applied's row)
     int qposAddress = -1;  // free joint: 3 position, 4 quaternion (w x y z)
     int dofAddress = -1;   // free joint: 3 linear (world), 3 angular (body frame)
     Vec3 fixedPosition = Vec3::Zero();
@@ -101,6 +106,12 @@ class MujocoBackend final : public harness::Backend {
   std::vector<int> m_geomBody;  // MuJoCo geom id -> scenario body index
   std::string m_failure;        // first MuJoCo error or warning; the world is dead after it
   std::vector<harness::Setting> m_settings;
+  std::vector<harness::BodySpec> m_specs;           // the run's bodies (kinematic motion)
+  std::vector<harness::AppliedLoad> m_loads;        // the scenario's, applied each step
+  std::vector<harness::AppliedImpulse> m_impulses;  // the scenario's, each at its step
+  double m_timeStep = 0.0;
+  long long m_stepIndex = 0;  // steps taken
+  void ApplyLoads();
 };
 
 // A lower bound on the mjData bytes mj_makeData allocates (see
@@ -123,6 +134,18 @@ Result<std::unique_ptr<harness::Backend>> MujocoBackend::Create(const Run& run,
     return Error{
         "mujoco: the scenario turns the gyroscopic term off; MuJoCo has no such switch (a free "
         "joint's Coriolis and centrifugal bias forces always include it)"};
+  }
+  for (const BodySpec& spec : run.scenario.bodies) {
+    if (spec.motion == harness::Motion::Kinematic &&
+        (spec.linearVelocity.any() || spec.angularVelocity.any())) {
+      // A mocap body is moved by setting its pose, but its velocity in the
+      // contacts stays zero: friction would not carry what rests on it (a
+      // box on a 1 m/s platform stayed at rest, tests/reference/
+      // applied_loads_test.cpp). Refused rather than that answer.
+      return Error{"mujoco: body \"" + spec.name +
+                   "\" is kinematic and moves; MuJoCo's mocap bodies have no velocity in contacts, so "
+                   "friction would not carry what rests on it"};
+    }
   }
   std::vector<BodyMass> masses;
   for (const BodySpec& spec : run.scenario.bodies) {
@@ -154,6 +177,10 @@ Result<std::unique_ptr<harness::Backend>> MujocoBackend::Create(const Run& run,
   auto mapped = backend->MapBodies(run, std::move(masses));
   if (!mapped) return mapped.GetError();
   backend->SetInitialVelocities(run);
+  backend->m_specs = run.scenario.bodies;
+  backend->m_loads = run.scenario.loads;
+  backend->m_impulses = run.scenario.impulses;
+  backend->m_timeStep = run.timeStep;
   backend->AddSettings(run, mjcf.Value());
   return std::unique_ptr<harness::Backend>(std::move(backend));
 }
@@ -175,6 +202,13 @@ Result<bool> MujocoBackend::MapBodies(const Run& run, std::vector<BodyMass> mass
     Body entry;
     entry.mass = masses[i];
     entry.dynamic = spec.motion == harness::Motion::Dynamic;
+    entry.bodyId = body;
+    if (spec.motion == harness::Motion::Kinematic) {
+      entry.mocap = m_model->body_mocapid[body];
+      if (entry.mocap < 0) return Error{"mujoco: kinematic body \"" + spec.name + "\" is not a mocap body"};
+      entry.linearVelocity = spec.linearVelocity;
+      entry.angularVelocity = spec.angularVelocity;
+    }
     if (entry.dynamic) {
       const int joint = m_model->body_jntadr[body];
       entry.qposAddress = m_model->jnt_qposadr[joint];
@@ -204,8 +238,54 @@ void MujocoBackend::SetInitialVelocities(const Run& run) {
   }
 }
 
+// The step's loads as a MuJoCo user applies them: xfrc_applied, a force and
+// a torque at each body's centre of mass in world axes (a force at a point
+// adds its moment (p - c) x F to the torque), each load's share of the
+// step; an impulse due now as the force J / h over its step. Each mocap
+// (kinematic) body is put at its prescribed pose for the step's end.
+void MujocoBackend::ApplyLoads() {
+  const double t = static_cast<double>(m_stepIndex) * m_timeStep;
+  std::fill(m_data->xfrc_applied, m_data->xfrc_applied + 6 * m_model->nbody, 0.0);
+  const auto add = [&](int index, const Vec3& force, const Vec3& torque) {
+    mjtNum* row = m_data->xfrc_applied + 6 * m_bodies[static_cast<size_t>(index)].bodyId;
+    for (int k = 0; k < 3; ++k) {
+      row[k] += force[k];
+      row[3 + k] += torque[k];
+    }
+  };
+  for (const harness::AppliedImpulse& impulse : m_impulses) {
+    if (!harness::AppliedImpulseAtStep(impulse, m_stepIndex, m_timeStep)) continue;
+    const harness::BodyReading state = GetBodyState(impulse.body);
+    const Vec3 force = impulse.linear / m_timeStep;
+    const auto point = harness::ImpulseWorldPoint(impulse, state.origin, state.orientation);
+    add(impulse.body, force, point ? Vec3((*point - state.centerOfMass).cross(force)) : Vec3::Zero());
+  }
+  for (const harness::AppliedLoad& load : m_loads) {
+    const double share = harness::AppliedLoadShare(load, t, m_timeStep);
+    if (share == 0.0) continue;
+    const harness::BodyReading state = GetBodyState(load.body);
+    const harness::WorldLoad world = harness::ToWorldLoad(load, share, state.origin, state.orientation);
+    const Vec3 moment =
+        world.point ? Vec3((*world.point - state.centerOfMass).cross(world.force)) : Vec3::Zero();
+    add(load.body, world.force, world.torque + moment);
+  }
+  for (size_t i = 0; i < m_bodies.size(); ++i) {
+    if (m_bodies[i].mocap < 0) continue;
+    const harness::KinematicPose pose = harness::KinematicPoseAt(m_specs[i], t + m_timeStep);
+    mjtNum* position = m_data->mocap_pos + 3 * m_bodies[i].mocap;
+    mjtNum* quat = m_data->mocap_quat + 4 * m_bodies[i].mocap;
+    for (int k = 0; k < 3; ++k) position[k] = pose.origin[k];
+    quat[0] = pose.orientation.w();
+    quat[1] = pose.orientation.x();
+    quat[2] = pose.orientation.y();
+    quat[3] = pose.orientation.z();
+  }
+}
+
 void MujocoBackend::Step() {
   if (!m_failure.empty()) return;
+  ApplyLoads();
+  ++m_stepIndex;
   m_failure = GuardedStep(m_model, m_data);
   if (m_failure.empty()) m_failure = FirstWarning(m_data);
 }
@@ -219,6 +299,18 @@ harness::BodyReading MujocoBackend::GetBodyState(int index) const {
     state.centerOfMass = state.origin = state.linearVelocity = state.angularVelocity = Vec3::Constant(nan);
     state.orientation = Quat(nan, nan, nan, nan);
     state.mass = body.dynamic ? body.mass.mass : 0.0;
+    return state;
+  }
+  if (body.mocap >= 0) {
+    // Where the backend put the mocap body, moving at its prescribed velocities.
+    const mjtNum* p = m_data->mocap_pos + 3 * body.mocap;
+    const mjtNum* q = m_data->mocap_quat + 4 * body.mocap;
+    state.origin = Vec3(p[0], p[1], p[2]);
+    state.orientation = Quat(q[0], q[1], q[2], q[3]).normalized();
+    state.centerOfMass = state.origin + state.orientation.toRotationMatrix() * body.mass.centroid;
+    state.linearVelocity =
+        body.linearVelocity + body.angularVelocity.cross(state.centerOfMass - state.origin);
+    state.angularVelocity = body.angularVelocity;
     return state;
   }
   if (!body.dynamic) {
@@ -318,6 +410,20 @@ void MujocoBackend::AddSettings(const Run& run, const MjcfModel& mjcf) {
        "from talus::reference::ComputeBodyMass (exact), explicit <inertial> on principal axes "
        "(inertiafromgeom false)"},
   };
+  // Listed only where the scenario uses them, so other runs' records stay as they were.
+  if (!run.scenario.loads.empty() || !run.scenario.impulses.empty()) {
+    m_settings.push_back({"loads and impulses",
+                          "xfrc_applied (force and torque at the centre of mass, world axes; a force at a "
+                          "point adds its moment) before each mj_step, scaled by the step's share of the "
+                          "window; an impulse J as the force J / h over its step"});
+  }
+  for (const BodySpec& spec : run.scenario.bodies) {
+    if (spec.motion != harness::Motion::Kinematic) continue;
+    m_settings.push_back({"kinematic bodies",
+                          "mocap bodies at rest; a moving one is refused (MuJoCo gives a mocap body no "
+                          "velocity in contacts, so friction would not carry what rests on it)"});
+    break;
+  }
 }
 
 }  // namespace

@@ -34,6 +34,7 @@
 #include <sstream>
 #include <utility>
 
+#include "talus/harness/scenario/applied_loads.h"
 #include "talus/harness/scenario/scenario_limits.h"
 #include "talus/reference/body_mass.h"
 #include "talus/reference/ode_hull_faces.h"
@@ -142,7 +143,9 @@ class OdeBackend final : public harness::Backend {
     double friction = 0.0;
     double restitution = 0.0;
     BodyMass mass;
-    dBodyID body = nullptr;  // null for static bodies
+    bool dynamic = false;
+    const BodySpec* spec = nullptr;  // the run's (a kinematic body's prescribed motion)
+    dBodyID body = nullptr;          // null for static bodies
     dGeomID geom = nullptr;
     // dConvex keeps pointers into these.
     std::vector<dReal> planes;
@@ -176,6 +179,11 @@ class OdeBackend final : public harness::Backend {
   // results do not depend on what other worlds ran before it in the process.
   unsigned long m_randomSeed = 0;
   std::vector<harness::Setting> m_settings;
+  std::vector<harness::BodySpec> m_specs;           // the run's bodies
+  std::vector<harness::AppliedLoad> m_loads;        // the scenario's, applied each step
+  std::vector<harness::AppliedImpulse> m_impulses;  // the scenario's, each at its step
+  long long m_stepIndex = 0;                        // steps taken
+  void ApplyLoads();
 };
 
 Result<bool> OdeBackend::AddBody(const BodySpec& spec, const BodyMass& mass, int index) {
@@ -185,6 +193,8 @@ Result<bool> OdeBackend::AddBody(const BodySpec& spec, const BodyMass& mass, int
   body->friction = spec.friction;
   body->restitution = spec.restitution;
   body->mass = mass;
+  body->dynamic = spec.motion == harness::Motion::Dynamic;
+  body->spec = &spec;
   if (const auto* box = std::get_if<harness::BoxShape>(&spec.shape)) {
     const Vec3 size = 2.0 * box->halfExtents;
     body->geom = dCreateBox(m_space, size.x(), size.y(), size.z());
@@ -233,6 +243,19 @@ Result<bool> OdeBackend::AddBody(const BodySpec& spec, const BodyMass& mass, int
     dBodySetAutoDisableFlag(body->body, 0);
     dBodySetDamping(body->body, 0, 0);
     dGeomSetBody(body->geom, body->body);
+  } else if (spec.motion == harness::Motion::Kinematic) {
+    // ODE's kinematic body: infinite mass to joints, moved by its velocity
+    // each step (set in ApplyLoads; here the start's).
+    body->body = dBodyCreate(m_world);
+    dBodySetKinematic(body->body);
+    dBodySetPosition(body->body, com.x(), com.y(), com.z());
+    dBodySetQuaternion(body->body, q);
+    const Vec3 v = spec.linearVelocity + spec.angularVelocity.cross(com - spec.position);
+    dBodySetLinearVel(body->body, v.x(), v.y(), v.z());
+    dBodySetAngularVel(body->body, spec.angularVelocity.x(), spec.angularVelocity.y(),
+                       spec.angularVelocity.z());
+    dBodySetAutoDisableFlag(body->body, 0);
+    dGeomSetBody(body->geom, body->body);
   } else {
     dGeomSetPosition(body->geom, com.x(), com.y(), com.z());
     dGeomSetQuaternion(body->geom, q);
@@ -279,11 +302,14 @@ Result<std::unique_ptr<harness::Backend>> OdeBackend::Create(const Run& run, Ode
   }
   dWorldSetQuickStepNumIterations(backend->m_world,
                                   run.iterations > 0 ? run.iterations : kOdeDefaultQuickStepIterations);
+  backend->m_specs = run.scenario.bodies;  // kept: Body::spec points into it
   for (size_t i = 0; i < run.scenario.bodies.size(); ++i) {
     // The destructor frees a partly built world, so a failure leaks nothing.
-    auto added = backend->AddBody(run.scenario.bodies[i], masses[i], static_cast<int>(i));
+    auto added = backend->AddBody(backend->m_specs[i], masses[i], static_cast<int>(i));
     if (!added) return added.GetError();
   }
+  backend->m_loads = run.scenario.loads;
+  backend->m_impulses = run.scenario.impulses;
   backend->AddSettings(run);
   return std::unique_ptr<harness::Backend>(std::move(backend));
 }
@@ -297,7 +323,8 @@ OdeBackend::~OdeBackend() {
 void OdeBackend::NearCallback(void* data, dGeomID geom1, dGeomID geom2) {
   const auto* a = static_cast<const Body*>(dGeomGetData(geom1));
   const auto* b = static_cast<const Body*>(dGeomGetData(geom2));
-  if (a->body == nullptr && b->body == nullptr) return;
+  // Static and kinematic bodies move nothing they touch among themselves.
+  if (!a->dynamic && !b->dynamic) return;
   static_cast<OdeBackend*>(data)->m_pairs.emplace_back(a->index, b->index);
 }
 
@@ -435,12 +462,14 @@ void OdeBackend::Step() {
       return;
     }
   }
+  ApplyLoads();
   dRandSetSeed(m_randomSeed);
   // 0 when ODE could not take the step (it could not allocate its step
   // memory: a dense contact cluster asks for m^2 LCP entries).
   const int stepped = m_config.stepper == Stepper::Step ? dWorldStep(m_world, m_timeStep)
                                                         : dWorldQuickStep(m_world, m_timeStep);
   m_randomSeed = dRandGetSeed();
+  ++m_stepIndex;
   const std::size_t joints = m_contacts.size();
   dJointGroupEmpty(m_contactGroup);
   tCurrentRun = nullptr;
@@ -449,6 +478,51 @@ void OdeBackend::Step() {
                 " failed (ODE could not allocate its step memory; " + std::to_string(m_bodies.size()) +
                 " bodies, " + std::to_string(joints) + " contact joints)" +
                 (tLastMessage.empty() ? "" : "; last " + tLastMessage);
+  }
+}
+
+// The step's loads as an ODE user adds them: dBodyAddForceAtPos (at a
+// point) or dBodyAddForce and dBodyAddTorque, each load's share of the step,
+// world axes; an impulse due now as the force that gives it over the step
+// (dWorldImpulseToForce). ODE clears the forces after the step. A
+// kinematic body's velocity is set again each step, so a body turning about
+// an origin off its centre of mass keeps to its prescribed path.
+void OdeBackend::ApplyLoads() {
+  const double t = static_cast<double>(m_stepIndex) * m_timeStep;
+  for (const auto& body : m_bodies) {
+    if (body->body == nullptr || body->dynamic) continue;
+    const dReal* p = dBodyGetPosition(body->body);
+    const Vec3 origin = harness::KinematicPoseAt(*body->spec, t).origin;
+    const Vec3 v =
+        body->spec->linearVelocity + body->spec->angularVelocity.cross(Vec3(p[0], p[1], p[2]) - origin);
+    dBodySetLinearVel(body->body, v.x(), v.y(), v.z());
+  }
+  for (const harness::AppliedImpulse& impulse : m_impulses) {
+    if (!harness::AppliedImpulseAtStep(impulse, m_stepIndex, m_timeStep)) continue;
+    const harness::BodyReading state = GetBodyState(impulse.body);
+    dVector3 force;
+    dWorldImpulseToForce(m_world, m_timeStep, impulse.linear.x(), impulse.linear.y(), impulse.linear.z(),
+                         force);
+    const dBodyID id = m_bodies[static_cast<size_t>(impulse.body)]->body;
+    if (const auto point = harness::ImpulseWorldPoint(impulse, state.origin, state.orientation)) {
+      dBodyAddForceAtPos(id, force[0], force[1], force[2], point->x(), point->y(), point->z());
+    } else {
+      dBodyAddForce(id, force[0], force[1], force[2]);
+    }
+  }
+  for (const harness::AppliedLoad& load : m_loads) {
+    const double share = harness::AppliedLoadShare(load, t, m_timeStep);
+    if (share == 0.0) continue;
+    const harness::BodyReading state = GetBodyState(load.body);
+    const harness::WorldLoad world = harness::ToWorldLoad(load, share, state.origin, state.orientation);
+    const dBodyID id = m_bodies[static_cast<size_t>(load.body)]->body;
+    const Vec3& f = world.force;
+    if (world.point) {
+      dBodyAddForceAtPos(id, f.x(), f.y(), f.z(), world.point->x(), world.point->y(), world.point->z());
+    } else {
+      dBodyAddForce(id, f.x(), f.y(), f.z());
+    }
+    dBodyAddTorque(id, world.torque.x(), world.torque.y(), world.torque.z());
   }
 }
 
@@ -463,6 +537,7 @@ harness::BodyReading OdeBackend::GetBodyState(int index) const {
   const Mat3 rotation = state.orientation.toRotationMatrix();
   state.origin = state.centerOfMass - rotation * body.mass.centroid;
   if (body.body != nullptr) {
+    // A kinematic body's mass data stay zero (infinite mass).
     const dReal* v = dBodyGetLinearVel(body.body);
     const dReal* w = dBodyGetAngularVel(body.body);
     state.linearVelocity = Vec3(v[0], v[1], v[2]);
@@ -529,6 +604,21 @@ void OdeBackend::AddSettings(const Run& run) {
       {"hull shapes", "dConvex from the qhull hull, one polygon per face, centred on the centroid"},
       {"mass properties", "from talus::reference::ComputeBodyMass (exact), principal axes"},
   };
+  // Listed only where the scenario uses them, so other runs' records stay as they were.
+  if (!run.scenario.loads.empty() || !run.scenario.impulses.empty()) {
+    m_settings.push_back(
+        {"loads and impulses",
+         "dBodyAddForceAtPos (at a point) or dBodyAddForce and dBodyAddTorque before each "
+         "step, scaled by the step's share of the window; an impulse as dWorldImpulseToForce's "
+         "force over its step"});
+  }
+  for (const BodySpec& spec : run.scenario.bodies) {
+    if (spec.motion != harness::Motion::Kinematic) continue;
+    m_settings.push_back({"kinematic bodies",
+                          "dBodySetKinematic with the prescribed velocities (set each step): infinite mass "
+                          "to the contact joints, moved by ODE"});
+    break;
+  }
 }
 
 }  // namespace

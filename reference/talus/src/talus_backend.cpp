@@ -11,6 +11,7 @@
 #include "talus/reference/talus_backend.h"
 #include "talus/reference/setting_text.h"
 
+#include <algorithm>
 #include <cassert>
 #include <memory>
 #include <sstream>
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "talus/body.h"
+#include "talus/harness/scenario/applied_loads.h"
 #include "talus/hull_builder.h"
 #include "talus/reference/body_mass.h"
 #include "talus/shape.h"
@@ -114,16 +116,21 @@ class TalusBackend final : public harness::Backend {
  private:
   TalusBackend(World world, Variant variant) : m_world(std::move(world)), m_variant(variant) {}
   void AddSettings(const Run& run, const WorldSettings& base);
+  // Applies this step's impulses and loads; why one was refused, else "".
+  std::string ApplyLoads();
 
   World m_world;
   Variant m_variant;
   double m_timeStep = 0.0;
-  std::vector<BodyId> m_bodies;              // by scenario index
-  std::vector<int> m_scenarioIndexOfSlot;    // world body index -> scenario index
-  std::vector<BodyMass> m_masses;            // by scenario index
-  std::vector<harness::Setting> m_settings;  // fixed at creation
-  StepStatistics m_lastStep;                 // counters of the last Step (zero before the first)
-  std::string m_failure;                     // World::Step's refusal of the last step; empty when it ran
+  std::vector<BodyId> m_bodies;               // by scenario index
+  std::vector<int> m_scenarioIndexOfSlot;     // world body index -> scenario index
+  std::vector<BodyMass> m_masses;             // by scenario index
+  std::vector<harness::Setting> m_settings;   // fixed at creation
+  StepStatistics m_lastStep;                  // counters of the last Step (zero before the first)
+  std::string m_failure;                      // World::Step's refusal of the last step; empty when it ran
+  std::vector<harness::AppliedLoad> m_loads;  // the scenario's, applied each step
+  std::vector<harness::AppliedImpulse> m_impulses;  // the scenario's, each at its step
+  long long m_stepIndex = 0;                        // steps taken
 };
 
 // The structure's name as the settings and the report's figure 2 show it.
@@ -378,13 +385,22 @@ Result<std::unique_ptr<harness::Backend>> TalusBackend::Create(const Run& run, V
     auto shape = MakeShape(spec);
     if (!shape) return Error{where + shape.GetError().message};
     BodyDef def;
-    def.type = spec.motion == harness::Motion::Dynamic ? BodyType::Dynamic : BodyType::Static;
+    def.type = spec.motion == harness::Motion::Dynamic     ? BodyType::Dynamic
+               : spec.motion == harness::Motion::Kinematic ? BodyType::Kinematic
+                                                           : BodyType::Static;
     def.position = spec.position;
     def.orientation = spec.orientation;
     def.shape = std::move(shape).Value();
     def.friction = spec.friction;
     def.restitution = spec.restitution;
     def.allowSleep = false;
+    if (def.type == BodyType::Kinematic) {
+      // The engine's own kinematic body: moved by the prescribed velocity
+      // each step, infinite mass to contacts. Its centre of mass is its
+      // origin (no mass data), so the origin moves at linearVelocity.
+      def.linearVelocity = spec.linearVelocity;
+      def.angularVelocity = spec.angularVelocity;
+    }
     if (def.type == BodyType::Dynamic) {
       def.linearVelocity = spec.linearVelocity;
       def.angularVelocity = spec.angularVelocity;
@@ -401,11 +417,47 @@ Result<std::unique_ptr<harness::Backend>> TalusBackend::Create(const Run& run, V
     backend->m_bodies.push_back(id.Value());
     backend->m_masses.push_back(mass.Value());
   }
+  backend->m_loads = run.scenario.loads;
+  backend->m_impulses = run.scenario.impulses;
   backend->AddSettings(run, base);
   return std::unique_ptr<harness::Backend>(std::move(backend));
 }
 
+// The scenario's impulses due at this step and its loads' share of it,
+// through the World's own calls: ApplyLinearImpulse changes the velocities
+// at once, ApplyForce / ApplyTorque act over the next step only. Each
+// vector was checked finite by the loader, but a body's pose may not be,
+// so a refusal ends the run as a refused step does.
+std::string TalusBackend::ApplyLoads() {
+  const double t = static_cast<double>(m_stepIndex) * m_timeStep;
+  for (const harness::AppliedImpulse& impulse : m_impulses) {
+    if (!harness::AppliedImpulseAtStep(impulse, m_stepIndex, m_timeStep)) continue;
+    const BodyId id = m_bodies[static_cast<std::size_t>(impulse.body)];
+    const talus::BodyState state = m_world.GetBodyState(id).Value();
+    const Vec3 point =
+        harness::ImpulseWorldPoint(impulse, state.position, state.orientation).value_or(state.centerOfMass);
+    if (auto applied = m_world.ApplyLinearImpulse(id, impulse.linear, point); !applied) {
+      return applied.GetError().message;
+    }
+  }
+  for (const harness::AppliedLoad& load : m_loads) {
+    const double share = harness::AppliedLoadShare(load, t, m_timeStep);
+    if (share == 0.0) continue;
+    const BodyId id = m_bodies[static_cast<std::size_t>(load.body)];
+    const talus::BodyState state = m_world.GetBodyState(id).Value();
+    const harness::WorldLoad world = harness::ToWorldLoad(load, share, state.position, state.orientation);
+    Status applied = world.point ? m_world.ApplyForce(id, world.force, *world.point)
+                                 : m_world.ApplyForceToCenter(id, world.force);
+    if (applied) applied = m_world.ApplyTorque(id, world.torque);
+    if (!applied) return applied.GetError().message;
+  }
+  return {};
+}
+
 void TalusBackend::Step() {
+  m_failure = ApplyLoads();
+  if (!m_failure.empty()) return;
+  ++m_stepIndex;
   // World::Step refuses a step it cannot take (a body beyond its 1e9 m
   // bound, reached by a huge speed or gravity): the refusal ends the run
   // through StepFailure. The counters feed the report's broad-phase figure.
@@ -585,6 +637,19 @@ void TalusBackend::AddSettings(const Run& run, const WorldSettings& base) {
       {"mass properties",
        "from talus::reference::ComputeBodyMass (exact), body frame, centre of mass at the centroid"},
   };
+  // Listed only where the scenario uses them, so other runs' records stay as they were.
+  if (!run.scenario.loads.empty() || !run.scenario.impulses.empty()) {
+    m_settings.push_back({"loads and impulses",
+                          "World::ApplyForce (at a point) or ApplyForceToCenter and ApplyTorque before each "
+                          "step, scaled by the step's share of the window; World::ApplyLinearImpulse at the "
+                          "impulse's step"});
+  }
+  if (std::any_of(run.scenario.bodies.begin(), run.scenario.bodies.end(),
+                  [](const harness::BodySpec& b) { return b.motion == harness::Motion::Kinematic; })) {
+    m_settings.push_back({"kinematic bodies",
+                          "BodyType::Kinematic with the prescribed velocities: moved by them each step, "
+                          "infinite mass to contacts"});
+  }
 }
 
 }  // namespace

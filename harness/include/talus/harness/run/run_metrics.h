@@ -2,7 +2,8 @@
 // drift for closed systems, penetration, contact counts, and the comparison
 // with a converged reference run (the same backend at a smaller step).
 //
-// A closed system here is one with no static body: nothing outside the
+// A closed system here is one with no static or kinematic body and no
+// load or impulse (scenario.h): nothing outside the
 // dynamic bodies exerts force but uniform gravity, so the total energy, the
 // linear momentum minus M g t and the angular momentum about the system's
 // centre of mass are conserved by the physics; what the engine loses or
@@ -18,7 +19,7 @@
 
 namespace talus::harness {
 
-/// Whether the run has no static body (see above).
+/// Whether the run has no static or kinematic body, load or impulse (see above).
 bool IsClosedSystem(const Run& run);
 
 /// "energy.drift" (J, largest |E - E0| over the samples) and

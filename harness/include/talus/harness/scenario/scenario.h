@@ -98,7 +98,11 @@ struct HullShape {
 };
 using ShapeSpec = std::variant<BoxShape, SphereShape, HullShape>;
 
-enum class Motion { Static, Dynamic };
+/// How a body moves. A kinematic body follows its prescribed velocity
+/// (BodySpec::linearVelocity, angularVelocity, constant) whatever touches
+/// it: infinite mass to contacts, no gravity, no loads (a conveyor, a
+/// moving platform).
+enum class Motion { Static, Dynamic, Kinematic };
 
 /// One body of a scenario.
 struct BodySpec {
@@ -107,12 +111,51 @@ struct BodySpec {
   Motion motion = Motion::Dynamic;
   Vec3 position = Vec3::Zero();         ///< metres, of the body origin
   Quat orientation = Quat::Identity();  ///< unit
-  Vec3 linearVelocity = Vec3::Zero();   ///< m/s, of the centre of mass
-  Vec3 angularVelocity = Vec3::Zero();  ///< rad/s, world frame
+  Vec3 linearVelocity = Vec3::Zero();   ///< m/s, of the centre of mass (kinematic: prescribed, of the origin)
+  Vec3 angularVelocity = Vec3::Zero();  ///< rad/s, world frame (kinematic: prescribed)
   double density = 0.0;                 ///< kg/m^3; > 0 when mass is 0 (dynamic bodies)
   double mass = 0.0;                    ///< kg; > 0 when density is 0 (dynamic bodies)
   double friction = 0.5;                ///< Coulomb coefficient, >= 0
   double restitution = 0.0;             ///< in [0, 1]
+};
+
+/// The frame a load's force and torque are written in.
+enum class LoadFrame {
+  World,  ///< fixed world axes
+  Body,   ///< the body's axes: the vector turns with the body
+};
+
+/// A force and a torque applied to a dynamic body over the window
+/// [start, end) seconds (the file's "loads" list, docs/scenarios.md). Each
+/// step [t, t + h) applies them scaled by the share of the step inside the
+/// window (AppliedLoadShare in applied_loads.h), so the impulse delivered
+/// is exactly force x (end - start) whatever the time step; a body-frame
+/// vector is turned by the body's orientation at the step's start.
+struct AppliedLoad {
+  int body = -1;               ///< index into Scenario::bodies, a dynamic body
+  Vec3 force = Vec3::Zero();   ///< N, in `frame`
+  Vec3 torque = Vec3::Zero();  ///< N m, in `frame`, about the centre of mass
+  LoadFrame frame = LoadFrame::World;
+  /// Where the force acts, metres in the body frame (from the body origin);
+  /// none: at the centre of mass. Off the centre it adds (p - c) x force.
+  std::optional<Vec3> point = std::nullopt;
+  double start = 0.0;                                    ///< seconds, >= 0
+  double end = std::numeric_limits<double>::infinity();  ///< seconds, > start; infinity = the run's end
+  bool operator==(const AppliedLoad&) const = default;
+};
+
+/// A linear impulse (N s, world frame) given to a dynamic body at once at
+/// the start of the step nearest `time` (the file's "impulses" list):
+/// the centre of mass's velocity changes by linear / m and, applied at a
+/// point off the centre of mass, the angular velocity by I^-1 (p - c) x
+/// linear.
+struct AppliedImpulse {
+  int body = -1;               ///< index into Scenario::bodies, a dynamic body
+  Vec3 linear = Vec3::Zero();  ///< N s, world frame
+  /// Metres in the body frame (from the body origin); none: the centre of mass.
+  std::optional<Vec3> point = std::nullopt;
+  double time = 0.0;  ///< seconds, in [0, the run's duration)
+  bool operator==(const AppliedImpulse&) const = default;
 };
 
 /// Quantities a run records (the file's "measure" list).
@@ -354,6 +397,10 @@ struct Scenario {
   /// penetration, contacts) are computed only when listed.
   std::vector<Quantity> measure;
   std::vector<Truth> truths;
+  /// Forces and torques on dynamic bodies (the file's "loads"), file order.
+  std::vector<AppliedLoad> loads{};
+  /// Impulses on dynamic bodies (the file's "impulses"), file order.
+  std::vector<AppliedImpulse> impulses{};
 };
 
 /// One resolved value of a sweep parameter.
