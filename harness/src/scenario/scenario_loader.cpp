@@ -23,9 +23,8 @@
 #include "scenario/degenerate_body_check.h"
 #include "scenario/scenario_schema_text.h"
 #include "support/text_util.h"
-#include "talus/harness/analytic/hull_rest_analysis.h"
-#include "talus/harness/analytic/torque_free_motion.h"
 #include "talus/harness/scenario/scenario_limits.h"
+#include "talus/harness/scenario/truth_kind_io.h"
 #include "talus/harness/support/json_schema.h"
 
 namespace talus::harness {
@@ -63,16 +62,6 @@ using nlohmann::json;
 // How far a quaternion's norm may be from 1 and still count as unit: values
 // written with ~7 significant digits (e.g. 0.7071068) must pass.
 constexpr double kUnitQuaternionTolerance = 1e-6;
-// |cos| of the angle between a sliding direction and gravity above which the
-// direction is not horizontal: 1e-6 accepts directions written to ~7 digits.
-constexpr double kPerpendicularTolerance = 1e-6;
-// Angle (rad, 1 degree) within which a hull_rest faceNormal names a face:
-// normals written to 3 or 4 digits pass, neighbouring faces are far apart.
-constexpr double kFaceNormalTolerance = 0.017453292519943295;
-// Relative agreement asked of a spin truth's inertia and omega with the
-// body they describe: values written to ~7 significant digits pass.
-constexpr double kSpinConsistencyTolerance = 1e-6;
-
 // Line and column (both from 1) of byte `offset` in `text`.
 std::string LineAndColumn(std::string_view text, size_t offset) {
   size_t line = 1;
@@ -91,19 +80,6 @@ std::string LineAndColumn(std::string_view text, size_t offset) {
 Error FieldError(std::string_view file, const std::string& pointer, const std::string& problem) {
   return Error{Concat(
       {file, ": ", pointer.empty() ? std::string("(root)") : PointerForMessage(pointer), ": ", problem})};
-}
-
-// |v| without overflow or underflow for any finite v (1e300 or 1e-300
-// components): the largest component is factored out first.
-double ScaleSafeNorm(const Vec3& v) {
-  const double scale = v.cwiseAbs().maxCoeff();
-  return scale > 0.0 ? scale * (v / scale).norm() : 0.0;
-}
-
-// v / |v| computed as above; zero for a zero vector.
-Vec3 ScaleSafeNormalized(const Vec3& v) {
-  const double scale = v.cwiseAbs().maxCoeff();
-  return scale > 0.0 ? Vec3((v / scale).normalized()) : Vec3::Zero();
 }
 
 Vec3 ReadVec3(const json& value) {
@@ -328,134 +304,6 @@ int FindBody(const BodyIndex& index, const std::string& name) {
   return found == index.end() ? -1 : found->second;
 }
 
-// Where one truth entry sits, for messages and look-ups.
-struct TruthContext {
-  const json& entry;
-  const std::vector<BodySpec>& bodies;
-  const BodyIndex& bodyIndex;
-  const WorldSpec& world;
-  std::string_view file;
-  std::string pointer;  // "/truths/<i>"
-  int body = -1;        // index of the named body, -1 when none is named
-};
-
-// A secondary bound is written {"value", "reason"} (the schema requires
-// both); its value, which the kind keeps. The reason is read by MapBounds.
-double BoundValue(const json& entry, const char* name) { return entry[name]["value"].get<double>(); }
-
-Result<TruthKind> MapSlidingStop(const TruthContext& c) {
-  SlidingStopTruth truth{c.entry["v0"].get<double>(), c.entry["mu"].get<double>(),
-                         c.entry["g"].get<double>()};
-  if (c.entry.contains("direction")) {
-    const Vec3 direction = ReadVec3(c.entry["direction"]);
-    if (ScaleSafeNorm(direction) < 1e-12) {
-      return FieldError(c.file, c.pointer + "/direction", "direction has zero length");
-    }
-    truth.direction = ScaleSafeNormalized(direction);
-    if (std::abs(truth.direction.dot(ScaleSafeNormalized(c.world.gravity))) > kPerpendicularTolerance) {
-      return FieldError(c.file, c.pointer + "/direction", "must be perpendicular to gravity");
-    }
-  }
-  truth.maxLateral = BoundValue(c.entry, "maxLateral");
-  return TruthKind(truth);
-}
-
-Result<TruthKind> MapStackRest(const TruthContext& c) {
-  StackRestTruth truth;
-  truth.floor = c.entry["floor"].get<double>();
-  truth.layerHeight = c.entry["layerHeight"].get<double>();
-  truth.maxDrift = BoundValue(c.entry, "maxDrift");
-  std::unordered_set<int> seen;
-  for (size_t l = 0; l < c.entry["layers"].size(); ++l) {
-    std::vector<int> layer;
-    for (size_t k = 0; k < c.entry["layers"][l].size(); ++k) {
-      const std::string where = c.pointer + "/layers/" + std::to_string(l) + "/" + std::to_string(k);
-      const std::string name = c.entry["layers"][l][k].get<std::string>();
-      const int body = FindBody(c.bodyIndex, name);
-      if (body < 0) return FieldError(c.file, where, "no body named " + Quoted(name));
-      if (seen.count(body) != 0) {
-        return FieldError(c.file, where, "body " + Quoted(name) + " is listed twice");
-      }
-      if (c.bodies[body].motion != Motion::Dynamic) {
-        return FieldError(c.file, where, "body " + Quoted(name) + " is static");
-      }
-      seen.insert(body);
-      layer.push_back(body);
-    }
-    truth.layers.push_back(std::move(layer));
-  }
-  return TruthKind(std::move(truth));
-}
-
-// The resting face must be a face of the body's hull, and a stable one: a
-// truth naming an unstable face could never be met. The engine's hull
-// builder only validates the file here; the answer (the face normal and the
-// height) is the file's own, computed independently of the engine (qhull
-// and the divergence theorem, checked by tests/reference), so a broken hull
-// or mass code in the engine cannot move the truth with it.
-Result<TruthKind> MapHullRest(const TruthContext& c) {
-  const auto* hull = std::get_if<HullShape>(&c.bodies[c.body].shape);
-  if (hull == nullptr) return FieldError(c.file, c.pointer + "/body", "hull_rest needs a hull body");
-  const Vec3 normal = ScaleSafeNormalized(ReadVec3(c.entry["faceNormal"]));
-  if (normal.isZero()) return FieldError(c.file, c.pointer + "/faceNormal", "normal has zero length");
-  auto analysis = AnalyseHullRest(hull->points);
-  if (!analysis) {
-    return FieldError(c.file, "/bodies/" + std::to_string(c.body) + "/shape/points",
-                      analysis.GetError().message);
-  }
-  const HullRestFace& face = analysis.Value().faces[analysis.Value().NearestFace(normal)];
-  const double angle = std::acos(std::clamp(face.normal.dot(normal.normalized()), -1.0, 1.0));
-  if (angle > kFaceNormalTolerance) {
-    std::ostringstream problem;
-    problem << "names no face of the hull (nearest face normal is " << angle * 180.0 / std::numbers::pi
-            << " degrees away)";
-    return FieldError(c.file, c.pointer + "/faceNormal", problem.str());
-  }
-  if (!face.stable) {
-    return FieldError(c.file, c.pointer + "/faceNormal",
-                      "names an unstable face (the centroid projects outside it)");
-  }
-  HullRestTruth truth;
-  truth.faceNormal = normal.normalized();
-  truth.floor = c.entry["floor"].get<double>();
-  truth.height = c.entry["height"].get<double>();
-  truth.maxFaceAngle = BoundValue(c.entry, "maxFaceAngle");
-  return TruthKind(truth);
-}
-
-// Torque-free truths are written in the body's principal frame, so they
-// need a box body, whose own frame is principal: the moments must be in the
-// box's proportions and omega must be the file's world angular velocity
-// seen from the body.
-Result<TruthKind> MapSpin(const TruthContext& c, bool flip) {
-  const Vec3 inertia = ReadVec3(c.entry["inertia"]);
-  const Vec3 omega = ReadVec3(c.entry["omega"]);
-  const BodySpec& body = c.bodies[c.body];
-  const auto* box = std::get_if<BoxShape>(&body.shape);
-  if (box == nullptr || body.motion != Motion::Dynamic) {
-    return FieldError(c.file, c.pointer + "/body",
-                      "a spin truth needs a dynamic box body (its frame is principal)");
-  }
-  const Vec3 e = box->halfExtents.cwiseProduct(box->halfExtents);
-  const Vec3 shape(e.y() + e.z(), e.x() + e.z(), e.x() + e.y());
-  const Vec3 scaled = shape * (inertia.sum() / shape.sum());
-  if ((scaled - inertia).norm() > kSpinConsistencyTolerance * inertia.norm()) {
-    std::ostringstream problem;
-    problem << "is not in the proportions of the box's principal moments (" << shape.x() << " : " << shape.y()
-            << " : " << shape.z() << ")";
-    return FieldError(c.file, c.pointer + "/inertia", problem.str());
-  }
-  const Vec3 bodyOmega = body.orientation.conjugate() * body.angularVelocity;
-  if ((bodyOmega - omega).norm() > kSpinConsistencyTolerance * (1.0 + omega.norm())) {
-    return FieldError(c.file, c.pointer + "/omega",
-                      "differs from the body's angularVelocity seen in its own frame");
-  }
-  if (!flip) return TruthKind(TorqueFreeTruth{inertia, omega});
-  auto interval = IntermediateAxisFlipInterval(inertia, omega);
-  if (!interval) return FieldError(c.file, c.pointer + "/omega", interval.GetError().message);
-  return TruthKind(FlipPeriodTruth{inertia, omega});
-}
-
 // The tolerance (required by the schema) must allow something: a truth
 // whose tolerance is zero could never be met and would be judged by
 // round-off. Then the gate: on for every backend unless "gate" is false or
@@ -490,64 +338,11 @@ Result<bool> MapGate(const json& entry, std::string_view file, const std::string
   return true;
 }
 
-// An incline_tip angle must sit further than the tolerance (radians) from
-// the rigid-body tipping threshold atan(width / height) and from the
-// sliding threshold atan(mu): closer, a real engine's contact (resting
-// penetration, rounded margins) decides the outcome, not the physics.
-Result<TruthKind> MapInclineTip(const TruthContext& c) {
-  const json& truth = c.entry;
-  InclineTipTruth tip{truth["angle"].get<double>(), truth["mu"].get<double>(), truth["width"].get<double>(),
-                      truth["height"].get<double>()};
-  tip.tiltThreshold = BoundValue(truth, "tiltThreshold");
-  tip.maxStayTilt = BoundValue(truth, "maxStayTilt");
-  if (tip.maxStayTilt >= tip.tiltThreshold) {
-    return FieldError(c.file, c.pointer + "/maxStayTilt/value",
-                      "must be below tiltThreshold (a tilt cannot both stay and tip)");
-  }
-  const double margin = truth["tolerance"].value("absolute", 0.0);
-  const double tipping = std::atan(tip.width / tip.height);
-  const double sliding = std::atan(tip.mu);
-  for (const double threshold : {tipping, sliding}) {
-    if (std::abs(tip.angle - threshold) < margin) {
-      std::ostringstream problem;
-      problem << "lies " << std::abs(tip.angle - threshold) * 180.0 / std::numbers::pi
-              << " degrees from the threshold " << threshold * 180.0 / std::numbers::pi
-              << " degrees, within the tolerance: the outcome is not decided by the physics";
-      return FieldError(c.file, c.pointer + "/angle", problem.str());
-    }
-  }
-  return TruthKind(tip);
-}
-
-// A box landing is judged on a dynamic box (its faces and half extents
-// give the resting heights) that comes to rest within the run.
-Result<TruthKind> MapBoxLanding(const TruthContext& c) {
-  const BodySpec& body = c.bodies[c.body];
-  if (body.motion != Motion::Dynamic || !std::holds_alternative<BoxShape>(body.shape)) {
-    return FieldError(c.file, c.pointer + "/body", "box_landing needs a dynamic box body");
-  }
-  if (c.world.gravity.isZero()) {
-    return FieldError(c.file, c.pointer + "/kind", "box_landing needs gravity (nothing pulls the box down)");
-  }
-  BoxLandingTruth truth;
-  truth.floor = c.entry["floor"].get<double>();
-  truth.restAfter = c.entry["restAfter"].get<double>();
-  if (truth.restAfter > c.world.steps * c.world.timeStep) {
-    return FieldError(c.file, c.pointer + "/restAfter", "is after the end of the run");
-  }
-  truth.maxFaceAngle = BoundValue(c.entry, "maxFaceAngle");
-  truth.maxMotion = BoundValue(c.entry, "maxMotion");
-  truth.maxEnergyRise = BoundValue(c.entry, "maxEnergyRise");
-  truth.maxPenetration = BoundValue(c.entry, "maxPenetration");
-  return TruthKind(truth);
-}
-
-// Every secondary bound the truth writes carries a written reason, and
-// gate false says why in "gateReason" (and only then).
-Result<bool> MapBounds(const json& entry, std::string_view file, const std::string& pointer, Truth& truth) {
-  for (const std::string_view bound : kSecondaryBounds) {
-    const std::string name(bound);
-    if (!entry.contains(name)) continue;
+// Every secondary bound the kind read carries a written reason, and gate
+// false says why in "gateReason" (and only then).
+Result<bool> MapBounds(const json& entry, std::string_view file, const std::string& pointer,
+                       const std::vector<std::string>& bounds, Truth& truth) {
+  for (const std::string& name : bounds) {
     const std::string reason = entry[name]["reason"].get<std::string>();
     if (reason.find_first_not_of(" \t\n") == std::string::npos) {
       return FieldError(file, pointer + "/" + name + "/reason", "is empty; say where the bound comes from");
@@ -565,99 +360,18 @@ Result<bool> MapBounds(const json& entry, std::string_view file, const std::stri
   return true;
 }
 
-// A free-body truth (projectile, drifts) holds only while nothing but
-// gravity acts: no static body to touch.
-std::optional<Error> RefuseStaticBodies(const TruthContext& c, const std::string& kind) {
-  for (size_t b = 0; b < c.bodies.size(); ++b) {
-    if (c.bodies[b].motion == Motion::Static) {
-      return FieldError(c.file, c.pointer + "/kind",
-                        kind + " is a free-body truth, but body " + Quoted(c.bodies[b].name) + " is static");
-    }
-  }
-  return std::nullopt;
-}
-
-// The parabola starts where the body is: its centre of mass, which for a
-// box or a sphere is its origin, and its velocity.
-Result<TruthKind> MapProjectile(const TruthContext& c) {
-  if (auto refused = RefuseStaticBodies(c, "projectile")) return *refused;
-  const BodySpec& body = c.bodies[c.body];
-  if (body.motion != Motion::Dynamic || std::holds_alternative<HullShape>(body.shape)) {
-    return FieldError(c.file, c.pointer + "/body",
-                      "projectile needs a dynamic box or sphere (its centre of mass is its origin)");
-  }
-  const ProjectileTruth truth{ReadVec3(c.entry["x0"]), ReadVec3(c.entry["v0"])};
-  if ((truth.x0 - body.position).norm() > kSpinConsistencyTolerance * (1.0 + body.position.norm())) {
-    return FieldError(c.file, c.pointer + "/x0", "differs from the body's position");
-  }
-  if ((truth.v0 - body.linearVelocity).norm() >
-      kSpinConsistencyTolerance * (1.0 + body.linearVelocity.norm())) {
-    return FieldError(c.file, c.pointer + "/v0", "differs from the body's linearVelocity");
-  }
-  return TruthKind(truth);
-}
-
-// Drifts are relative: the body (or, for energy without a body, some
-// dynamic body) must start moving, else there is nothing to divide by.
-Result<TruthKind> MapDrift(const TruthContext& c, const std::string& kind) {
-  if (auto refused = RefuseStaticBodies(c, kind)) return *refused;
-  const bool spin = kind != "energy_drift";
-  bool moving = false;
-  for (size_t b = 0; b < c.bodies.size(); ++b) {
-    if (c.body >= 0 && b != static_cast<size_t>(c.body)) continue;
-    const BodySpec& body = c.bodies[b];
-    if (body.motion != Motion::Dynamic) continue;
-    moving = moving || body.angularVelocity.norm() > 0.0 || (!spin && body.linearVelocity.norm() > 0.0);
-  }
-  if (!moving) {
-    return FieldError(c.file, c.pointer + (c.body >= 0 ? "/body" : "/kind"),
-                      spin ? kind + " needs a dynamic body that starts spinning (a relative drift of 0)"
-                           : "energy_drift needs a dynamic body that starts moving (a relative drift of 0)");
-  }
-  if (kind == "energy_drift") return TruthKind(EnergyDriftTruth{});
-  if (kind == "rotational_energy_drift") return TruthKind(RotationalEnergyDriftTruth{});
-  return TruthKind(AngularMomentumDriftTruth{c.entry["metric"] == "magnitude" ? MomentumMetric::Magnitude
-                                                                              : MomentumMetric::Vector});
-}
-
-Result<TruthKind> MapTruthKind(const TruthContext& c) {
-  const json& truth = c.entry;
-  const std::string kind = truth["kind"].get<std::string>();
-  if (kind == "free_fall") {
-    FreeFallTruth fall{truth["y0"].get<double>(), truth["v0"].get<double>(), truth["g"].get<double>()};
-    fall.until = truth.value("until", fall.until);
-    return TruthKind(fall);
-  }
-  if (kind == "sliding_stop") return MapSlidingStop(c);
-  if (kind == "rest_height") {
-    return TruthKind(RestHeightTruth{truth["height"].get<double>(), BoundValue(truth, "maxJitter")});
-  }
-  if (kind == "bounce_heights") {
-    return TruthKind(
-        BounceHeightsTruth{truth["h"].get<double>(), truth["e"].get<double>(), truth["count"].get<int>()});
-  }
-  if (kind == "stack_rest") return MapStackRest(c);
-  if (kind == "hull_rest") return MapHullRest(c);
-  if (kind == "incline_slide") {
-    return TruthKind(
-        InclineSlideTruth{truth["angle"].get<double>(), truth["mu"].get<double>(), truth["g"].get<double>()});
-  }
-  if (kind == "incline_tip") return MapInclineTip(c);
-  if (kind == "torque_free") return MapSpin(c, false);
-  if (kind == "flip_period") return MapSpin(c, true);
-  if (kind == "projectile") return MapProjectile(c);
-  if (kind == "box_landing") return MapBoxLanding(c);
-  if (kind == "energy_drift" || kind == "angular_momentum_drift" || kind == "rotational_energy_drift") {
-    return MapDrift(c, kind);
-  }
-  const int divisor = truth["timeStepDivisor"].get<int>();
-  if (static_cast<long long>(c.world.steps) * divisor > kMaxSteps) {
-    return FieldError(
-        c.file, c.pointer + "/timeStepDivisor",
-        Concat({"the finer run takes ", std::to_string(c.world.steps), " x ", std::to_string(divisor),
-                " steps, more than the limit of ", std::to_string(kMaxSteps)}));
-  }
-  return TruthKind(ConvergedReferenceTruth{divisor});
+// The kind the entry's "kind" names, read by that kind's unit (the table,
+// truth_kinds.h). The schema admits only the table's names.
+Result<TruthKind> ReadTruthKind(const std::string& name, TruthReader& reader) {
+  std::optional<Result<TruthKind>> read;
+  ForEachTruthKind([&](auto tag) {
+    using Kind = typename decltype(tag)::type;
+    if (read || name != Kind::kName) return;
+    auto kind = Kind::Read(reader);
+    read = kind ? Result<TruthKind>(TruthKind(std::move(kind).Value())) : Result<TruthKind>(kind.GetError());
+  });
+  if (read) return std::move(*read);
+  return reader.Refuse("/kind", "no truth kind named " + Quoted(name));
 }
 
 // The body a load or impulse at `pointer` names: an existing dynamic body.
@@ -821,12 +535,13 @@ Result<Scenario> MapScenario(const json& doc, std::string_view file) {
         truth.body = FindBody(names, name);
         if (truth.body < 0) return FieldError(file, pointer + "/body", "no body named " + Quoted(name));
       }
-      auto kind = MapTruthKind({entry, scenario.bodies, names, scenario.world, file, pointer, truth.body});
+      TruthReader reader{entry, scenario.bodies, names, scenario.world, file, pointer, truth.body};
+      auto kind = ReadTruthKind(entry["kind"].get<std::string>(), reader);
       if (!kind) return kind.GetError();
       truth.kind = std::move(kind).Value();
       auto gated = MapGate(entry, file, pointer, truth);
       if (!gated) return gated.GetError();
-      auto bounded = MapBounds(entry, file, pointer, truth);
+      auto bounded = MapBounds(entry, file, pointer, reader.bounds, truth);
       if (!bounded) return bounded.GetError();
       if (entry.contains("published")) {
         const json& published = entry["published"];

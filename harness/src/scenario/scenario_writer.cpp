@@ -1,12 +1,14 @@
 // Scenario model to scenario-file JSON (see scenario_writer.h). Field names
 // and forms are the schema's (scenarios/schema.json); each truth kind
-// writes the fields its Map* reader in scenario_loader.cpp reads.
+// writes the fields its own Read reads (harness/src/truth/kinds/<kind>.cpp).
 #include "talus/harness/scenario/scenario_writer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <variant>
+
+#include "talus/harness/scenario/truth_kind_io.h"
 
 namespace talus::harness {
 namespace {
@@ -116,106 +118,17 @@ ordered_json ImpulseJson(const AppliedImpulse& impulse, const std::vector<BodySp
   return out;
 }
 
-// The kind and its own fields; `names` turns body indices into names.
-ordered_json KindJson(const TruthKind& kind, const std::vector<BodySpec>& bodies) {
-  struct Visitor {
-    const std::vector<BodySpec>& bodies;
-    ordered_json operator()(const FreeFallTruth& t) const {
-      ordered_json out = {{"kind", "free_fall"}, {"y0", t.y0}, {"v0", t.v0}, {"g", t.g}};
-      if (std::isfinite(t.until)) out["until"] = t.until;
-      return out;
-    }
-    ordered_json operator()(const SlidingStopTruth& t) const {
-      return {{"kind", "sliding_stop"},
-              {"v0", t.v0},
-              {"mu", t.mu},
-              {"g", t.g},
-              {"direction", Vec(t.direction)},
-              {"maxLateral", t.maxLateral}};
-    }
-    ordered_json operator()(const RestHeightTruth& t) const {
-      return {{"kind", "rest_height"}, {"height", t.height}, {"maxJitter", t.maxJitter}};
-    }
-    ordered_json operator()(const BounceHeightsTruth& t) const {
-      return {{"kind", "bounce_heights"}, {"h", t.h}, {"e", t.e}, {"count", t.count}};
-    }
-    ordered_json operator()(const ConvergedReferenceTruth& t) const {
-      return {{"kind", "converged_reference"}, {"timeStepDivisor", t.timeStepDivisor}};
-    }
-    ordered_json operator()(const StackRestTruth& t) const {
-      ordered_json layers = ordered_json::array();
-      for (const auto& layer : t.layers) {
-        ordered_json names = ordered_json::array();
-        for (int body : layer) names.push_back(bodies[static_cast<std::size_t>(body)].name);
-        layers.push_back(names);
-      }
-      return {{"kind", "stack_rest"},
-              {"layers", layers},
-              {"floor", t.floor},
-              {"layerHeight", t.layerHeight},
-              {"maxDrift", t.maxDrift}};
-    }
-    ordered_json operator()(const HullRestTruth& t) const {
-      return {{"kind", "hull_rest"},
-              {"faceNormal", Vec(t.faceNormal)},
-              {"floor", t.floor},
-              {"height", t.height},
-              {"maxFaceAngle", t.maxFaceAngle}};
-    }
-    ordered_json operator()(const InclineSlideTruth& t) const {
-      return {{"kind", "incline_slide"}, {"angle", t.angle}, {"mu", t.mu}, {"g", t.g}};
-    }
-    ordered_json operator()(const InclineTipTruth& t) const {
-      return {{"kind", "incline_tip"},
-              {"angle", t.angle},
-              {"mu", t.mu},
-              {"width", t.width},
-              {"height", t.height},
-              {"tiltThreshold", t.tiltThreshold},
-              {"maxStayTilt", t.maxStayTilt}};
-    }
-    ordered_json operator()(const TorqueFreeTruth& t) const {
-      return {{"kind", "torque_free"}, {"inertia", Vec(t.inertia)}, {"omega", Vec(t.omega)}};
-    }
-    ordered_json operator()(const FlipPeriodTruth& t) const {
-      return {{"kind", "flip_period"}, {"inertia", Vec(t.inertia)}, {"omega", Vec(t.omega)}};
-    }
-    ordered_json operator()(const ProjectileTruth& t) const {
-      return {{"kind", "projectile"}, {"x0", Vec(t.x0)}, {"v0", Vec(t.v0)}};
-    }
-    ordered_json operator()(const BoxLandingTruth& t) const {
-      return {{"kind", "box_landing"},
-              {"floor", t.floor},
-              {"restAfter", t.restAfter},
-              {"maxFaceAngle", t.maxFaceAngle},
-              {"maxMotion", t.maxMotion},
-              {"maxEnergyRise", t.maxEnergyRise},
-              {"maxPenetration", t.maxPenetration}};
-    }
-    ordered_json operator()(const EnergyDriftTruth&) const { return {{"kind", "energy_drift"}}; }
-    ordered_json operator()(const AngularMomentumDriftTruth& t) const {
-      return {{"kind", "angular_momentum_drift"},
-              {"metric", t.metric == MomentumMetric::Magnitude ? "magnitude" : "vector"}};
-    }
-    ordered_json operator()(const RotationalEnergyDriftTruth&) const {
-      return {{"kind", "rotational_energy_drift"}};
-    }
-  };
-  return std::visit(Visitor{bodies}, kind);
-}
-
 ordered_json TruthJson(const Truth& truth, const std::vector<BodySpec>& bodies) {
-  ordered_json out = KindJson(truth.kind, bodies);
-  // Secondary bounds are written {"value", "reason"}: KindJson gives the
-  // value, the truth keeps the reason.
-  for (auto& [name, value] : out.items()) {
-    const bool bound =
-        std::find(kSecondaryBounds.begin(), kSecondaryBounds.end(), name) != kSecondaryBounds.end();
-    if (!value.is_number() || !bound) continue;
-    const auto reason = truth.boundReasons.find(name);
-    value =
-        ordered_json{{"value", value}, {"reason", reason == truth.boundReasons.end() ? "" : reason->second}};
-  }
+  // The kind's name, then its own fields, written by its unit (the table,
+  // truth_kinds.h); then the fields every truth shares.
+  ordered_json out;
+  std::visit(
+      [&](const auto& kind) {
+        out["kind"] = std::string(kind.kName);
+        TruthWriter writer{out, bodies, truth};
+        kind.Write(writer);
+      },
+      truth.kind);
   if (truth.body >= 0) out["body"] = bodies[static_cast<std::size_t>(truth.body)].name;
   ordered_json tolerance;
   if (truth.tolerance.absolute > 0.0) tolerance["absolute"] = truth.tolerance.absolute;

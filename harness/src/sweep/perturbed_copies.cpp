@@ -24,9 +24,10 @@ double Median(std::vector<double> values) {
 // The truths of `moved` (a copy of `run` with its bodies moved) made those
 // of its own start: a truth that names where a body starts (free fall's y0,
 // the projectile's x0, the bounce's drop height above the floor it infers
-// from the start) moves with that body, so the copy is judged on how it
-// moved from where it began, not on the offset the copy injected (1e-9 m
-// against free fall's 1e-9 m tolerance would be an error of 0.7).
+// from the start, a state_at position) moves with that body, so the copy is
+// judged on how it moved from where it began, not on the offset the copy
+// injected (1e-9 m against free fall's 1e-9 m tolerance would be an error
+// of 0.7).
 void MoveTruthsWithTheirBodies(const Run& run, Run& moved) {
   const Vec3 up = UpAxis(run);
   for (Truth& truth : moved.scenario.truths) {
@@ -36,6 +37,10 @@ void MoveTruthsWithTheirBodies(const Run& run, Run& moved) {
     if (auto* fall = std::get_if<FreeFallTruth>(&truth.kind)) fall->y0 += offset.dot(up);
     if (auto* projectile = std::get_if<ProjectileTruth>(&truth.kind)) projectile->x0 += offset;
     if (auto* bounce = std::get_if<BounceHeightsTruth>(&truth.kind)) bounce->h += offset.dot(up);
+    if (auto* state = std::get_if<StateAtTruth>(&truth.kind);
+        state && state->quantity == StateQuantity::Position) {
+      state->value += offset;
+    }
   }
 }
 

@@ -6,7 +6,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "truth/checks/evaluators.h"
+#include "truth/kinds/kind_support.h"
 
 namespace talus::harness {
 
@@ -41,43 +41,12 @@ Vec3 UpAxis(const Run& run) {
 
 std::vector<MetricResult> EvaluateTruth(const Run& run, const Truth& truth, const Trajectory& trajectory) {
   assert(!trajectory.samples.empty());
+  // Each kind's own evaluator (its unit in src/truth/kinds/, the table
+  // TruthKind); a converged reference returns nothing.
   std::vector<MetricResult> metrics = std::visit(
-      [&](const auto& kind) -> std::vector<MetricResult> {
+      [&](const auto& kind) {
         using Kind = std::decay_t<decltype(kind)>;
-        if constexpr (std::is_same_v<Kind, FreeFallTruth>) {
-          return EvaluateFreeFall(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, SlidingStopTruth>) {
-          return EvaluateSlidingStop(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, RestHeightTruth>) {
-          return EvaluateRestHeight(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, BounceHeightsTruth>) {
-          return EvaluateBounceHeights(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, StackRestTruth>) {
-          return EvaluateStackRest(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, HullRestTruth>) {
-          return EvaluateHullRest(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, InclineSlideTruth>) {
-          return EvaluateInclineSlide(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, InclineTipTruth>) {
-          return EvaluateInclineTip(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, TorqueFreeTruth>) {
-          return EvaluateTorqueFree(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, FlipPeriodTruth>) {
-          return EvaluateFlipPeriod(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, ProjectileTruth>) {
-          return EvaluateProjectile(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, EnergyDriftTruth>) {
-          return EvaluateEnergyDrift(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, AngularMomentumDriftTruth>) {
-          return EvaluateAngularMomentumDrift(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, BoxLandingTruth>) {
-          return EvaluateBoxLanding(run, truth, kind, trajectory);
-        } else if constexpr (std::is_same_v<Kind, RotationalEnergyDriftTruth>) {
-          return EvaluateRotationalEnergyDrift(run, truth, kind, trajectory);
-        } else {
-          static_assert(std::is_same_v<Kind, ConvergedReferenceTruth>, "a truth kind has no evaluator");
-          return {};  // the runner compares against a finer run
-        }
+        return Kind::Evaluate(run, truth, kind, trajectory);
       },
       truth.kind);
   if (truth.published) {

@@ -9,7 +9,6 @@
 // here.
 #pragma once
 
-#include <array>
 #include <limits>
 #include <map>
 #include <optional>
@@ -18,6 +17,7 @@
 #include <variant>
 #include <vector>
 
+#include "talus/harness/scenario/truth_kinds.h"
 #include "talus/math.h"
 
 namespace talus::harness {
@@ -172,171 +172,6 @@ struct Tolerance {
   bool operator==(const Tolerance&) const = default;
 };
 
-/// Free fall of `body`'s centre of mass along -gravity from height y0
-/// (metres, along the up axis) with vertical speed v0 (m/s) and g (m/s^2).
-struct FreeFallTruth {
-  double y0 = 0.0, v0 = 0.0, g = 9.81;
-  /// Seconds: only samples up to this time are judged (the flight before a
-  /// landing); infinity = the whole run.
-  double until = std::numeric_limits<double>::infinity();
-  bool operator==(const FreeFallTruth&) const = default;
-};
-/// A body launched at v0 (m/s) on a floor with friction mu stops after
-/// v0^2 / (2 mu g) metres and v0 / (mu g) seconds, on the straight line
-/// through its start along `direction`.
-struct SlidingStopTruth {
-  double v0 = 1.0, mu = 0.5, g = 9.81;
-  Vec3 direction = Vec3::UnitX();  ///< unit, world frame, perpendicular to gravity
-  double maxLateral = 0.01;        ///< metres: largest allowed distance from the launch line, >= 0
-  bool operator==(const SlidingStopTruth&) const = default;
-};
-/// The centre of mass comes to rest at `height` (metres along the up axis);
-/// over the second half of the run its peak-to-peak motion stays below
-/// maxJitter (metres).
-struct RestHeightTruth {
-  double height = 0.0;
-  double maxJitter = 1e-3;
-  bool operator==(const RestHeightTruth&) const = default;
-};
-/// A body dropped with its lowest point h metres above the floor, with
-/// restitution e, reaches e^(2k) h at its k-th apex (k = 1..count).
-struct BounceHeightsTruth {
-  double h = 1.0, e = 0.5;
-  int count = 1;
-  bool operator==(const BounceHeightsTruth&) const = default;
-};
-/// Boxes stacked in layers (bottom first) rest with their centres of mass
-/// at floor + (layer + 1/2) layerHeight and move less than maxDrift over
-/// the second half of the run. Concerns several bodies: Truth::body is -1.
-struct StackRestTruth {
-  std::vector<std::vector<int>> layers;  ///< body indices per layer, bottom layer first
-  double floor = 0.0;                    ///< metres, top of the floor along the up axis
-  double layerHeight = 1.0;              ///< metres, > 0
-  double maxDrift = 0.01;                ///< metres, >= 0
-  bool operator==(const StackRestTruth&) const = default;
-};
-/// A hull body comes to rest on the face with outward body-frame normal
-/// `faceNormal`, a stable face (its centroid projects inside it), with its
-/// centre of mass at floor + `height`, the centroid's distance to that face's
-/// plane. Both `faceNormal` and `height` are the file's, computed without the
-/// engine (qhull facets and a divergence-theorem centroid; tests/reference
-/// checks the shipped numbers); the loader only refuses a normal that names
-/// no stable face of the hull.
-struct HullRestTruth {
-  Vec3 faceNormal = -Vec3::UnitY();  ///< unit, body frame (the file's, normalised)
-  double floor = 0.0;                ///< metres, top of the floor along the up axis
-  double height = 0.0;               ///< metres, from the file
-  double maxFaceAngle = 0.05;        ///< radians: face normal vs down at the end, in [0, pi]
-  bool operator==(const HullRestTruth&) const = default;
-};
-/// A block released at rest on an incline of `angle` radians slides
-/// InclineDistance(angle, mu, g, t) metres (0 when tan(angle) <= mu).
-struct InclineSlideTruth {
-  double angle = 0.0, mu = 0.5, g = 9.81;
-  bool operator==(const InclineSlideTruth&) const = default;
-};
-/// A box of `width` x `height` (metres, along the slope and its normal)
-/// released on an incline stays, slides or tips as InclineBoxOutcome says;
-/// "tipped" means turned more than tiltThreshold radians from its start.
-/// The truth's tolerance (radians, absolute) is how far a real engine's
-/// tipping or sliding threshold may sit from the rigid-body one: the loader
-/// refuses an angle closer than that to either threshold, where the
-/// outcome is not decided by the physics.
-struct InclineTipTruth {
-  double angle = 0.0, mu = 0.5, width = 1.0, height = 1.0;
-  double tiltThreshold = 0.5;  ///< radians, in (0, pi]: more counts as tipped
-  /// Radians: a box that stays (or slides) may tilt by at most this much,
-  /// about a slop's worth; more is neither staying nor tipping and fails.
-  double maxStayTilt = 0.5;
-  bool operator==(const InclineTipTruth&) const = default;
-};
-/// Torque-free rotation (no gravity, no contact) of a body with principal
-/// moments `inertia` (kg m^2, about its body axes) spinning at `omega`
-/// (rad/s, body frame, at the start): world angular momentum and kinetic
-/// energy stay constant.
-struct TorqueFreeTruth {
-  Vec3 inertia = Vec3::Ones();
-  Vec3 omega = Vec3::Zero();
-  bool operator==(const TorqueFreeTruth&) const = default;
-};
-/// The same body spun mainly about its intermediate axis turns over every
-/// IntermediateAxisFlipInterval(inertia, omega) seconds (torque_free_motion.h).
-struct FlipPeriodTruth {
-  Vec3 inertia = Vec3::Ones();
-  Vec3 omega = Vec3::Zero();
-  bool operator==(const FlipPeriodTruth&) const = default;
-};
-/// Free flight on all three axes: the centre of mass follows
-/// x0 + v0 t + g t^2 / 2 (g the world's gravity vector); the metric is the
-/// largest distance from that parabola over the run (judged against the
-/// continuous answer, not an integrator's sequence).
-struct ProjectileTruth {
-  Vec3 x0 = Vec3::Zero();  ///< metres, centre of mass at t = 0
-  Vec3 v0 = Vec3::Zero();  ///< m/s
-  bool operator==(const ProjectileTruth&) const = default;
-};
-/// A box thrown onto a static floor lands and settles (box_toss): judged
-/// without the engine's own finer run. At the end it rests on a face (the
-/// box axis nearest the up axis within maxFaceAngle radians of it) with its
-/// centre of mass at floor + that axis's half extent, the geometric height
-/// (the truth's tolerance, metres); from `restAfter` seconds on its centre
-/// of mass moves less than maxMotion metres (peak to peak along each axis
-/// of the world, the largest of the three); its total mechanical energy
-/// never rises by more than maxEnergyRise metres of lift (the rise over the
-/// lowest energy before it, divided by m |g|): a contact with no
-/// restitution only takes energy out; no contact is ever deeper than
-/// maxPenetration metres. Each bound's reason is in Truth::boundReasons.
-struct BoxLandingTruth {
-  double floor = 0.0;           ///< metres, top of the floor along the up axis
-  double restAfter = 0.0;       ///< seconds: at rest from here to the end, >= 0
-  double maxFaceAngle = 0.0;    ///< radians, in [0, pi/4]
-  double maxMotion = 0.0;       ///< metres, >= 0
-  double maxEnergyRise = 0.0;   ///< metres of lift, >= 0
-  double maxPenetration = 0.0;  ///< metres, >= 0
-  bool operator==(const BoxLandingTruth&) const = default;
-};
-/// Total mechanical energy (translational and rotational kinetic energy plus
-/// the potential -m g.x) of `Truth::body`, or of every dynamic body when
-/// the truth names none, is conserved: the metric is the largest
-/// |E(t) - E(0)| / E0, with E0 the kinetic energy at the start (the total
-/// energy with the potential measured from the start positions).
-struct EnergyDriftTruth {
-  bool operator==(const EnergyDriftTruth&) const = default;
-};
-/// Which angular momentum drift a truth measures.
-enum class MomentumMetric {
-  Vector,     ///< max |L(t) - L(0)| / |L(0)|: direction and magnitude
-  Magnitude,  ///< max ||L(t)| - |L(0)|| / |L(0)|: magnitude only
-};
-/// A free body's angular momentum about its centre of mass (world frame,
-/// L = I_world w) is conserved; the metric is its relative drift.
-struct AngularMomentumDriftTruth {
-  MomentumMetric metric = MomentumMetric::Vector;
-  bool operator==(const AngularMomentumDriftTruth&) const = default;
-};
-/// A free body's rotational kinetic energy w.I_world w / 2 is conserved:
-/// the metric is the largest |E(t) - E(0)| / E(0).
-struct RotationalEnergyDriftTruth {
-  bool operator==(const RotationalEnergyDriftTruth&) const = default;
-};
-/// No closed form: the truth is the same engine at timeStep / divisor.
-struct ConvergedReferenceTruth {
-  int timeStepDivisor = 16;
-  bool operator==(const ConvergedReferenceTruth&) const = default;
-};
-using TruthKind =
-    std::variant<FreeFallTruth, SlidingStopTruth, RestHeightTruth, BounceHeightsTruth,
-                 ConvergedReferenceTruth, StackRestTruth, HullRestTruth, InclineSlideTruth, InclineTipTruth,
-                 TorqueFreeTruth, FlipPeriodTruth, ProjectileTruth, EnergyDriftTruth,
-                 AngularMomentumDriftTruth, RotationalEnergyDriftTruth, BoxLandingTruth>;
-
-/// The secondary bounds of the truth kinds, by their field names in a
-/// scenario file: each is written {"value", "reason"} (a bound without its
-/// reason is refused) and its reason kept in Truth::boundReasons.
-inline constexpr std::array<std::string_view, 9> kSecondaryBounds = {
-    "maxLateral",  "maxJitter", "maxDrift",      "maxFaceAngle",  "tiltThreshold",
-    "maxStayTilt", "maxMotion", "maxEnergyRise", "maxPenetration"};
-
 /// A figure published for the same case (e.g. by the benchmark's authors),
 /// printed beside the measured one; never judged.
 struct PublishedFigure {
@@ -369,10 +204,9 @@ struct Truth {
   /// Why the truth is out of the gate for every backend (the file's
   /// "gateReason", required when gate is false, refused otherwise).
   std::string gateReason{};
-  /// The written reason of each secondary bound the truth's kind has
-  /// (maxLateral, maxJitter, maxDrift, maxFaceAngle, tiltThreshold,
-  /// maxStayTilt, maxMotion, maxEnergyRise, maxPenetration), keyed by the
-  /// field's name: the file writes each bound as {"value", "reason"}.
+  /// The written reason of each secondary bound the truth's kind reads
+  /// (TruthReader::Bound: maxLateral, maxJitter, ...), keyed by the field's
+  /// name: the file writes each bound as {"value", "reason"}.
   std::map<std::string, std::string> boundReasons{};
   /// Backends for which this truth is outside the gate, each with its
   /// reason (no repeats). Default none.

@@ -1,10 +1,9 @@
 // Checking a run against its ground truths: one MetricResult per measured
 // number (a free fall gives a height, a bounce series one apex per bounce).
 //
-// EvaluateTruth dispatches with std::visit over TruthKind to one evaluator
-// per kind (harness/src/truth/checks/<kind>.cpp, declared in
-// truth/checks/evaluators.h); adding a kind is one new file plus one line
-// in the dispatch (harness/src/truth/truth_check.cpp). A converged reference has
+// EvaluateTruth dispatches with std::visit over the table of truth kinds
+// (TruthKind, scenario/truth_kinds.h) to each kind's evaluator, in its unit
+// (harness/src/truth/kinds/<kind>.cpp). A converged reference has
 // no closed form: the runner compares against a finer run of the same
 // backend (runner.h), so EvaluateTruth returns nothing for it.
 #pragma once
