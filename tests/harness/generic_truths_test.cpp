@@ -127,8 +127,8 @@ TEST(AtRestTruth, StillBodiesPassAndSlidingTiltingOrJitteringOnesFail) {
     return reading;
   };
   auto metrics = EvaluateTruth(run, truth, Track(run, slides));
-  EXPECT_FALSE(Metric(metrics, "at_rest.drift").pass);
-  EXPECT_NEAR(Metric(metrics, "at_rest.drift").measured, 0.005, 1e-15);
+  EXPECT_FALSE(Metric(metrics, "at_rest.drift.a,b").pass);
+  EXPECT_NEAR(Metric(metrics, "at_rest.drift.a,b").measured, 0.005, 1e-15);
   // a tips 0.05 rad about z in place: within the drift, past maxTilt.
   const auto tips = [&](std::size_t b, double t) {
     BodyReading reading = Still(run, b);
@@ -136,10 +136,10 @@ TEST(AtRestTruth, StillBodiesPassAndSlidingTiltingOrJitteringOnesFail) {
     return reading;
   };
   metrics = EvaluateTruth(run, truth, Track(run, tips));
-  EXPECT_TRUE(Metric(metrics, "at_rest.drift").pass);
-  EXPECT_FALSE(Metric(metrics, "at_rest.tilt").pass);
-  EXPECT_NEAR(Metric(metrics, "at_rest.tilt").measured, 0.05, 1e-12);
-  EXPECT_EQ(Metric(metrics, "at_rest.tilt").reason, "tilt");
+  EXPECT_TRUE(Metric(metrics, "at_rest.drift.a,b").pass);
+  EXPECT_FALSE(Metric(metrics, "at_rest.tilt.a,b").pass);
+  EXPECT_NEAR(Metric(metrics, "at_rest.tilt.a,b").measured, 0.05, 1e-12);
+  EXPECT_EQ(Metric(metrics, "at_rest.tilt.a,b").reason, "tilt");
   // b buzzes in place at 0.1 m/s: no drift at the samples, but not at rest.
   const auto buzzes = [&](std::size_t b, double t) {
     BodyReading reading = Still(run, b);
@@ -147,16 +147,56 @@ TEST(AtRestTruth, StillBodiesPassAndSlidingTiltingOrJitteringOnesFail) {
     return reading;
   };
   metrics = EvaluateTruth(run, truth, Track(run, buzzes));
-  EXPECT_TRUE(Metric(metrics, "at_rest.drift").pass);
-  EXPECT_FALSE(Metric(metrics, "at_rest.speed").pass);
+  EXPECT_TRUE(Metric(metrics, "at_rest.drift.a,b").pass);
+  EXPECT_FALSE(Metric(metrics, "at_rest.speed.a,b").pass);
   // Before the window (from 0.5 s) the bodies may still settle.
   const auto settles = [&](std::size_t b, double t) {
     BodyReading reading = Still(run, b);
     if (b == 2 && t < 0.3) reading.linearVelocity = Vec3(0, -1.0, 0);
     return reading;
   };
-  EXPECT_TRUE(Metric(EvaluateTruth(run, truth, Track(run, settles)), "at_rest.speed").pass);
+  EXPECT_TRUE(Metric(EvaluateTruth(run, truth, Track(run, settles)), "at_rest.speed.a,b").pass);
   ExpectRoundTrip(run);
+}
+
+TEST(AtRestTruth, TwoTruthsOfOneSceneReportUnderTheirOwnBodies) {
+  // A layer each with its own allowance (a load stands on more contacts
+  // than its supports): one name per truth, each judged by its own bound.
+  const std::string a = R"({"kind": "at_rest", "bodies": ["a"],
+        "maxTilt": {"value": 0.01, "reason": "tilt"}, "maxSpeed": {"value": 1, "reason": "speed"},
+        "tolerance": {"absolute": 0.001, "reason": "a's drift"}})";
+  const std::string b = R"({"kind": "at_rest", "bodies": ["b"],
+        "maxTilt": {"value": 0.01, "reason": "tilt"}, "maxSpeed": {"value": 1, "reason": "speed"},
+        "tolerance": {"absolute": 0.01, "reason": "b's drift"}})";
+  const ScenarioRun run = Load(a + ", " + b);
+  // Both sink 5 mm: inside b's 1 cm, outside a's 1 mm.
+  const auto sink = [&](std::size_t body, double t) {
+    BodyReading reading = Still(run, body);
+    if (body != 0 && t >= 0.5) reading.centerOfMass.y() -= 0.005;
+    return reading;
+  };
+  const Trajectory trajectory = Track(run, sink);
+  const auto first = EvaluateTruth(run, run.scenario.truths[0], trajectory);
+  const auto second = EvaluateTruth(run, run.scenario.truths[1], trajectory);
+  EXPECT_FALSE(Metric(first, "at_rest.drift.a").pass);
+  EXPECT_TRUE(Metric(second, "at_rest.drift.b").pass);
+}
+
+TEST(AtRestTruth, ManyBodiesAreNamedByTheFirstTwoAndACount) {
+  const std::string four = R"({"kind": "at_rest", "bodies": ["a", "b", "c", "d"],
+        "maxTilt": {"value": 0.01, "reason": "tilt"}, "maxSpeed": {"value": 1, "reason": "speed"},
+        "tolerance": {"absolute": 0.001, "reason": "drift"}})";
+  std::string text = Text(four);
+  const std::string extra =
+      R"({"name": "c", "shape": {"kind": "sphere", "radius": 0.1}, "motion": "dynamic", "position": [2, 1, 0], "mass": 1.0},
+      {"name": "d", "shape": {"kind": "sphere", "radius": 0.1}, "motion": "dynamic", "position": [3, 1, 0], "mass": 1.0}],)";
+  text.replace(text.find("}],"), 3, "}, " + extra);
+  auto runs = ParseScenarioText(text, "generic.json");
+  ASSERT_TRUE(runs) << runs.GetError().message;
+  const ScenarioRun& run = runs.Value().front();
+  const auto still = [&](std::size_t body, double) { return Still(run, body); };
+  const auto metrics = EvaluateTruth(run, run.scenario.truths[0], Track(run, still));
+  EXPECT_TRUE(Metric(metrics, "at_rest.drift.a,b,+2").pass);
 }
 
 TEST(AtRestTruth, LoaderRefusesWhatCannotBeJudged) {

@@ -6,8 +6,13 @@
 // orientation (radians, maxTilt); at_rest.speed, the largest centre-of-mass
 // speed (m/s, maxSpeed), which catches a body that jitters in place. Each
 // truth is 0, so a body that slides, tips, sinks or is thrown fails.
+// Each name ends with the bodies it judges (at_rest.drift.left,right; past
+// three bodies the first two and how many more: at_rest.drift.b0,b1,+15),
+// so two at_rest truths of one scenario (a layer each, with its own
+// allowance) report two metrics, not one name twice.
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "talus/harness/support/nan_extremes.h"
 #include "truth/kinds/kind_support.h"
@@ -90,7 +95,7 @@ void AtRestTruth::Write(TruthWriter& writer) const {
   writer.Bound("maxSpeed", maxSpeed);
 }
 
-std::vector<MetricResult> AtRestTruth::Evaluate(const Run&, const Truth& truth, const AtRestTruth& kind,
+std::vector<MetricResult> AtRestTruth::Evaluate(const Run& run, const Truth& truth, const AtRestTruth& kind,
                                                 const Trajectory& trajectory) {
   const Sample& first = trajectory.samples.front();
   // Half a step of slack at each end: a run at another time step (a
@@ -112,16 +117,22 @@ std::vector<MetricResult> AtRestTruth::Evaluate(const Run&, const Truth& truth, 
     }
   }
   const auto unmeasured = [](double value) { return std::isinf(value) ? std::nan("") : value; };
-  MetricResult driftMetric = MakeMetric("at_rest.drift", "m");
+  std::string judged;
+  const std::size_t named = kind.bodies.size() > 3 ? 2 : kind.bodies.size();
+  for (std::size_t i = 0; i < named; ++i) {
+    judged += (i == 0 ? "." : ",") + run.scenario.bodies[static_cast<std::size_t>(kind.bodies[i])].name;
+  }
+  if (named < kind.bodies.size()) judged += ",+" + std::to_string(kind.bodies.size() - named);
+  MetricResult driftMetric = MakeMetric("at_rest.drift" + judged, "m");
   driftMetric.measured = unmeasured(drift);
   driftMetric.truth = 0.0;
   Judge(driftMetric, truth.tolerance);
-  MetricResult tiltMetric = MakeMetric("at_rest.tilt", "rad");
+  MetricResult tiltMetric = MakeMetric("at_rest.tilt" + judged, "rad");
   tiltMetric.measured = unmeasured(tilt);
   tiltMetric.truth = 0.0;
   Judge(tiltMetric, Tolerance{.absolute = kind.maxTilt, .relative = 0.0});
   tiltMetric.reason = BoundReason(truth, "maxTilt");
-  MetricResult speedMetric = MakeMetric("at_rest.speed", "m/s");
+  MetricResult speedMetric = MakeMetric("at_rest.speed" + judged, "m/s");
   speedMetric.measured = unmeasured(speed);
   speedMetric.truth = 0.0;
   Judge(speedMetric, Tolerance{.absolute = kind.maxSpeed, .relative = 0.0});
