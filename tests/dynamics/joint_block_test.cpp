@@ -194,6 +194,9 @@ TEST(JointBlock, ConvergesToWhereThePerPointRowsConverge) {
     for (int variant = 0; variant < 2; ++variant) {
       WorldSettings settings =
           Settings(variant == 0 ? FrictionSolve::PerPoint : FrictionSolve::JointBlock, 200);
+      // The sweeps' fixed points are compared: shock propagation's per-point
+      // rows after them move both a little (5.3e-6 m apart at trial 4 with it).
+      settings.shockPropagation = false;
       World world = World::Create(settings).Value();
       AddGround(world, mu);
       BodyId slab{};

@@ -45,6 +45,9 @@ TEST(ScenarioSet, EveryScenarioFileLoadsIntoItsRuns) {
       {"tumbling/box_toss.json", 1},
       {"bouncing/sphere_bounce.json", 1},
       {"bouncing/sphere_bounce_series.json", 3},
+      {"mass_ratio/slab_on_two_boxes.json", 4},
+      {"mass_ratio/heavy_box_on_pyramid.json", 3},
+      {"mass_ratio/load_removed.json", 1},
   };
   for (const auto& [file, count] : expected) {
     const auto runs = Load(file);

@@ -172,6 +172,7 @@ TEST(TalusRows, EachVariantDepartsFromTheTalusRowByItsListedSettingsOnly) {
     writeUp.blockSolver = false;
     writeUp.maxVelocityIterations = 1;
     writeUp.frictionSolve = FrictionSolve::PerPoint;
+    writeUp.shockPropagation = false;
     EXPECT_TRUE(TalusRowSettings(run, "talus-writeup").Value() == writeUp);
   }
   const auto unknown = TalusRowSettings(BoxRest(), "talus-fast");
@@ -204,12 +205,13 @@ TEST(TalusRows, EachRowsSettingsTextListsItsDepartures) {
   EXPECT_EQ(Departures("talus-split", run), std::set<std::string>{"position correction"});
   EXPECT_EQ(Departures("talus-coloured", run), (std::set<std::string>{"solver", "friction solve"}));
   EXPECT_EQ(Departures("talus-soft", run), (std::set<std::string>{"solver", "friction solve"}));
-  EXPECT_EQ(Departures("talus-writeup", run),
-            (std::set<std::string>{
-                "integrator", "warm starting", "block solver (a pair's normal rows together)",
-                "friction solve", "extra velocity sweeps for new contacts", "bounce timing", "SAT",
-                "SAT cache", "manifold reuse (m of relative motion)", "manifolds",
-                "persistent points (m break distance)", "speculative margin (m)", "gyroscopic term"}));
+  EXPECT_EQ(
+      Departures("talus-writeup", run),
+      (std::set<std::string>{"integrator", "warm starting", "block solver (a pair's normal rows together)",
+                             "friction solve", "extra velocity sweeps for new contacts", "bounce timing",
+                             "SAT", "SAT cache", "manifold reuse (m of relative motion)", "manifolds",
+                             "persistent points (m break distance)", "speculative margin (m)",
+                             "gyroscopic term", "shock propagation"}));
 }
 
 }  // namespace

@@ -252,6 +252,18 @@ struct WorldSettings {
   /// docs/dynamics.md); ColouredWide is the order whose colours can be
   /// split across threads with bit-identical results.
   ContactSolverKind contactSolver = ContactSolverKind::SequentialImpulses;
+  /// Shock propagation: after the velocity sweeps, the pairs under a load
+  /// that outweighs its support (or that the warm start has wrong by more
+  /// than the support's weight) are swept again level by level from the
+  /// immovable bodies up, each pair's lower body held (Guendelman et al.
+  /// 2003), up to velocityIterations sweeps per level. Default on:
+  /// Gauss-Seidel carries a heavy load onto light supports only after of the
+  /// order of the mass ratio sweeps, and until then drives the supports into
+  /// the ground; with the supports held a load's rows converge at a rate
+  /// that does not depend on the ratio. Where no load outweighs its support
+  /// nothing is swept. Off is the write-up's solver. docs/dynamics.md,
+  /// "Shock propagation".
+  bool shockPropagation = true;
   /// Position iterations, [1, 1000]: sweeps of the split-impulse
   /// pseudo-velocity rows (and of timed bounces' position rows). Default 10,
   /// the same budget as velocities.

@@ -61,6 +61,17 @@ double ContactSolver::RowMass(const RowJacobian& j, const PairRows& pair) {
   return k > 0.0 ? 1.0 / k : 0.0;
 }
 
+// Whether a pair carries load now (shock propagation's levels): some point
+// within one slop of touching, the band the solver treats as resting. A
+// speculative pair whose points are further apart (a body that could reach
+// the other within the step) supports nothing yet.
+bool Touching(const Contact& contact, double slop) {
+  for (int i = 0; i < contact.manifold.pointCount; ++i) {
+    if (contact.manifold.points[static_cast<std::size_t>(i)].depth >= -slop) return true;
+  }
+  return false;
+}
+
 // Pairs per chunk of Prepare's parallel pass: a pair's rows (with its
 // block's eigen decomposition) cost a few microseconds.
 constexpr int kPairGrain = 32;
@@ -81,6 +92,8 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
   m_timedBounces = 0;
   m_split = settings.positionCorrection == PositionCorrection::SplitImpulses;
   m_jointBlock = settings.frictionSolve == FrictionSolve::JointBlock;
+  m_shock = settings.shockPropagation;
+  m_shockTouching.clear();
   int points = 0;
   int frictions = 0;
   int blocks = 0;
@@ -115,6 +128,20 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
     }
     if (!pair.persisted) ++m_newPairs;
     m_pairs.push_back(pair);
+    if (m_shock) m_shockTouching.push_back(Touching(contact, settings.slop) ? 1 : 0);
+  }
+  if (m_shock) {
+    // What gravity and the applied forces gave each body this step (shock
+    // propagation's measure of the load a body puts on its supports).
+    m_shockPush.resize(static_cast<std::size_t>(m_bodies.Count()));
+    m_shockStart.resize(static_cast<std::size_t>(m_bodies.Count()));
+    for (int i = 0; i < m_bodies.Count(); ++i) {
+      const BodySim& body = bodies[static_cast<std::size_t>(m_bodies.BodyIndex(i))];
+      const bool moves = m_bodies.Moves(i);
+      m_shockPush[static_cast<std::size_t>(i)] =
+          moves ? Vec3(body.freeLinearVelocity - body.startLinearVelocity) : Vec3::Zero();
+      m_shockStart[static_cast<std::size_t>(i)] = moves ? body.startLinearVelocity : Vec3::Zero();
+    }
   }
   // Every slot below is written by its pair before anything reads it.
   m_normals.resize(static_cast<std::size_t>(points));

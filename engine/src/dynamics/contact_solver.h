@@ -138,9 +138,18 @@ class ContactSolver {
   /// a new pair by more than `tolerance` (m/s), up to `maxIterations` sweeps
   /// in all. Returns the sweeps run.
   int SolveVelocities(int minIterations, int maxIterations, double tolerance);
+  /// Shock propagation (WorldSettings::shockPropagation; derivation in
+  /// contact_solver_shock.cpp): the pairs level by level from the
+  /// immovable bodies up, each pair's lower body held, up to `maxSweeps`
+  /// sweeps per level until a sweep changes no velocity by more than
+  /// `tolerance` (m/s). Returns the sweeps run. SolveVelocities runs it last
+  /// when the setting is on.
+  int PropagateShock(int maxSweeps, double tolerance);
   /// Runs `iterations` sweeps of the split-impulse pseudo-velocity rows
   /// (and of the timed bounces' position rows).
   void SolveSplitImpulses(int iterations);
+  /// Shock propagation's sweeps in the last SolveVelocities (0 when off).
+  [[nodiscard]] int ShockSweeps() const { return m_shockSweeps; }
   /// Points of the last Prepare that bounce inside the step.
   [[nodiscard]] int TimedBounceCount() const { return m_timedBounces; }
   /// Whether this step's positions take pseudo velocities: split impulses
@@ -222,6 +231,11 @@ class ContactSolver {
   /// exact in any order, so the cut does not matter).
   double SweepsWide(int sweeps, bool track);
   void WarmStartPair(const PairRows& pair);
+  /// Shock propagation's levels of this step's solver bodies and its pair order.
+  void AssignShockLevels();
+  void KeepLoadedPairs();
+  [[nodiscard]] int PairLevel(const PairRows& pair) const;
+  double ShockSweep(std::size_t begin, std::size_t end);
 
   SolverBodies m_bodies;
   std::vector<PairRows> m_pairs;
@@ -248,6 +262,21 @@ class ContactSolver {
   bool m_useWide = false;     ///< ColouredWide selected at the last Prepare
   bool m_split = false;       ///< SplitImpulses selected at the last Prepare
   bool m_jointBlock = false;  ///< FrictionSolve::JointBlock selected at the last Prepare
+  bool m_shock = false;       ///< WorldSettings::shockPropagation at the last Prepare
+  // Shock propagation's scratch (kept between steps: no allocation in steady state).
+  std::vector<unsigned char> m_shockTouching;  ///< per pair: some point within one slop of touching
+  std::vector<int> m_shockLevels;              ///< per solver body
+  std::vector<int> m_shockAdjStart;            ///< CSR offsets of the bodies' neighbours
+  std::vector<int> m_shockAdj;
+  std::vector<int> m_shockFill;
+  std::vector<int> m_shockQueue;
+  std::vector<int> m_shockOrder;  ///< pair indices with a level, by level
+  std::vector<Vec3> m_shockPush;  ///< per solver body: the velocity gravity and forces gave it this step, m/s
+  std::vector<Vec3> m_shockStart;            ///< per solver body: its velocity at the step's start, m/s
+  std::vector<Vec3> m_shockWarmed;           ///< per solver body: its velocity after the warm start, m/s
+  std::vector<unsigned char> m_shockLoaded;  ///< per solver body: carries a load heavier than a support
+  std::vector<unsigned char> m_shockKeep;    ///< per entry of m_shockOrder: the pass visits it
+  int m_shockSweeps = 0;                     ///< sweeps of the last SolveVelocities' shock pass
   JointBlockCounts m_jointCounts;
   PhaseRunner m_runner;
   std::vector<JobPhase> m_phases;  ///< scratch: the chain of the coloured passes

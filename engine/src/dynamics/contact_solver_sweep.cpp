@@ -199,6 +199,13 @@ int ContactSolver::SolveVelocities(int minIterations, int maxIterations, double 
     }
     return m_largestChange;
   };
+  if (m_shock) {
+    // Shock propagation reads how far the warm start left each body from
+    // where the step began (KeepLoadedPairs).
+    m_shockWarmed.resize(static_cast<std::size_t>(m_bodies.Count()));
+    for (int i = 0; i < m_bodies.Count(); ++i)
+      m_shockWarmed[static_cast<std::size_t>(i)] = m_bodies.Velocity(i).v;
+  }
   int sweeps = 0;
   if (m_useWide && minIterations > 0) {
     // The untracked sweeps need no result between them: one chain.
@@ -213,6 +220,7 @@ int ContactSolver::SolveVelocities(int minIterations, int maxIterations, double 
     }
   }
   if (m_useWide) m_wide.Unpack(m_pairs, m_normals, m_frictions, m_runner);
+  m_shockSweeps = m_shock ? PropagateShock(minIterations, tolerance) : 0;
   return sweeps;
 }
 

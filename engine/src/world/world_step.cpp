@@ -96,6 +96,7 @@ void SolveVelocities(WorldData& d, StepStatistics& stats) {
   if (s.warmStarting) d.solver.WarmStart();
   stats.velocitySweeps =
       d.solver.SolveVelocities(s.velocityIterations, s.maxVelocityIterations, s.velocityTolerance);
+  stats.shockSweeps = d.solver.ShockSweeps();
 }
 
 // Split impulses: pseudo-velocities that push overlapping pairs apart
