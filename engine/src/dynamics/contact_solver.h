@@ -115,6 +115,17 @@
 
 namespace talus {
 
+struct PairVelocities;
+
+/// Which bodies of a pair shock propagation moves (contact_solver_shock.cpp):
+/// their inverse masses, zero for the held one.
+struct ShockSides {
+  bool moveA = true;
+  bool moveB = true;
+  double invMassA = 0.0;
+  double invMassB = 0.0;
+};
+
 class ContactSolver {
  public:
   /// How Prepare spreads its pairs and the coloured solver its colours'
@@ -194,6 +205,10 @@ class ContactSolver {
   void PreparePair(std::span<const BodySim> bodies, const Contact& contact, const WorldSettings& settings,
                    double h, PairRows& pair, PrepareCounts& counts);
   void PrepareBlock(PairRows& pair);
+  /// The pseudo-inverse of a pair's normal block K (padded with the
+  /// identity past `count` points): eigenvalues below 1e-9 of the largest
+  /// count as zero, rows and columns past `count` zero.
+  static Eigen::Matrix4d BlockPseudoInverse(const Eigen::Matrix4d& k, int count);
   template <bool kTrack>
   void SolveNormals(const PairRows& pair);
   template <bool kTrack>
@@ -236,6 +251,8 @@ class ContactSolver {
   void KeepLoadedPairs();
   [[nodiscard]] int PairLevel(const PairRows& pair) const;
   double ShockSweep(std::size_t begin, std::size_t end);
+  bool HeldBlock(std::size_t order, const PairRows& pair, const ShockSides& sides, PairVelocities& v,
+                 double& largest);
 
   SolverBodies m_bodies;
   std::vector<PairRows> m_pairs;
@@ -275,8 +292,12 @@ class ContactSolver {
   std::vector<Vec3> m_shockStart;            ///< per solver body: its velocity at the step's start, m/s
   std::vector<Vec3> m_shockWarmed;           ///< per solver body: its velocity after the warm start, m/s
   std::vector<unsigned char> m_shockLoaded;  ///< per solver body: carries a load heavier than a support
-  std::vector<unsigned char> m_shockKeep;    ///< per entry of m_shockOrder: the pass visits it
-  int m_shockSweeps = 0;                     ///< sweeps of the last SolveVelocities' shock pass
+  std::vector<unsigned char> m_shockKeep;
+  /// Per kept pair with a normal block: the block's pseudo-inverse with the
+  /// held body's terms left out (built at the pass's first sweep of it).
+  std::vector<Eigen::Matrix4d> m_shockBlocks;
+  std::vector<unsigned char> m_shockBlockBuilt;  ///< per entry of m_shockOrder: the pass visits it
+  int m_shockSweeps = 0;                         ///< sweeps of the last SolveVelocities' shock pass
   JointBlockCounts m_jointCounts;
   PhaseRunner m_runner;
   std::vector<JobPhase> m_phases;  ///< scratch: the chain of the coloured passes

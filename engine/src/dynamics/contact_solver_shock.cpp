@@ -24,8 +24,9 @@
 // its higher body; its body of a lower level is held (zero inverse mass and
 // inertia for this pass), two bodies of one level both move. Levels are
 // processed in increasing order, each with up to `maxSweeps` sweeps of its
-// pairs (normal rows, then friction rows) until the largest velocity change
-// is within `tolerance`. Bodies not connected to an immovable one (a
+// pairs (normal rows, a pair's as one block with the held body left out
+// as the sweeps solve them, then friction rows) until the largest velocity
+// change is within `tolerance`. Bodies not connected to an immovable one (a
 // floating cluster) have no level and their pairs are not visited: nothing
 // holds them, so there is no direction to propagate.
 //
@@ -44,15 +45,6 @@ namespace talus {
 namespace {
 
 constexpr int kNoLevel = std::numeric_limits<int>::max();
-
-// One side of a row as the pass sees it: the inverse mass and the angular
-// image of the bodies that move, zero for a held one.
-struct ShockSides {
-  bool moveA = true;
-  bool moveB = true;
-  double invMassA = 0.0;
-  double invMassB = 0.0;
-};
 
 template <typename Row>
 double HeldRowMass(const Row& row, const ShockSides& s) {
@@ -217,6 +209,42 @@ int ContactSolver::PairLevel(const PairRows& pair) const {
                   m_shockLevels[static_cast<std::size_t>(pair.bodyB)]);
 }
 
+// The normal block of the pair at m_shockOrder[order] with its held body
+// left out: K over the bodies that move, its pseudo-inverse built at the
+// pass's first use. Accepted when no impulse would pull, as in the sweeps'
+// block (contact_solver_sweep.cpp); then the rows and `v` are updated.
+bool ContactSolver::HeldBlock(std::size_t order, const PairRows& pair, const ShockSides& sides,
+                              PairVelocities& v, double& largest) {
+  const int count = pair.pointCount;
+  NormalRow* rows = &m_normals[static_cast<std::size_t>(pair.firstPoint)];
+  if (m_shockBlockBuilt[order] == 0) {
+    Eigen::Matrix4d k = Eigen::Matrix4d::Identity();
+    for (int i = 0; i < count; ++i) {
+      for (int j = 0; j < count; ++j) {
+        double kij = sides.invMassA + sides.invMassB;
+        if (sides.moveA) kij += rows[i].j.angularA.dot(rows[j].j.imageA);
+        if (sides.moveB) kij += rows[i].j.angularB.dot(rows[j].j.imageB);
+        k(i, j) = kij;
+      }
+    }
+    m_shockBlocks[order] = BlockPseudoInverse(k, count);
+    m_shockBlockBuilt[order] = 1;
+  }
+  Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
+  for (int i = 0; i < count; ++i) rhs[i] = rows[i].target - v.Along(pair.normal, rows[i].j);
+  const Eigen::Vector4d delta = m_shockBlocks[order] * rhs;
+  for (int i = 0; i < count; ++i) {
+    if (rows[i].impulse + delta[i] < 0.0) return false;
+  }
+  for (int i = 0; i < count; ++i) {
+    rows[i].impulse += delta[i];
+    const double mass = HeldRowMass(rows[i], sides);
+    if (mass > 0.0) largest = std::max(largest, std::abs(delta[i]) / mass);
+    ApplyHeld(v, delta[i], pair.normal, rows[i], sides);
+  }
+  return true;
+}
+
 // One sweep over the pairs [begin, end) of m_shockOrder (one level), each
 // pair's lower body held. Returns the largest velocity change, m/s.
 double ContactSolver::ShockSweep(std::size_t begin, std::size_t end) {
@@ -236,7 +264,11 @@ double ContactSolver::ShockSweep(std::size_t begin, std::size_t end) {
       SolverVelocity& b = m_bodies.Velocity(pair.bodyB);
       PairVelocities v = PairVelocities::Load(a, b);
       NormalRow* normals = &m_normals[static_cast<std::size_t>(pair.firstPoint)];
-      if (pass == 0) {
+      if (pass == 0 && pair.block >= 0 && HeldBlock(o, pair, sides, v, largest)) {
+        // The pair's normal rows as one block (as the sweeps solve them:
+        // row by row, the first corner takes more of the load and a
+        // column leans).
+      } else if (pass == 0) {
         for (int i = 0; i < pair.pointCount; ++i) {
           NormalRow& row = normals[i];
           const double mass = HeldRowMass(row, sides);
@@ -270,6 +302,8 @@ double ContactSolver::ShockSweep(std::size_t begin, std::size_t end) {
 
 int ContactSolver::PropagateShock(int maxSweeps, double tolerance) {
   AssignShockLevels();  // and keeps only the loaded pairs
+  m_shockBlocks.resize(m_shockOrder.size());
+  m_shockBlockBuilt.assign(m_shockOrder.size(), 0);
   int sweeps = 0;
   std::size_t begin = 0;
   while (begin < m_shockOrder.size()) {

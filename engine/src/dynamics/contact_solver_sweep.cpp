@@ -54,6 +54,10 @@ void ContactSolver::PrepareBlock(PairRows& pair) {
                 rows[i].j.angularB.dot(rows[j].j.imageB);
     }
   }
+  m_blockInverses[static_cast<std::size_t>(pair.block)] = BlockPseudoInverse(k, count);
+}
+
+Eigen::Matrix4d ContactSolver::BlockPseudoInverse(const Eigen::Matrix4d& k, int count) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(k);
   const Eigen::Vector4d values = eigen.eigenvalues();
   const double largest = values.cwiseAbs().maxCoeff();
@@ -67,7 +71,7 @@ void ContactSolver::PrepareBlock(PairRows& pair) {
     blockInverse.row(i).setZero();
     blockInverse.col(i).setZero();
   }
-  m_blockInverses[static_cast<std::size_t>(pair.block)] = blockInverse;
+  return blockInverse;
 }
 
 template <bool kTrack>
