@@ -16,6 +16,7 @@ packages=(
   libcli11-dev                      # command lines
   libgtest-dev libgmock-dev         # tests
   libbenchmark-dev                  # micro benchmarks
+  python3-scipy                     # LP solver of scripts/arch_friction_threshold.py (ctest docs.arch_friction_threshold)
   clang-format                      # style check
   chromium                          # headless browser: the report's render test (ctest label browser)
 )

@@ -48,6 +48,8 @@ TEST(ScenarioSet, EveryScenarioFileLoadsIntoItsRuns) {
       {"mass_ratio/slab_on_two_boxes.json", 4},
       {"mass_ratio/heavy_box_on_pyramid.json", 3},
       {"mass_ratio/load_removed.json", 1},
+      {"structures/arch_stands.json", 1},
+      {"structures/arch_falls.json", 1},
   };
   for (const auto& [file, count] : expected) {
     const auto runs = Load(file);
@@ -196,6 +198,31 @@ TEST(ScenarioSet, BounceSeriesSweepsRestitutionIntoBodyAndTruth) {
     const auto& truth = std::get<BounceHeightsTruth>(runs[i].scenario.truths[0].kind);
     EXPECT_EQ(truth.e, values[i]);
     EXPECT_EQ(truth.count, 4);
+  }
+}
+
+// The two arch files are one structure at two frictions: the threshold in
+// their descriptions (scripts/arch_friction_threshold.py, checked against
+// docs by ctest docs.arch_friction_threshold) holds for both only if every
+// block and its place are the same, and one friction on every body makes
+// the combined coefficient that friction whatever the combine rule.
+TEST(ScenarioSet, ArchFilesAreOneStructureAtTwoFrictions) {
+  const auto stands = Load("structures/arch_stands.json");
+  const auto falls = Load("structures/arch_falls.json");
+  ASSERT_EQ(stands.size(), 1u);
+  ASSERT_EQ(falls.size(), 1u);
+  const auto& a = stands[0].scenario.bodies;
+  const auto& b = falls[0].scenario.bodies;
+  ASSERT_EQ(a.size(), 22u);  // ground, 17 blocks, 4 load boxes
+  ASSERT_EQ(b.size(), a.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].name, b[i].name);
+    EXPECT_EQ(a[i].shape, b[i].shape) << a[i].name;
+    EXPECT_EQ(a[i].position, b[i].position) << a[i].name;
+    EXPECT_EQ(a[i].motion, b[i].motion) << a[i].name;
+    EXPECT_EQ(a[i].density, b[i].density) << a[i].name;
+    EXPECT_EQ(a[i].friction, 1.5) << a[i].name;
+    EXPECT_EQ(b[i].friction, 0.37) << a[i].name;
   }
 }
 
