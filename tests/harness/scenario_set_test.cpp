@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include "talus/harness/analytic/hull_rest_analysis.h"
 #include "talus/harness/analytic/torque_free_motion.h"
@@ -50,6 +51,13 @@ TEST(ScenarioSet, EveryScenarioFileLoadsIntoItsRuns) {
       {"mass_ratio/load_removed.json", 1},
       {"structures/arch_stands.json", 1},
       {"structures/arch_falls.json", 1},
+      {"bouncing/elastic_grid_7x7.json", 1},
+      {"rolling/sphere_incline.json", 1},
+      {"rolling/simbenchmark_rolling.json", 1},
+      {"rolling/simbenchmark_rolling_diagonal.json", 1},
+      {"stacking/far_pyramid_4.json", 1},
+      {"stacking/far_column_5.json", 1},
+      {"sliding/far_box_slide.json", 1},
   };
   for (const auto& [file, count] : expected) {
     const auto runs = Load(file);
@@ -198,6 +206,136 @@ TEST(ScenarioSet, BounceSeriesSweepsRestitutionIntoBodyAndTruth) {
     const auto& truth = std::get<BounceHeightsTruth>(runs[i].scenario.truths[0].kind);
     EXPECT_EQ(truth.e, values[i]);
     EXPECT_EQ(truth.count, 4);
+  }
+}
+
+// The rolling sphere's truths are the closed form of rolling without slip,
+// computed here from the file's slope, sphere and gravity: a = 5/7 g sin,
+// s = a t^2 / 2 down the slope from a start touching the slope, with
+// friction enough to roll (mu > 2/7 tan).
+TEST(ScenarioSet, RollingSphereTruthsAreRollingWithoutSlip) {
+  const auto runs = Load("rolling/sphere_incline.json");
+  ASSERT_EQ(runs.size(), 1u);
+  const Scenario& s = runs[0].scenario;
+  const BodySpec& slope = s.bodies[0];
+  const BodySpec& ball = s.bodies[1];
+  const double angle = Eigen::AngleAxisd(slope.orientation).angle();
+  const Vec3 normal = slope.orientation * Vec3::UnitY();
+  const Vec3 down = -(slope.orientation * Vec3::UnitX());
+  const double radius = std::get<SphereShape>(ball.shape).radius;
+  EXPECT_NEAR(ball.position.dot(normal), 0.5 + radius, 1e-12);
+  const double g = s.world.gravity.norm();
+  const double mu = Combine(s.world.frictionCombine, slope.friction, ball.friction);
+  EXPECT_GT(mu, 3.0 * 2.0 / 7.0 * std::tan(angle)) << "the file states a margin of 3";
+  const double a = 5.0 / 7.0 * g * std::sin(angle);
+  const auto& position = std::get<StateAtTruth>(s.truths[0].kind);
+  const auto& velocity = std::get<StateAtTruth>(s.truths[1].kind);
+  ASSERT_EQ(position.quantity, StateQuantity::Position);
+  ASSERT_EQ(velocity.quantity, StateQuantity::Velocity);
+  const double t = position.time;
+  EXPECT_LT((position.value - (ball.position + 0.5 * a * t * t * down)).norm(), 1e-12);
+  EXPECT_LT((velocity.value - a * velocity.time * down).norm(), 1e-12);
+}
+
+// SimBenchmark's rolling: the file's per-body coefficients under its
+// combine rule give the derivation's pairs (0.4 box-ground, 0.8 ball-box),
+// and every truth is A t (box) or 2/7 A t (ball) along the push, with A
+// from the derivation in docs/scenarios.md recomputed from the bodies.
+TEST(ScenarioSet, SimBenchmarkRollingTruthsFollowTheDerivation) {
+  const double root = 1.0 / std::sqrt(2.0);
+  for (const auto& [file, push] :
+       {std::pair{"rolling/simbenchmark_rolling.json", Vec3(1, 0, 0)},
+        std::pair{"rolling/simbenchmark_rolling_diagonal.json", Vec3(root, 0, root)}}) {
+    const auto runs = Load(file);
+    ASSERT_EQ(runs.size(), 1u) << file;
+    const Scenario& s = runs[0].scenario;
+    const BodySpec& ground = s.bodies[0];
+    const BodySpec& box = s.bodies[1];
+    ASSERT_EQ(box.name, "box");
+    ASSERT_EQ(s.bodies.size(), 27u) << file;
+    const double groundMu = Combine(s.world.frictionCombine, ground.friction, box.friction);
+    EXPECT_NEAR(groundMu, 0.4, 1e-12) << file;
+    double ballMass = 0.0;
+    for (std::size_t b = 2; b < s.bodies.size(); ++b) {
+      EXPECT_NEAR(Combine(s.world.frictionCombine, box.friction, s.bodies[b].friction), 0.8, 1e-12) << file;
+      ballMass += s.bodies[b].mass;
+      // Resting on the box's top face, never touching each other.
+      EXPECT_NEAR(s.bodies[b].position.y(), 1.0 + std::get<SphereShape>(s.bodies[b].shape).radius, 1e-12);
+    }
+    ASSERT_EQ(s.loads.size(), 1u);
+    EXPECT_LT((s.loads[0].force - 150.0 * push).norm(), 1e-9) << file;
+    const double g = s.world.gravity.norm();
+    const double A = (150.0 - groundMu * (box.mass + ballMass) * g) / (box.mass + 2.0 / 7.0 * ballMass);
+    EXPECT_NEAR(A, 0.7385, 5e-5);  // the benchmark's figure
+    for (const Truth& truth : s.truths) {
+      const auto& at = std::get<StateAtTruth>(truth.kind);
+      ASSERT_EQ(at.quantity, StateQuantity::Velocity);
+      const double speed = (truth.body == 1 ? A : 2.0 / 7.0 * A) * at.time;
+      EXPECT_LT((at.value - speed * push).norm(), 1e-12) << file << " " << s.bodies[truth.body].name;
+    }
+  }
+}
+
+// The elastic grid: 49 balls that bounce with e = 1 and never touch each
+// other, so the energy is the only thing judged.
+TEST(ScenarioSet, ElasticGridBallsAreElasticFrictionlessAndApart) {
+  const auto runs = Load("bouncing/elastic_grid_7x7.json");
+  ASSERT_EQ(runs.size(), 1u);
+  const Scenario& s = runs[0].scenario;
+  ASSERT_EQ(s.bodies.size(), 50u);
+  for (std::size_t b = 1; b < s.bodies.size(); ++b) {
+    EXPECT_EQ(Combine(s.world.restitutionCombine, s.bodies[0].restitution, s.bodies[b].restitution), 1.0);
+    EXPECT_EQ(Combine(s.world.frictionCombine, s.bodies[0].friction, s.bodies[b].friction), 0.0);
+    for (std::size_t c = b + 1; c < s.bodies.size(); ++c) {
+      EXPECT_GT((s.bodies[b].position - s.bodies[c].position).norm(), 1.5);
+    }
+  }
+  // No rise anywhere, and the centre ball back at H at each apex: the
+  // energy stays n^2 m g H either way.
+  ASSERT_EQ(s.truths.size(), 2u);
+  EXPECT_TRUE(std::holds_alternative<EnergyNotIncreasingTruth>(s.truths[0].kind));
+  for (std::size_t t = 1; t < s.truths.size(); ++t) {
+    const auto& apexes = std::get<BounceHeightsTruth>(s.truths[t].kind);
+    const BodySpec& ball = s.bodies[s.truths[t].body];
+    EXPECT_EQ(apexes.e, 1.0);
+    EXPECT_NEAR(ball.position.y() - std::get<SphereShape>(ball.shape).radius, apexes.h, 1e-12);
+  }
+}
+
+// Far from the origin: each file is its near-origin counterpart moved by
+// (1e5, 0, -8e4) m, with the same truths and tolerances.
+TEST(ScenarioSet, FarScenesAreTheNearOnesMoved) {
+  const Vec3 offset(1e5, 0, -8e4);
+  for (const auto& [far, near] : {std::pair{"stacking/far_pyramid_4.json", "stacking/box_pyramid_4.json"},
+                                  std::pair{"stacking/far_column_5.json", "stacking/box_column_5.json"},
+                                  std::pair{"sliding/far_box_slide.json", "sliding/box_slide.json"}}) {
+    const auto farRuns = Load(far);
+    const auto nearRuns = Load(near);
+    ASSERT_EQ(farRuns.size(), 1u) << far;
+    ASSERT_FALSE(nearRuns.empty()) << near;
+    // box_slide's run with the far file's friction and speed.
+    const harness::Run* match = nullptr;
+    for (const harness::Run& run : nearRuns) {
+      if (run.scenario.bodies[1].friction == farRuns[0].scenario.bodies[1].friction &&
+          run.scenario.bodies[1].linearVelocity == farRuns[0].scenario.bodies[1].linearVelocity) {
+        match = &run;
+      }
+    }
+    ASSERT_NE(match, nullptr) << far;
+    const Scenario& f = farRuns[0].scenario;
+    const Scenario& n = match->scenario;
+    ASSERT_EQ(f.bodies.size(), n.bodies.size()) << far;
+    for (std::size_t b = 0; b < f.bodies.size(); ++b) {
+      EXPECT_EQ(f.bodies[b].position, n.bodies[b].position + offset) << far << " " << f.bodies[b].name;
+    }
+    EXPECT_EQ(farRuns[0].steps, match->steps) << far;
+    EXPECT_EQ(farRuns[0].timeStep, match->timeStep) << far;
+    ASSERT_EQ(f.truths.size(), n.truths.size()) << far;
+    for (std::size_t t = 0; t < f.truths.size(); ++t) {
+      EXPECT_TRUE(f.truths[t].kind == n.truths[t].kind) << far;
+      EXPECT_EQ(f.truths[t].tolerance.absolute, n.truths[t].tolerance.absolute) << far;
+      EXPECT_EQ(f.truths[t].tolerance.relative, n.truths[t].tolerance.relative) << far;
+    }
   }
 }
 
