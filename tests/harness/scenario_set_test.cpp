@@ -58,6 +58,9 @@ TEST(ScenarioSet, EveryScenarioFileLoadsIntoItsRuns) {
       {"stacking/far_pyramid_4.json", 1},
       {"stacking/far_column_5.json", 1},
       {"sliding/far_box_slide.json", 1},
+      {"structures/card_house.json", 1},
+      {"structures/dominoes.json", 1},
+      {"structures/overlap_recovery.json", 1},
   };
   for (const auto& [file, count] : expected) {
     const auto runs = Load(file);
@@ -67,6 +70,29 @@ TEST(ScenarioSet, EveryScenarioFileLoadsIntoItsRuns) {
       EXPECT_FALSE(run.scenario.truths.empty()) << file << " has no truth";
     }
   }
+}
+
+TEST(ScenarioSet, StructureScenesJudgeEveryBodyTheyBuild) {
+  // The card house holds every card at rest; the dominoes topple in the
+  // order they stand along x, struck at the first; the overlap pile's push-out
+  // bound covers every box.
+  const auto house = Load("structures/card_house.json");
+  ASSERT_EQ(house.size(), 1u);
+  EXPECT_EQ(std::get<AtRestTruth>(house[0].scenario.truths[0].kind).bodies.size(), 40u);
+  const auto row = Load("structures/dominoes.json");
+  ASSERT_EQ(row.size(), 1u);
+  const Scenario& dominoes = row[0].scenario;
+  const auto& topples = std::get<TopplesTruth>(dominoes.truths[0].kind);
+  ASSERT_EQ(topples.bodies.size(), 15u);
+  for (std::size_t i = 1; i < topples.bodies.size(); ++i) {
+    EXPECT_GT(dominoes.bodies[topples.bodies[i]].position.x(),
+              dominoes.bodies[topples.bodies[i - 1]].position.x());
+  }
+  ASSERT_EQ(dominoes.impulses.size(), 1u);
+  EXPECT_EQ(dominoes.impulses[0].body, topples.bodies[0]);
+  const auto pile = Load("structures/overlap_recovery.json");
+  ASSERT_EQ(pile.size(), 1u);
+  EXPECT_EQ(std::get<MaxSpeedTruth>(pile[0].scenario.truths[0].kind).bodies.size(), 10u);
 }
 
 TEST(ScenarioSet, ColumnsListOneBoxPerLayerRestingOnEachOther) {

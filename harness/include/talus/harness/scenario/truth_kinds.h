@@ -25,6 +25,7 @@
 #include "talus/harness/scenario/truth_kinds/incline_slide.h"
 #include "talus/harness/scenario/truth_kinds/incline_tip.h"
 #include "talus/harness/scenario/truth_kinds/max_penetration.h"
+#include "talus/harness/scenario/truth_kinds/max_speed.h"
 #include "talus/harness/scenario/truth_kinds/momentum_conserved.h"
 #include "talus/harness/scenario/truth_kinds/moves.h"
 #include "talus/harness/scenario/truth_kinds/projectile.h"
@@ -33,17 +34,19 @@
 #include "talus/harness/scenario/truth_kinds/sliding_stop.h"
 #include "talus/harness/scenario/truth_kinds/stack_rest.h"
 #include "talus/harness/scenario/truth_kinds/state_at.h"
+#include "talus/harness/scenario/truth_kinds/topples.h"
 #include "talus/harness/scenario/truth_kinds/torque_free.h"
 
 namespace talus::harness {
 
 /// Every truth kind, in the schema's order.
-using TruthKind = std::variant<FreeFallTruth, SlidingStopTruth, RestHeightTruth, BounceHeightsTruth,
-                               ConvergedReferenceTruth, StackRestTruth, HullRestTruth, InclineSlideTruth,
-                               InclineTipTruth, TorqueFreeTruth, FlipPeriodTruth, ProjectileTruth,
-                               EnergyDriftTruth, AngularMomentumDriftTruth, RotationalEnergyDriftTruth,
-                               BoxLandingTruth, AtRestTruth, MovesTruth, StateAtTruth,
-                               EnergyNotIncreasingTruth, MomentumConservedTruth, MaxPenetrationTruth>;
+using TruthKind =
+    std::variant<FreeFallTruth, SlidingStopTruth, RestHeightTruth, BounceHeightsTruth,
+                 ConvergedReferenceTruth, StackRestTruth, HullRestTruth, InclineSlideTruth, InclineTipTruth,
+                 TorqueFreeTruth, FlipPeriodTruth, ProjectileTruth, EnergyDriftTruth,
+                 AngularMomentumDriftTruth, RotationalEnergyDriftTruth, BoxLandingTruth, AtRestTruth,
+                 MovesTruth, StateAtTruth, EnergyNotIncreasingTruth, MomentumConservedTruth,
+                 MaxPenetrationTruth, MaxSpeedTruth, TopplesTruth>;
 
 /// Calls fn(std::type_identity<Kind>{}) for every kind of the table, in order.
 template <class Fn>
