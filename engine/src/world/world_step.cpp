@@ -31,6 +31,7 @@
 #include "talus/world.h"
 #include "world/world_collide.h"
 #include "world/world_data.h"
+#include "world/world_validate.h"
 
 namespace talus {
 namespace {
@@ -240,6 +241,10 @@ Result<StepStatistics> World::Step(double dt) {
   }
 
   for (const double seconds : stats.seconds.byStage) stats.seconds.total += seconds;
+#if defined(TALUS_VALIDATE)
+  // The validation pass (world/world_validate.h), outside the timed stages.
+  AbortIfInvalid(CheckStep(d, stats));
+#endif
   return stats;
 }
 
