@@ -58,19 +58,15 @@ void BM_PyramidStep(benchmark::State& state) {
   StepStatistics last;
   for (auto _ : state) {
     last = world.Step(kH).Value();
-    sum.updateBroadPhase += last.seconds.updateBroadPhase;
-    sum.findContacts += last.seconds.findContacts;
-    sum.prepareContacts += last.seconds.prepareContacts;
-    sum.solveVelocities += last.seconds.solveVelocities;
-    sum.scatterAndStoreImpulses += last.seconds.scatterAndStoreImpulses;
+    for (const StageInfo& stage : kStages) sum[stage.stage] += last.seconds[stage.stage];
     sum.total += last.seconds.total;
   }
   const double perStepMs = 1e3 / static_cast<double>(state.iterations());
-  state.counters["broad_phase_ms"] = sum.updateBroadPhase * perStepMs;
-  state.counters["find_contacts_ms"] = sum.findContacts * perStepMs;
-  state.counters["prepare_ms"] = sum.prepareContacts * perStepMs;
-  state.counters["velocities_ms"] = sum.solveVelocities * perStepMs;
-  state.counters["scatter_store_ms"] = sum.scatterAndStoreImpulses * perStepMs;
+  state.counters["broad_phase_ms"] = sum[Stage::UpdateBroadPhase] * perStepMs;
+  state.counters["find_contacts_ms"] = sum[Stage::FindContacts] * perStepMs;
+  state.counters["prepare_ms"] = sum[Stage::PrepareContacts] * perStepMs;
+  state.counters["velocities_ms"] = sum[Stage::SolveVelocities] * perStepMs;
+  state.counters["scatter_store_ms"] = sum[Stage::ScatterAndStoreImpulses] * perStepMs;
   state.counters["total_ms"] = sum.total * perStepMs;
   state.counters["points"] = last.contactPoints;
   state.counters["colours"] = last.solverColours;

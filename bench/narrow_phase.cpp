@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "collision/narrow_phase_scratch.h"
 #include "collision/sat.h"
 #include "talus/hull_builder.h"
 
@@ -43,9 +44,10 @@ void BM_Sat(benchmark::State& state) {
   const bool cached = state.range(2) == 2;
   SatCache cache;
   NarrowPhaseStats stats;
+  NarrowPhaseScratch scratch;  // as the step's: one per thread, kept across queries
   bool separated = false;
   for (auto _ : state) {
-    const SatResult result = RunSat(pa, pb, mode, 0.0, cached ? &cache : nullptr, &stats);
+    const SatResult result = RunSat(pa, pb, mode, 0.0, cached ? &cache : nullptr, &stats, &scratch);
     separated = result.separated;
     benchmark::DoNotOptimize(result);
   }

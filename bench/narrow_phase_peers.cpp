@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "collision/collide.h"
+#include "collision/narrow_phase_scratch.h"
 #include "talus/hull_builder.h"
 #include "talus/pair_query.h"
 #include "talus/reference/bullet_narrow_phase.h"
@@ -107,6 +108,7 @@ void BM_NarrowPhasePeers(benchmark::State& state) {
       .useSatCache = method == Method::PrunedCached};
   SatCache cache;
   ContactManifold manifold{};
+  NarrowPhaseScratch scratch;  // as the step's: one per thread, kept across queries
   const reference::CcdObject ccdA{.hull = &a.GetHull(), .transform = xfA};
   const reference::CcdObject ccdB{.hull = &b.GetHull(), .transform = xfB};
   const reference::BulletHullShape bulletA(a.GetHull());
@@ -119,7 +121,7 @@ void BM_NarrowPhasePeers(benchmark::State& state) {
         intersecting = CollideShapes(a, xfA, b, xfB, settings).Value().touching;
         break;
       case Method::PrunedCached:
-        intersecting = Collide(a, xfA, b, xfB, settings, &cache, nullptr, &manifold);
+        intersecting = Collide(a, xfA, b, xfB, settings, &cache, nullptr, &manifold, &scratch);
         break;
       case Method::CcdGjk:
         intersecting = reference::CcdGjkIntersect(ccdA, ccdB).intersecting;

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <mutex>
 #include <set>
+#include <span>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -106,6 +107,42 @@ TEST(JobPool, NestedCallsRunOnTheCallingThread) {
     }
   });
   for (const std::atomic<int>& v : visits) EXPECT_EQ(v.load(), 1);
+}
+
+// ParallelForOnThreads numbers the pool's threads 0 (the caller) to
+// ThreadCount() - 1, one number per thread, so a chunk may use its thread's
+// ThreadScratch without a lock: here each chunk appends its items to its
+// thread's vector unguarded (ThreadSanitizer watches), and together the
+// vectors hold every item once. The scratch stays with the pool.
+TEST(JobPool, EachThreadGetsItsOwnScratch) {
+  for (const int threads : {1, 4}) {
+    JobPool pool(threads);
+    const std::span<std::vector<int>> scratch = pool.ThreadScratch<std::vector<int>>();
+    ASSERT_EQ(scratch.size(), static_cast<std::size_t>(threads));
+    std::mutex mutex;
+    std::vector<std::set<std::thread::id>> idsOf(static_cast<std::size_t>(threads));
+    pool.ParallelForOnThreads(2000, 3, [&](int thread, int begin, int end) {
+      ASSERT_GE(thread, 0);
+      ASSERT_LT(thread, threads);
+      {
+        const std::lock_guard lock(mutex);
+        idsOf[static_cast<std::size_t>(thread)].insert(std::this_thread::get_id());
+      }
+      for (int i = begin; i < end; ++i) scratch[static_cast<std::size_t>(thread)].push_back(i);
+    });
+    std::vector<int> all;
+    for (std::size_t t = 0; t < scratch.size(); ++t) {
+      EXPECT_LE(idsOf[t].size(), 1u) << "thread number " << t << " ran on several threads";
+      all.insert(all.end(), scratch[t].begin(), scratch[t].end());
+    }
+    EXPECT_EQ(idsOf[0].count(std::this_thread::get_id()), idsOf[0].size()) << "0 is the calling thread";
+    std::sort(all.begin(), all.end());
+    ASSERT_EQ(all.size(), 2000u);
+    for (int i = 0; i < 2000; ++i) EXPECT_EQ(all[static_cast<std::size_t>(i)], i);
+    const std::span<std::vector<int>> again = pool.ThreadScratch<std::vector<int>>();
+    EXPECT_EQ(again.data(), scratch.data());
+    EXPECT_EQ(pool.ThreadScratch<double>().size(), static_cast<std::size_t>(threads));
+  }
 }
 
 // Thousands of small jobs back to back: the hand-off between jobs (late

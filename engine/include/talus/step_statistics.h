@@ -4,28 +4,26 @@
 // and vary run to run; every count is deterministic.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include "talus/broad_phase.h"
 #include "talus/narrow_phase.h"
+#include "talus/step_stage.h"
 
 namespace talus {
 
-/// Wall-clock seconds spent in each stage of one step, one field per stage
-/// of World::Step (world_step.cpp), named as the stage function is; the
-/// stages partition the step, so `total` is their sum. All 0 unless
+/// Wall-clock seconds spent in each stage of one step, one slot per entry
+/// of the stage table (kStages, step_stage.h), read and written by Stage;
+/// the stages partition the step, so `total` is their sum. All 0 unless
 /// WorldSettings::timeStages is on.
 struct StageTimes {
-  double updateBroadPhase = 0.0;         ///< bounding spheres in, the structure rebuilt or refitted
-  double integrateVelocities = 0.0;      ///< forces, gravity, torques
-  double findContacts = 0.0;             ///< broad-phase pairs, narrow phase, contacts gathered in pair order
-  double prepareContacts = 0.0;          ///< warm-start matching and constraint rows
-  double solveVelocities = 0.0;          ///< sequential impulses
-  double solveSplitImpulses = 0.0;       ///< split-impulse pseudo-velocities (0 unless selected)
-  double scatterAndStoreImpulses = 0.0;  ///< velocities back to the bodies, impulses into the contacts
-  double integratePositions = 0.0;       ///< positions and orientations
-  double sleep = 0.0;                    ///< islands and sleep timers
-  double total = 0.0;                    ///< the whole step
+  std::array<double, kStageCount> byStage = {};  ///< seconds of each stage, in kStages order
+  double total = 0.0;                            ///< the whole step
+
+  double& operator[](Stage stage) { return byStage[static_cast<std::size_t>(stage)]; }
+  double operator[](Stage stage) const { return byStage[static_cast<std::size_t>(stage)]; }
 };
 
 /// Every count is a std::int64_t, here and in BroadPhaseStats and

@@ -27,6 +27,7 @@
 #include "talus/pair_query.h"
 #include "talus/result.h"
 #include "talus/shape.h"
+#include "talus/step_stage.h"
 #include "talus/step_statistics.h"
 #include "talus/transform.h"
 #include "talus/world.h"

@@ -368,8 +368,11 @@ struct WorldSettings {
   double timeToSleep = 0.5;
   /// Threads that run a step, the calling thread included, [1,
   /// kMaxThreads]. Default 1: no thread is started and the step runs on the
-  /// caller alone. With more, the broad phase's proxies, the narrow phase
-  /// (per pair) and the integration (per body) are spread over the threads.
+  /// caller alone. With more, the stages the stage table marks
+  /// `workerThreads` (kStages, talus/step_stage.h) spread their work over
+  /// the threads: the broad phase's proxies, the narrow phase and its
+  /// gather, the rows, the coloured solver's and the soft step's sweeps and
+  /// the integration; the others run on the calling thread.
   /// The result is bit-identical for every thread count: work is cut into
   /// chunks that depend on the item count only, each item writes its own
   /// slot, and results are gathered in item order (docs/threading.md).

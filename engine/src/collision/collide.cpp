@@ -15,6 +15,7 @@ struct PairContext {
   const NarrowPhaseSettings* settings;
   SatCache* cache;
   NarrowPhaseStats* stats;
+  NarrowPhaseScratch* scratch;
 };
 
 using CollideFunction = bool (*)(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
@@ -26,15 +27,16 @@ bool Polyhedra(const Shape& a, const Transform& xfA, const Shape& b, const Trans
   const PosedHull hullB = PosedHull::Make(b.GetHull(), xfB);
   const NarrowPhaseSettings& settings = *context.settings;
   SatCache* cache = settings.useSatCache ? context.cache : nullptr;
-  const SatResult sat =
-      RunSat(hullA, hullB, settings.satMode, settings.speculativeMargin, cache, context.stats);
+  const SatResult sat = RunSat(hullA, hullB, settings.satMode, settings.speculativeMargin, cache,
+                               context.stats, context.scratch);
   if (sat.separated) {
     out->normal = sat.normal;
     out->depth = -sat.separation;
     out->pointCount = 0;
     return false;
   }
-  BuildPolyhedronManifold(hullA, hullB, sat, settings.manifoldMode, settings.speculativeMargin, out);
+  BuildPolyhedronManifold(hullA, hullB, sat, settings.manifoldMode, settings.speculativeMargin, out,
+                          context.scratch);
   return true;
 }
 
@@ -78,13 +80,13 @@ constexpr std::array<std::array<CollideFunction, kShapeTypeCount>, kShapeTypeCou
 
 bool Collide(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
              const NarrowPhaseSettings& settings, SatCache* cache, NarrowPhaseStats* stats,
-             ContactManifold* manifold) {
+             ContactManifold* manifold, NarrowPhaseScratch* scratch) {
   assert(manifold != nullptr);
   assert(settings.speculativeMargin >= 0.0);
   const CollideFunction routine =
       kDispatch[static_cast<std::size_t>(a.Type())][static_cast<std::size_t>(b.Type())];
-  const bool touching =
-      routine(a, xfA, b, xfB, {.settings = &settings, .cache = cache, .stats = stats}, manifold);
+  const bool touching = routine(
+      a, xfA, b, xfB, {.settings = &settings, .cache = cache, .stats = stats, .scratch = scratch}, manifold);
   if (stats) {
     ++stats->pairsTested;
     if (touching) {

@@ -22,9 +22,11 @@ namespace talus {
 /// (used for polyhedron pairs when settings.useSatCache); `stats` (may be
 /// null) is added to. When it returns false, `manifold` holds the
 /// separating axis (normal, from B towards A) and minus the gap along it
-/// (depth < -margin), with no points.
+/// (depth < -margin), with no points. `scratch` (may be null) is the calling
+/// thread's working memory (collision/narrow_phase_scratch.h: the step
+/// passes the scratch of the pool thread that runs the pair).
 bool Collide(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
              const NarrowPhaseSettings& settings, SatCache* cache, NarrowPhaseStats* stats,
-             ContactManifold* manifold);
+             ContactManifold* manifold, NarrowPhaseScratch* scratch = nullptr);
 
 }  // namespace talus

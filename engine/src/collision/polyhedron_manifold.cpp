@@ -6,9 +6,11 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "collision/manifold_reduction.h"
+#include "collision/narrow_phase_scratch.h"
 
 namespace talus {
 namespace {
@@ -161,18 +163,6 @@ void BuildEdgeContact(const PosedHull& a, const PosedHull& b, const SatResult& s
       .featureId = MakeFeatureId(PackFeature(FeatureType::Edge, ea), PackFeature(FeatureType::Edge, eb))};
 }
 
-// A polygon vertex during clipping: its position, the features that made
-// it, and the line the polygon follows to the next vertex (an incident edge,
-// or a reference side plane already clipped against).
-struct ClipVertex {
-  Vec3 position;
-  std::uint32_t referenceFeature;
-  std::uint32_t incidentFeature;
-  std::uint32_t segmentIncident;    // incident feature of the segment to the next vertex
-  bool segmentOnReference = false;  // the segment lies on a reference side plane
-  int segmentReferenceEdge = -1;    // the reference half-edge of that side plane
-};
-
 // The incident face: of the faces around the incident polyhedron's deepest
 // vertex `deepest` (its support along -referenceNormal, the vertex whose
 // distance behind the reference plane is the SAT's depth), the one most
@@ -254,7 +244,7 @@ void ClipAgainst(const PosedHull& ref, const std::vector<ClipVertex>& in, const 
 // depth; the deepest point carries it unless the SAT's deepest vertex is
 // not in contact (see below).
 int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double depth, double margin,
-                       ContactPoint* points) {
+                       ManifoldScratch& scratch, ContactPoint* points) {
   const PosedHull& ref = *contact.reference;
   const PosedHull& inc = *contact.incident;
   const Vec3& n = contact.plane.normal;
@@ -262,8 +252,8 @@ int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double de
   const int deepest = inc.Support(-n, 0);
   const int incidentFace = IncidentFace(inc, n, deepest);
 
-  thread_local std::vector<ClipVertex> polygon;
-  thread_local std::vector<ClipVertex> clipped;
+  std::vector<ClipVertex>& polygon = scratch.polygon;
+  std::vector<ClipVertex>& clipped = scratch.clipped;
   polygon.clear();
   const int firstInc = inc.hull->Faces()[static_cast<std::size_t>(incidentFace)].edge;
   int h = firstInc;
@@ -294,7 +284,7 @@ int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double de
 
   const PosedHull& a = contact.referenceIsA ? ref : inc;
   const PosedHull& b = contact.referenceIsA ? inc : ref;
-  thread_local std::vector<ContactPoint> kept;
+  std::vector<ContactPoint>& kept = scratch.kept;
   kept.clear();
   double deepestKept = -std::numeric_limits<double>::infinity();
   for (const ClipVertex& c : polygon) {
@@ -354,14 +344,15 @@ int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double de
   return ReduceContactPoints(kept, n, kClippedMaxPoints, points);
 }
 
-int BuildWriteUpPoints(const FaceContact& contact, const Vec3& normal, double depth, ContactPoint* points) {
+int BuildWriteUpPoints(const FaceContact& contact, const Vec3& normal, double depth, ManifoldScratch& scratch,
+                       ContactPoint* points) {
   const PosedHull& ref = *contact.reference;
   const PosedHull& inc = *contact.incident;
   const PosedHull& a = contact.referenceIsA ? ref : inc;
   const PosedHull& b = contact.referenceIsA ? inc : ref;
   const Vec3& n = contact.plane.normal;
   const double tolerance = WriteUpTolerance(*ref.hull, *inc.hull);
-  thread_local std::vector<ContactPoint> found;
+  std::vector<ContactPoint>& found = scratch.found;
   found.clear();
   // Each point is moved onto the plane midway between the surfaces, then
   // along the normal into both shapes where it left one (InsideBoth).
@@ -453,7 +444,10 @@ void ClosestPointsOfSegments(const Vec3& p0, const Vec3& p1, const Vec3& q0, con
 }
 
 void BuildPolyhedronManifold(const PosedHull& a, const PosedHull& b, const SatResult& sat, ManifoldMode mode,
-                             double margin, ContactManifold* out) {
+                             double margin, ContactManifold* out, NarrowPhaseScratch* scratch) {
+  std::optional<NarrowPhaseScratch> own;
+  if (!scratch) scratch = &own.emplace();
+  ManifoldScratch& clip = scratch->manifold;
   out->normal = sat.normal;
   out->depth = -sat.separation;
   out->pointCount = 0;
@@ -463,12 +457,12 @@ void BuildPolyhedronManifold(const PosedHull& a, const PosedHull& b, const SatRe
   }
   const FaceContact contact = MakeFaceContact(a, b, sat);
   if (mode == ManifoldMode::WriteUp) {
-    out->pointCount = BuildWriteUpPoints(contact, out->normal, out->depth, out->points.data());
+    out->pointCount = BuildWriteUpPoints(contact, out->normal, out->depth, clip, out->points.data());
     if (out->pointCount > 0) return;
     // No vertex qualifies (e.g. two bars crossed face to face): the
     // write-up's rule finds nothing, so use the clipped points instead.
   }
-  out->pointCount = BuildClippedPoints(contact, out->normal, out->depth, margin, out->points.data());
+  out->pointCount = BuildClippedPoints(contact, out->normal, out->depth, margin, clip, out->points.data());
 }
 
 }  // namespace talus

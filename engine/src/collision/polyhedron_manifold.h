@@ -55,9 +55,10 @@ inline constexpr int kClippedMaxPoints = 4;
 
 /// Fills `out` for polyhedra `a` and `b` whose SAT answer `sat` is not
 /// separated. `margin` (metres, >= 0): clipped points up to this far apart
-/// are kept (negative depth). Always yields at least one point.
+/// are kept (negative depth). Always yields at least one point. `scratch`
+/// (may be null) is the calling thread's working memory, as for RunSat.
 void BuildPolyhedronManifold(const PosedHull& a, const PosedHull& b, const SatResult& sat, ManifoldMode mode,
-                             double margin, ContactManifold* out);
+                             double margin, ContactManifold* out, NarrowPhaseScratch* scratch = nullptr);
 
 /// The parameters t for which p + t n (world, n unit) lies inside `hull`:
 /// [*lo, *hi], empty when *lo > *hi, infinite ends when unbounded.

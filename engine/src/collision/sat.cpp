@@ -25,8 +25,11 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <span>
 #include <vector>
+
+#include "collision/narrow_phase_scratch.h"
 
 namespace talus {
 namespace {
@@ -42,77 +45,6 @@ struct EdgeQuery {
   int edgeA = -1;
   int edgeB = -1;
   double separation = kNegativeInfinity;
-};
-
-// Both hulls of one query in A's body frame. A's vertices, planes and face
-// normals are read as stored; B's are moved into A's frame once, with one
-// relative transform, instead of rotating each vertex or normal every time
-// a face or edge query visits it. Filled per query into per-thread scratch
-// (a query allocates only when a hull outgrows it; contents never leak into
-// results). Only the axis search reads it: the reported axis is measured
-// again in world space by EvaluateSatAxis.
-struct SatFrame {
-  // Per edge of either hull: the two faces' normals (the endpoints of the
-  // edge's arc on the Gauss map) and their cross product (the arc's plane).
-  // For B the normals are read through the face indices from planesB.
-  struct Arc {
-    Vec3 cross;      // normalRight x normalLeft, A's frame
-    int left = -1;   // face of half-edge 2e
-    int right = -1;  // face of half-edge 2e + 1
-  };
-
-  const Hull* hullA = nullptr;
-  const Hull* hullB = nullptr;
-  Mat3 rotation = Mat3::Identity();  // B's local axes in A's frame
-  Vec3 translation = Vec3::Zero();   // B's origin in A's frame
-  std::vector<Vec3> verticesB;       // B's vertices, A's frame
-  std::vector<Plane> planesB;        // B's face planes, A's frame
-  std::vector<Arc> arcsA;
-  std::vector<Arc> arcsB;
-  std::vector<double> sideB;  // per face of B: normal . (the current A arc's plane)
-
-  // The stages fill what they need, so a pair separated by an early face
-  // pays for no more than B's vertices.
-  void FillVertices(const PosedHull& a, const PosedHull& b) {
-    hullA = a.hull;
-    hullB = b.hull;
-    // B's local frame seen from A's: x_A = rotation * x_B + translation.
-    rotation = a.rotation.transpose() * b.rotation;
-    translation = a.rotation.transpose() * (b.position - a.position);
-    const auto localB = hullB->Vertices();
-    verticesB.resize(localB.size());
-    for (std::size_t v = 0; v < localB.size(); ++v) verticesB[v] = rotation * localB[v] + translation;
-  }
-
-  void FillPlanes() {
-    const auto facesB = hullB->Faces();
-    planesB.resize(facesB.size());
-    for (std::size_t f = 0; f < facesB.size(); ++f) {
-      const Vec3 n = rotation * facesB[f].plane.normal;
-      planesB[f] = {.normal = n, .offset = facesB[f].plane.offset + n.dot(translation)};
-    }
-  }
-
-  void FillArcs() {
-    const auto facesA = hullA->Faces();
-    ArcsOf(
-        *hullA, [&](int f) { return facesA[static_cast<std::size_t>(f)].plane.normal; }, &arcsA);
-    ArcsOf(
-        *hullB, [&](int f) { return planesB[static_cast<std::size_t>(f)].normal; }, &arcsB);
-    sideB.resize(planesB.size());
-  }
-
-  template <typename NormalOf>
-  static void ArcsOf(const Hull& hull, NormalOf normalOf, std::vector<Arc>* arcs) {
-    const auto halfEdges = hull.HalfEdges();
-    arcs->resize(static_cast<std::size_t>(hull.EdgeCount()));
-    for (std::size_t e = 0; e < arcs->size(); ++e) {
-      Arc& arc = (*arcs)[e];
-      arc.left = halfEdges[2 * e].face;
-      arc.right = halfEdges[2 * e + 1].face;
-      arc.cross = normalOf(arc.right).cross(normalOf(arc.left));
-    }
-  }
 };
 
 // max over `vertices` of n . v, by scanning them all: exact on any hull,
@@ -469,7 +401,7 @@ double EvaluateSatAxis(const PosedHull& a, const PosedHull& b, const SatAxis& ax
 }
 
 SatResult RunSat(const PosedHull& a, const PosedHull& b, SatMode mode, double margin, SatCache* cache,
-                 NarrowPhaseStats* stats) {
+                 NarrowPhaseStats* stats, NarrowPhaseScratch* scratch) {
   if (stats) ++stats->satTests;
   SatResult result;
   const bool cacheValid = cache && cache->hullA == a.hull && cache->hullB == b.hull;
@@ -497,8 +429,10 @@ SatResult RunSat(const PosedHull& a, const PosedHull& b, SatMode mode, double ma
     return result;
   };
 
-  // The search runs in A's frame (see SatFrame).
-  thread_local SatFrame frame;
+  // The search runs in A's frame (see SatFrame), in the caller's scratch.
+  std::optional<NarrowPhaseScratch> own;
+  if (!scratch) scratch = &own.emplace();
+  SatFrame& frame = scratch->sat;
   frame.FillVertices(a, b);
   const auto facesA = a.hull->Faces();
   const FaceQuery faceA = QueryFaces(

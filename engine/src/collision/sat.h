@@ -26,6 +26,8 @@
 
 namespace talus {
 
+struct NarrowPhaseScratch;  // collision/narrow_phase_scratch.h
+
 /// Which candidate an axis is.
 enum class SatAxisType : std::uint8_t {
   None,      ///< no axis (empty cache)
@@ -96,9 +98,11 @@ inline constexpr double kParallelEdgeSine = 1e-6;
 
 /// Runs the SAT on `a` and `b`. A gap up to `margin` (metres, >= 0) still
 /// counts as touching. `cache` (may be null) is read first and updated;
-/// `stats` (may be null) is added to.
+/// `stats` (may be null) is added to. `scratch` (may be null) is the calling
+/// thread's working memory (collision/narrow_phase_scratch.h); without it
+/// the query makes its own, which costs allocations.
 SatResult RunSat(const PosedHull& a, const PosedHull& b, SatMode mode, double margin, SatCache* cache,
-                 NarrowPhaseStats* stats);
+                 NarrowPhaseStats* stats, NarrowPhaseScratch* scratch = nullptr);
 
 /// The separation of one candidate axis, as RunSat measures it; fills
 /// `normal` (from B towards A). Returns -infinity for a degenerate

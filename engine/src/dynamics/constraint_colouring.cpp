@@ -3,6 +3,11 @@
 
 #include <bit>
 #include <cassert>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace talus {
 
@@ -30,6 +35,44 @@ void ColourPairs(std::span<const ColourInput> pairs, int bodyCount, std::vector<
     if (pair.movesA) usedScratch[static_cast<std::size_t>(pair.bodyA)] |= bit;
     if (pair.movesB) usedScratch[static_cast<std::size_t>(pair.bodyB)] |= bit;
   }
+#if defined(TALUS_VALIDATE)
+  if (const std::string failure = CheckColouring(pairs, bodyCount, colours); !failure.empty()) {
+    std::fprintf(stderr, "talus validation failed: %s\n", failure.c_str());
+    std::abort();
+  }
+#endif
+}
+
+std::string CheckColouring(std::span<const ColourInput> pairs, int bodyCount, std::span<const int> colours) {
+  if (colours.size() != pairs.size()) {
+    return std::string("colours: ") + std::to_string(colours.size()) + " colours for " +
+           std::to_string(pairs.size()) + " pairs";
+  }
+  // owner[body * kColourCount + colour]: the pair of that colour that moves the body, or -1.
+  std::vector<int> owner(static_cast<std::size_t>(bodyCount) * kColourCount, -1);
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const int colour = colours[i];
+    if (colour < 0 || colour > kOverflowColour) {
+      return std::string("colours: pair ") + std::to_string(i) + " has colour " + std::to_string(colour) +
+             " (0 to " + std::to_string(kOverflowColour) + ")";
+    }
+    if (colour == kOverflowColour) continue;
+    for (const auto& [body, moves] :
+         {std::pair{pairs[i].bodyA, pairs[i].movesA}, std::pair{pairs[i].bodyB, pairs[i].movesB}}) {
+      if (!moves) continue;
+      if (body < 0 || body >= bodyCount) {
+        return std::string("colours: pair ") + std::to_string(i) + " names body " + std::to_string(body) +
+               std::string(" outside [0, ") + std::to_string(bodyCount) + ")";
+      }
+      int& first = owner[static_cast<std::size_t>(body) * kColourCount + static_cast<std::size_t>(colour)];
+      if (first >= 0) {
+        return std::string("colours: pairs ") + std::to_string(first) + " and " + std::to_string(i) +
+               " of colour " + std::to_string(colour) + " both move body " + std::to_string(body);
+      }
+      first = static_cast<int>(i);
+    }
+  }
+  return {};
 }
 
 }  // namespace talus

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace talus {
@@ -42,5 +43,13 @@ struct ColourInput {
 /// that nothing allocates in steady state.
 void ColourPairs(std::span<const ColourInput> pairs, int bodyCount, std::vector<int>& colours,
                  std::vector<std::uint32_t>& usedScratch);
+
+/// The colouring's invariant, for the validation pass (world/world_validate.h):
+/// one colour per pair, each in [0, kOverflowColour], and no two pairs of
+/// one colour (the overflow aside) share a body that contacts move. Empty
+/// when it holds, else a message naming the colour, the body and the two
+/// pairs. Built with TALUS_VALIDATE, ColourPairs checks its own result and
+/// aborts on a failure.
+std::string CheckColouring(std::span<const ColourInput> pairs, int bodyCount, std::span<const int> colours);
 
 }  // namespace talus

@@ -71,7 +71,7 @@ JobPool::JobPool(int threads) {
   const int workers = threads < 1 ? 0 : threads - 1;
   m_workers.reserve(static_cast<std::size_t>(workers));
   try {
-    for (int i = 0; i < workers; ++i) m_workers.emplace_back([this] { WorkerLoop(); });
+    for (int i = 0; i < workers; ++i) m_workers.emplace_back([this, i] { WorkerLoop(i + 1); });
   } catch (...) {
     // Stop what was started, then report the failure to the caller.
     {
@@ -96,11 +96,24 @@ JobPool::~JobPool() {
 
 void JobPool::ParallelForOnWorkers(int count, int grain, const std::function<void(int, int)>& fn) noexcept {
   const JobPhase phase{.count = count, .grain = grain};
-  RunPhases(std::span<const JobPhase>(&phase, 1), [&fn](int, int begin, int end) { fn(begin, end); });
+  RunPhasesOnThreads(std::span<const JobPhase>(&phase, 1),
+                     [&fn](int, int, int begin, int end) { fn(begin, end); });
+}
+
+void JobPool::ParallelForOnWorkersIndexed(int count, int grain,
+                                          const std::function<void(int, int, int)>& fn) noexcept {
+  const JobPhase phase{.count = count, .grain = grain};
+  RunPhasesOnThreads(std::span<const JobPhase>(&phase, 1),
+                     [&fn](int thread, int, int begin, int end) { fn(thread, begin, end); });
 }
 
 void JobPool::RunPhases(std::span<const JobPhase> phases,
                         const std::function<void(int, int, int)>& fn) noexcept {
+  RunPhasesOnThreads(phases, [&fn](int, int phase, int begin, int end) { fn(phase, begin, end); });
+}
+
+void JobPool::RunPhasesOnThreads(std::span<const JobPhase> phases,
+                                 const std::function<void(int, int, int, int)>& fn) noexcept {
   int chunks = 0;
   for (const JobPhase& phase : phases) chunks += ChunkCount(phase.count, phase.grain);
   if (chunks == 0) return;
@@ -111,7 +124,7 @@ void JobPool::RunPhases(std::span<const JobPhase> phases,
     // chunks, in order, on this thread.
     if (m_workers.empty() || chunks == 1 || m_running) {
       lock.unlock();
-      RunPhasesWith(nullptr, phases, fn);
+      RunPhasesWith(nullptr, phases, [&fn](int phase, int begin, int end) { fn(0, phase, begin, end); });
       return;
     }
     m_done.wait(lock, [this] { return m_busyWorkers == 0; });
@@ -131,19 +144,19 @@ void JobPool::RunPhases(std::span<const JobPhase> phases,
     m_generation.fetch_add(1);
   }
   m_wake.notify_all();
-  RunChunks(job);
+  RunChunks(job, 0);
   for (int poll = 0; poll < kSpinPolls && m_doneChunks.load() != chunks; ++poll) CpuRelax();
   std::unique_lock lock(m_mutex);
   m_done.wait(lock, [this, chunks] { return m_doneChunks.load() == chunks; });
   m_running = false;
 }
 
-void JobPool::RunChunk(const Job& job, int phase, int chunk) noexcept {
+void JobPool::RunChunk(const Job& job, int thread, int phase, int chunk) noexcept {
   const JobPhase& p = job.phases[phase];
   const int g = p.grain < 1 ? 1 : p.grain;
   const int begin = (chunk - job.phaseFirst[phase]) * g;
   const int end = p.count - begin < g ? p.count : begin + g;
-  (*job.fn)(phase, begin, end);
+  (*job.fn)(thread, phase, begin, end);
 }
 
 void JobPool::AwaitDone(int chunks) noexcept {
@@ -158,7 +171,7 @@ void JobPool::AwaitDone(int chunks) noexcept {
   for (int seen = m_doneChunks.load(); seen < chunks; seen = m_doneChunks.load()) m_doneChunks.wait(seen);
 }
 
-void JobPool::RunChunks(const Job& job) noexcept {
+void JobPool::RunChunks(const Job& job, int thread) noexcept {
   int phase = 0;
   int chunk = m_nextChunk.load();
   for (;;) {
@@ -175,7 +188,7 @@ void JobPool::RunChunks(const Job& job) noexcept {
       continue;
     }
     if (!m_nextChunk.compare_exchange_weak(chunk, chunk + 1)) continue;  // `chunk` reloaded
-    RunChunk(job, phase, chunk);
+    RunChunk(job, thread, phase, chunk);
     const int done = m_doneChunks.fetch_add(1) + 1;
     // Wake the threads sleeping in AwaitDone (a no-op without sleepers).
     if (job.phaseCount > 1) m_doneChunks.notify_all();
@@ -189,7 +202,7 @@ void JobPool::RunChunks(const Job& job) noexcept {
   }
 }
 
-void JobPool::WorkerLoop() {
+void JobPool::WorkerLoop(int thread) {
   std::uint64_t seen = 0;
   for (;;) {
     for (int poll = 0; poll < kSpinPolls && m_generation.load() == seen; ++poll) CpuRelax();
@@ -202,7 +215,7 @@ void JobPool::WorkerLoop() {
       job = m_job;
       ++m_busyWorkers;
     }
-    RunChunks(job);
+    RunChunks(job, thread);
     {
       const std::lock_guard lock(m_mutex);
       if (--m_busyWorkers == 0) m_done.notify_all();

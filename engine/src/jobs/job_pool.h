@@ -40,11 +40,15 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <span>
 #include <thread>
+#include <typeindex>
+#include <typeinfo>
 #include <vector>
 
 namespace talus {
@@ -109,6 +113,38 @@ class JobPool {
     }
   }
 
+  /// ParallelFor whose fn(thread, begin, end) also gets the index of the
+  /// pool thread running the chunk, in [0, ThreadCount()): 0 is the calling
+  /// thread, worker i is i + 1. It picks the thread's scratch
+  /// (ThreadScratch); which thread runs which chunk varies run to run, so
+  /// nothing but scratch may depend on it. Must not be called from inside a
+  /// chunk of this pool (a nested call runs on the calling thread, whose
+  /// index it cannot know).
+  template <class Fn>
+  void ParallelForOnThreads(int count, int grain, Fn&& fn) noexcept {
+    if (m_workers.empty()) {
+      ForEachChunkInOrder(count, grain, [&fn](int begin, int end) { fn(0, begin, end); });
+    } else {
+      ParallelForOnWorkersIndexed(count, grain, fn);
+    }
+  }
+
+  /// One T per pool thread, indexed as ParallelForOnThreads numbers them:
+  /// working memory a chunk may use without sharing it, owned by the pool
+  /// and kept (capacity included) as long as it lives, so steady-state
+  /// steps allocate nothing. Made on the first call for T; call it outside
+  /// the pool's chunks.
+  template <class T>
+  std::span<T> ThreadScratch() {
+    const std::size_t threads = static_cast<std::size_t>(ThreadCount());
+    for (const ScratchSlot& slot : m_scratch) {
+      if (slot.type == std::type_index(typeid(T))) return {static_cast<T*>(slot.items.get()), threads};
+    }
+    std::shared_ptr<void> items(new T[threads], [](void* p) { delete[] static_cast<T*>(p); });
+    m_scratch.push_back({std::type_index(typeid(T)), items});
+    return {static_cast<T*>(items.get()), threads};
+  }
+
   /// Runs the loops `phases` one after the other: fn(p, begin, end) once for
   /// every chunk of phase p (chunks as ParallelFor's), where every chunk of
   /// phases 0 .. p-1 has returned before any chunk of phase p starts (and
@@ -123,7 +159,7 @@ class JobPool {
   // all phases are numbered 0 .. chunks - 1 in phase order; phase p holds
   // [m_phaseFirst[p], m_phaseFirst[p + 1]).
   struct Job {
-    const std::function<void(int, int, int)>* fn = nullptr;
+    const std::function<void(int, int, int, int)>* fn = nullptr;  // (thread, phase, begin, end)
     const JobPhase* phases = nullptr;
     const int* phaseFirst = nullptr;
     int phaseCount = 0;
@@ -132,17 +168,31 @@ class JobPool {
 
   // ParallelFor with workers to share the chunks.
   void ParallelForOnWorkers(int count, int grain, const std::function<void(int begin, int end)>& fn) noexcept;
-  void WorkerLoop();
-  // Runs the chunk of phase `phase` numbered `chunk` in the whole job.
-  static void RunChunk(const Job& job, int phase, int chunk) noexcept;
-  // Claims and runs chunks of `job` until none is left, each after the
-  // earlier phases are done.
-  void RunChunks(const Job& job) noexcept;
+  void ParallelForOnWorkersIndexed(int count, int grain,
+                                   const std::function<void(int thread, int begin, int end)>& fn) noexcept;
+  // RunPhases with the running thread's index passed to fn first.
+  void RunPhasesOnThreads(std::span<const JobPhase> phases,
+                          const std::function<void(int thread, int phase, int begin, int end)>& fn) noexcept;
+  // Worker `thread` (1 .. ThreadCount() - 1).
+  void WorkerLoop(int thread);
+  // Runs the chunk of phase `phase` numbered `chunk` in the whole job, on
+  // pool thread `thread`.
+  static void RunChunk(const Job& job, int thread, int phase, int chunk) noexcept;
+  // Claims and runs chunks of `job` on pool thread `thread` until none is
+  // left, each after the earlier phases are done.
+  void RunChunks(const Job& job, int thread) noexcept;
+
+  // One ThreadScratch array: its element type and ThreadCount() items.
+  struct ScratchSlot {
+    std::type_index type;
+    std::shared_ptr<void> items;
+  };
   // Waits until at least `chunks` chunks of the current job have returned.
   void AwaitDone(int chunks) noexcept;
 
   std::vector<std::thread> m_workers;
-  std::vector<int> m_phaseFirst;  // the current job's phase starts, written under m_mutex
+  std::vector<ScratchSlot> m_scratch;  // ThreadScratch's arrays, by type
+  std::vector<int> m_phaseFirst;       // the current job's phase starts, written under m_mutex
 
   Job m_job;                                   // the current job, guarded by m_mutex
   std::atomic<int> m_nextChunk{0};             // next chunk to claim

@@ -2,9 +2,11 @@
 #include "world/world_collide.h"
 
 #include <algorithm>
+#include <span>
 
 #include "collision/collide.h"
 #include "collision/manifold_persistence.h"
+#include "collision/narrow_phase_scratch.h"
 #include "talus/transform.h"
 
 namespace talus {
@@ -113,7 +115,9 @@ double PairReach(const WorldData& d, const BodySim& simA, const BodySim& simB, s
 // run on any thread in any order. `out.oldContact` and `out.oldCache` are
 // already set. The contact is built in place in `out.contact`; a Reused
 // pair's anchors stay in last step's list (the gather copies them once).
-void CollidePair(const WorldData& d, const BroadPhasePair& pair, double h, PairOutcome& out) {
+// `scratch` is the running thread's working memory.
+void CollidePair(const WorldData& d, const BroadPhasePair& pair, double h, NarrowPhaseScratch& scratch,
+                 PairOutcome& out) {
   const auto a = static_cast<std::size_t>(pair.a);
   const auto b = static_cast<std::size_t>(pair.b);
   const BodySim& simA = d.sims[a];
@@ -166,7 +170,10 @@ void CollidePair(const WorldData& d, const BroadPhasePair& pair, double h, PairO
   if (d.settings.speculativeMotion) {
     narrow.speculativeMargin = std::max(narrow.speculativeMargin, PairReach(d, simA, simB, a, b, h));
   }
-  if (!Collide(*d.shapes[a], xfA, *d.shapes[b], xfB, narrow, &out.cache.cache, &out.stats, &manifold)) return;
+  if (!Collide(*d.shapes[a], xfA, *d.shapes[b], xfB, narrow, &out.cache.cache, &out.stats, &manifold,
+               &scratch)) {
+    return;
+  }
   // Spheres get exact single points from a closed form; only polyhedron
   // pairs remember points, or reuse them (ReuseManifold), so only they need
   // anchors.
@@ -289,12 +296,17 @@ void FindContacts(WorldData& d, double h, StepStatistics& stats) {
     outcome.oldCache = hadCache ? static_cast<std::int32_t>(oldCache) : -1;
   }
 
-  // 2. The narrow phase, each pair into its own slot, on every thread.
-  d.jobs->ParallelFor(pairCount, kNarrowPhaseGrain, [&d, h](int begin, int end) {
-    for (int p = begin; p < end; ++p) {
-      CollidePair(d, d.pairs[static_cast<std::size_t>(p)], h, d.pairOutcomes[static_cast<std::size_t>(p)]);
-    }
-  });
+  // 2. The narrow phase, each pair into its own slot, on every thread,
+  // each thread with its own scratch (owned by the pool).
+  const std::span<NarrowPhaseScratch> scratch = d.jobs->ThreadScratch<NarrowPhaseScratch>();
+  d.jobs->ParallelForOnThreads(pairCount, kNarrowPhaseGrain,
+                               [&d, h, scratch](int thread, int begin, int end) {
+                                 NarrowPhaseScratch& mine = scratch[static_cast<std::size_t>(thread)];
+                                 for (int p = begin; p < end; ++p) {
+                                   CollidePair(d, d.pairs[static_cast<std::size_t>(p)], h, mine,
+                                               d.pairOutcomes[static_cast<std::size_t>(p)]);
+                                 }
+                               });
 
   // 3. Gathered in pair order: the contacts stay sorted by pair key and
   // nothing depends on which thread ran which pair. First, serially, each

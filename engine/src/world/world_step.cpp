@@ -1,34 +1,23 @@
-// World::Step: THE step. It reads top to bottom as the pipeline of section 3
-// of the original write-up, each stage a function of its own and timed under
-// its own name in StepStatistics::seconds (StageTimes):
-//
-//   0. UpdateBroadPhase         bounding spheres in (the only stage that may
-//                               refuse, so it runs before anything changes)
-//   1. IntegrateVelocities      gravity, forces, torques
-//   2. FindContacts             sorted pairs; per pair kept, rebuilt (manifold
-//                               reuse) or collided (SAT, manifold, persistent
-//                               points); one persistent contact per touching pair
-//   3. PrepareContacts          warm-start matching, constraint rows (colours)
-//   4. SolveVelocities          warm start, sequential-impulse sweeps
-//   5. SolveSplitImpulses       split-impulse pseudo-velocities (when selected),
-//                               timed bounces' position rows
-//   6. ScatterAndStoreImpulses  solved velocities back to the bodies, each
-//                               row's impulse into its contact (next warm start)
-//   7. IntegratePositions       x += h v, q = exp(h w / 2) q (or the schemes of
-//                               WorldSettings::rotation and ::translation)
-//   8. UpdateSleep              islands at rest fall asleep
+// World::Step: THE step. It walks the stage table (kStages,
+// talus/step_stage.h: the stages, their order, what each does and whether
+// it runs on worker threads) and runs each stage's function, timing it
+// under its Stage in StepStatistics::seconds (StageTimes). The table's
+// order is the pipeline of section 3 of the original write-up; the broad
+// phase comes first because it is the only stage that may refuse.
 //
 // With WorldSettings::stepSolver = SoftStep the stages after the broad
-// phase are StepSoft's instead: contacts, soft rows, the sub-steps (each
-// integrating velocities and positions), impulses stored, sleep.
+// phase are StepSoft's instead (RunSoftStage): contacts, soft rows, the
+// sub-steps (each integrating velocities and positions) under
+// SolveVelocities, impulses stored, sleep; the soft step has no stage of
+// its own for the integration or split impulses, which do nothing there.
 //
 // Nothing in here decides physics;
 // the stages live in engine/src/dynamics and engine/src/collision.
 //
-// With WorldSettings::threads > 1 the integration runs per body, and the
-// proxies and the narrow phase (world_collide.cpp) per pair, on the world's
-// JobPool; every other stage runs on the calling thread. The results are
-// bit-identical for any thread count (docs/threading.md).
+// With WorldSettings::threads > 1 the stages the table marks
+// `workerThreads` split their work across the world's JobPool; the others
+// run on the calling thread. The results are bit-identical for any thread
+// count (docs/threading.md).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -38,9 +27,11 @@
 #include <string>
 
 #include "dynamics/integrator.h"
+#include "talus/step_stage.h"
 #include "talus/world.h"
 #include "world/world_collide.h"
 #include "world/world_data.h"
+#include "world/world_validate.h"
 
 namespace talus {
 namespace {
@@ -148,15 +139,7 @@ void UpdateSleep(WorldData& d, double h, StepStatistics& stats) {
   stats.islands = d.sleepManager.Update(d.sims, d.sleep, d.contacts, d.settings, h);
 }
 
-// The soft step (StepSolver::SoftStep, dynamics/soft_step_solver.h): the
-// narrow phase once at the step's start, then the sub-steps (each
-// integrating velocities, solving, integrating positions, relaxing) as one
-// chain of phases on the world's threads. Timed under the same stage names:
-// the sub-step chain, integration included, is solveVelocities.
-void StepSoft(WorldData& d, double dt, StepStatistics& stats, StageClock& clock) {
-  FindContacts(d, dt, stats);
-  stats.seconds.findContacts = clock.Lap();
-
+void SoftPrepareContacts(WorldData& d, double dt, StepStatistics& stats) {
   if (d.settings.warmStarting) stats.warmStartedPoints = CarryImpulses(d.previousContacts, d.contacts);
   if (d.jobs->ThreadCount() > 1) {
     d.softSolver.SetPhaseRunner(
@@ -167,13 +150,68 @@ void StepSoft(WorldData& d, double dt, StepStatistics& stats, StageClock& clock)
     d.softSolver.SetPhaseRunner(nullptr);
   }
   d.softSolver.Prepare(d.sims, d.contacts, d.settings, dt, stats);
-  stats.seconds.prepareContacts = clock.Lap();
+}
 
-  stats.awakeBodies = d.softSolver.Step(d.sims, d.settings, dt);
-  stats.seconds.solveVelocities = clock.Lap();
+// The soft step (StepSolver::SoftStep, dynamics/soft_step_solver.h): the
+// narrow phase once at the step's start, then the sub-steps (each
+// integrating velocities, solving, integrating positions, relaxing) as one
+// chain of phases on the world's threads, timed as SolveVelocities.
+// Stages it has no work for do nothing.
+void RunSoftStage(Stage stage, WorldData& d, double dt, StepStatistics& stats) {
+  switch (stage) {
+    case Stage::FindContacts:
+      FindContacts(d, dt, stats);
+      return;
+    case Stage::PrepareContacts:
+      SoftPrepareContacts(d, dt, stats);
+      return;
+    case Stage::SolveVelocities:
+      stats.awakeBodies = d.softSolver.Step(d.sims, d.settings, dt);
+      return;
+    case Stage::ScatterAndStoreImpulses:
+      d.softSolver.StoreImpulses(d.contacts);
+      return;
+    case Stage::UpdateSleep:
+      UpdateSleep(d, dt, stats);
+      return;
+    case Stage::UpdateBroadPhase:  // run by Step itself: it may refuse
+    case Stage::IntegrateVelocities:
+    case Stage::SolveSplitImpulses:
+    case Stage::IntegratePositions:
+      return;
+  }
+}
 
-  d.softSolver.StoreImpulses(d.contacts);
-  stats.seconds.scatterAndStoreImpulses = clock.Lap();
+// One stage of the sequential-impulse step.
+void RunStage(Stage stage, WorldData& d, double dt, StepStatistics& stats) {
+  switch (stage) {
+    case Stage::IntegrateVelocities:
+      stats.awakeBodies = IntegrateVelocitiesOnThreads(d, dt);
+      return;
+    case Stage::FindContacts:
+      FindContacts(d, dt, stats);
+      return;
+    case Stage::PrepareContacts:
+      PrepareContacts(d, dt, stats);
+      return;
+    case Stage::SolveVelocities:
+      SolveVelocities(d, stats);
+      return;
+    case Stage::SolveSplitImpulses:
+      SolveSplitImpulses(d, stats);
+      return;
+    case Stage::ScatterAndStoreImpulses:
+      ScatterAndStoreImpulses(d);
+      return;
+    case Stage::IntegratePositions:
+      IntegratePositionsOnThreads(d, dt);
+      return;
+    case Stage::UpdateSleep:
+      UpdateSleep(d, dt, stats);
+      return;
+    case Stage::UpdateBroadPhase:  // run by Step itself: it may refuse
+      return;
+  }
 }
 
 }  // namespace
@@ -185,50 +223,29 @@ Result<StepStatistics> World::Step(double dt) {
   WorldData& d = *m_data;
   StepStatistics stats;
   StageClock clock(d.settings.timeStages);
+  static_assert(kStages.front().stage == Stage::UpdateBroadPhase,
+                "the only stage that may refuse runs first");
   if (const Result<int> proxies = UpdateBroadPhase(d, dt); !proxies) {
     return Error{"World::Step refused: " + proxies.GetError().message};
   }
   CountBodies(d, stats);
-  stats.seconds.updateBroadPhase = clock.Lap();
+  stats.seconds[Stage::UpdateBroadPhase] = clock.Lap();
 
-  if (d.settings.stepSolver == StepSolver::SoftStep) {
-    StepSoft(d, dt, stats, clock);
-    UpdateSleep(d, dt, stats);
-    stats.seconds.sleep = clock.Lap();
-    const StageTimes& t = stats.seconds;
-    stats.seconds.total = t.updateBroadPhase + t.findContacts + t.prepareContacts + t.solveVelocities +
-                          t.scatterAndStoreImpulses + t.sleep;
-    return stats;
+  const bool soft = d.settings.stepSolver == StepSolver::SoftStep;
+  for (const StageInfo& stage : std::span(kStages).subspan(1)) {
+    if (soft) {
+      RunSoftStage(stage.stage, d, dt, stats);
+    } else {
+      RunStage(stage.stage, d, dt, stats);
+    }
+    stats.seconds[stage.stage] = clock.Lap();
   }
 
-  stats.awakeBodies = IntegrateVelocitiesOnThreads(d, dt);
-  stats.seconds.integrateVelocities = clock.Lap();
-
-  FindContacts(d, dt, stats);
-  stats.seconds.findContacts = clock.Lap();
-
-  PrepareContacts(d, dt, stats);
-  stats.seconds.prepareContacts = clock.Lap();
-
-  SolveVelocities(d, stats);
-  stats.seconds.solveVelocities = clock.Lap();
-
-  SolveSplitImpulses(d, stats);
-  stats.seconds.solveSplitImpulses = clock.Lap();
-
-  ScatterAndStoreImpulses(d);
-  stats.seconds.scatterAndStoreImpulses = clock.Lap();
-
-  IntegratePositionsOnThreads(d, dt);
-  stats.seconds.integratePositions = clock.Lap();
-
-  UpdateSleep(d, dt, stats);
-  stats.seconds.sleep = clock.Lap();
-
-  const StageTimes& t = stats.seconds;
-  stats.seconds.total = t.updateBroadPhase + t.integrateVelocities + t.findContacts + t.prepareContacts +
-                        t.solveVelocities + t.solveSplitImpulses + t.scatterAndStoreImpulses +
-                        t.integratePositions + t.sleep;
+  for (const double seconds : stats.seconds.byStage) stats.seconds.total += seconds;
+#if defined(TALUS_VALIDATE)
+  // The validation pass (world/world_validate.h), outside the timed stages.
+  AbortIfInvalid(CheckStep(d, stats));
+#endif
   return stats;
 }
 

@@ -24,6 +24,7 @@
 #include "talus/hull_builder.h"
 #include "talus/reference/body_mass.h"
 #include "talus/shape.h"
+#include "talus/step_stage.h"
 #include "talus/world.h"
 
 namespace talus::reference {
@@ -497,19 +498,14 @@ std::vector<harness::StepCounter> TalusBackend::StepCounters() const {
   return counters;
 }
 
-// World::Step's stages (StepStatistics::seconds), named as the stage
-// functions of world_step.cpp are, in the order they run.
+// World::Step's stages (StepStatistics::seconds), named and ordered as the
+// engine's stage table (kStages, talus/step_stage.h) is.
 std::vector<harness::StageTiming> TalusBackend::StageTimings() const {
-  const StageTimes& t = m_lastStep.seconds;
-  return {{"UpdateBroadPhase", t.updateBroadPhase},
-          {"IntegrateVelocities", t.integrateVelocities},
-          {"FindContacts", t.findContacts},
-          {"PrepareContacts", t.prepareContacts},
-          {"SolveVelocities", t.solveVelocities},
-          {"SolveSplitImpulses", t.solveSplitImpulses},
-          {"ScatterAndStoreImpulses", t.scatterAndStoreImpulses},
-          {"IntegratePositions", t.integratePositions},
-          {"UpdateSleep", t.sleep}};
+  std::vector<harness::StageTiming> timings;
+  timings.reserve(kStages.size());
+  for (const StageInfo& stage : kStages)
+    timings.push_back({std::string(stage.name), m_lastStep.seconds[stage.stage]});
+  return timings;
 }
 
 void TalusBackend::TimeStages() {
