@@ -88,6 +88,9 @@ int main(int argc, char** argv) {
                    "record poses, contacts and step counters of these runs for the 3D replay "
                    "(run ids, scenario names or all; comma-separated)")
       ->delimiter(',');
+  runCommand->add_flag("--full-trajectories", run.fullTrajectories,
+                       "write results.trajectories.json exact, not thinned and rounded for display "
+                       "(metrics are computed from the full trajectories either way)");
 
   ReportOptions report;
   CLI::App* reportCommand = app.add_subcommand("report", "write summary.md, results.csv and report.html");

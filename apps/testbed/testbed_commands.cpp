@@ -116,6 +116,7 @@ int RunCommand(const RunOptions& options) {
                          options.timeSteps, options.iterations, options.replay, options.budget,
                          options.threads, options.memoryLimitMiB);
   if (!file) return kExitBadInput;
+  file->fullTrajectories = options.fullTrajectories;
   std::error_code error;
   fs::create_directories(options.out, error);
   if (error) {

@@ -31,6 +31,9 @@ struct RunOptions {
   bool deterministic = false;          ///< zero wall times
   bool quiet = false;                  ///< no progress lines
   std::vector<std::string> replay;     ///< runs to record for the 3D replay: ids, scenario names or "all"
+  /// Write the trajectory file exact rather than in the display form
+  /// (harness display_trajectory.h); the metrics are the same either way.
+  bool fullTrajectories = false;
   /// Wall-clock seconds per job before it is stopped (0 = none); the
   /// default leaves the longest default-suite job (docs/testbed-runner.md,
   /// "Isolated jobs") a hundredfold margin and ends a hang within the hour.

@@ -159,11 +159,13 @@ TEST(ProgramOutputs, TestbedReportWritesTheWholeSet) {
   ASSERT_EQ(outcome.code, 0) << outcome.output;
   std::vector<std::string> names;
   for (const auto& [name, text] : Contents(dir / "report")) names.push_back(name);
-  EXPECT_EQ(names, (std::vector<std::string>{"report-data.js", "report.html", "results.csv", "results.json",
+  EXPECT_EQ(names, (std::vector<std::string>{"report-data.js", "report-replay.js", "report.html",
+                                             "results.csv", "results.json", "results.replays.json",
                                              "results.trajectories.json", "summary.md"}));
   EXPECT_EQ(Read(dir / "report" / "results.json"), Read(dir / "run" / "results.json"));
   EXPECT_EQ(Read(dir / "report" / "results.trajectories.json"),
             Read(dir / "run" / "results.trajectories.json"));
+  EXPECT_EQ(Read(dir / "report" / "results.replays.json"), Read(dir / "run" / "results.replays.json"));
 }
 #endif
 

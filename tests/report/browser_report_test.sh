@@ -22,6 +22,12 @@ fi
 rm -rf "$work"
 mkdir -p "$work/profile"
 "$testbed" run "$scenario" -b talus,bullet --replay all --deterministic -j 1 -q -o "$work" >/dev/null
+# The replay drawn below is the display form (thinned series, rounded
+# poses and contacts; harness display_trajectory.h), what a default run writes.
+if ! head -c 200 "$work/results.trajectories.json" | grep -q '"resolution":"display"'; then
+  echo "FAIL: the run's trajectory file is not in the display form" >&2
+  exit 1
+fi
 # A small large-scenes file (the layout talus-scenes --format jsonl writes):
 # two scenes, two engines, so the page must draw two scaling charts; and
 # pyramid H = 4 again at 3 iterations, so it must draw a speed-against-
@@ -68,21 +74,30 @@ check "one scaling chart per large scene" '"scalingCharts":2'
 check "one speed-against-accuracy chart (pyramid H = 4)" '"tradeoffCharts":1'
 check "the scorecard's pass-fraction chart" '"scorecardCharts":1'
 
-# Without report-data.js beside it (the plots' series and the replays),
-# the page still loads and says what is missing.
+# Without report-data.js beside it (the plots' series), the page still
+# loads, says what is missing, and the replay (its own file) still draws.
+load_without() {  # load_without NAME: the status of the page loaded again
+  dom="$(timeout 120 "$browser" --headless --no-sandbox --disable-gpu --use-angle=swiftshader \
+        --enable-unsafe-swiftshader --disable-background-networking --disable-component-update \
+        --disable-sync --no-first-run --user-data-dir="$work/profile" --virtual-time-budget=10000 \
+        --dump-dom "file://$work/report.html" 2>>"$work/chromium.log")" || dom=""
+  printf '%s\n' "$dom" >"$work/dom-without-$1.html"
+  status="$(printf '%s' "$dom" | sed -n 's:.*<pre id="report-status"[^>]*>\(.*\)</pre>.*:\1:p' | head -1)"
+  echo "page status without $1: $status"
+}
 rm "$work/report-data.js"
-dom="$(timeout 120 "$browser" --headless --no-sandbox --disable-gpu --use-angle=swiftshader \
-      --enable-unsafe-swiftshader --disable-background-networking --disable-component-update \
-      --disable-sync --no-first-run --user-data-dir="$work/profile" --virtual-time-budget=10000 \
-      --dump-dom "file://$work/report.html" 2>>"$work/chromium.log")" || dom=""
-status="$(printf '%s' "$dom" | sed -n 's:.*<pre id="report-status"[^>]*>\(.*\)</pre>.*:\1:p' | head -1)"
-echo "page status without report-data.js: $status"
+load_without report-data.js
 check "a missing report-data.js is the one error" '"errors":\["report-data.js was not found beside the page"\]'
-printf '%s\n' "$dom" >"$work/dom-without-data.html"
-if grep -q 'The replay data (report-data.js' "$work/dom-without-data.html"; then
-  echo "ok: the replay section names report-data.js"
+check "the replay still draws without the plots' file" '"replayLitPixels":\[[1-9][0-9]*,[1-9][0-9]*\]'
+
+# Without report-replay.js too, the replay section names it.
+rm "$work/report-replay.js"
+load_without report-replay.js
+check "a missing report-replay.js is named" '"report-replay.js was not found beside the page"'
+if grep -q 'The replay data (report-replay.js' "$work/dom-without-report-replay.js.html"; then
+  echo "ok: the replay section names report-replay.js"
 else
-  echo "FAIL: the replay section does not name report-data.js" >&2
+  echo "FAIL: the replay section does not name report-replay.js" >&2
   fail=1
 fi
 exit $fail

@@ -71,10 +71,12 @@ TEST(TestbedCommand, ARunWhoseStepFailsIsReportedAndTheOthersFinish) {
   text << results.rdbuf();
   EXPECT_TRUE(Has(text.str(), "\"error\": \"step 143: talus: World::Step refused"))
       << text.str().substr(0, 2000);
-  // Written whole, with its trajectory file, through temporary siblings, which are gone.
+  // Written whole, with its trajectory and replay files, through temporary siblings, which are gone.
   for (const auto& entry : fs::directory_iterator(out)) {
     const std::string name = entry.path().filename().string();
-    EXPECT_TRUE(name == "results.json" || name == "results.trajectories.json") << name;
+    EXPECT_TRUE(name == "results.json" || name == "results.trajectories.json" ||
+                name == "results.replays.json")
+        << name;
   }
 }
 

@@ -317,7 +317,11 @@ TEST(Report, FilesAreWrittenAndWellFormed) {
   const auto parsed = nlohmann::json::parse(data, nullptr, false);
   ASSERT_FALSE(parsed.is_discarded());
   EXPECT_EQ(parsed["plots"]["runs"].size(), 7u);  // box_rest and the 6 box_slide runs
-  EXPECT_TRUE(parsed["replays"].empty());         // none recorded
+  EXPECT_FALSE(parsed.contains("replays"));       // in their own file
+  EXPECT_NE(html.find("<script src=\"report-replay.js\"></script>"), std::string::npos);
+  EXPECT_EQ(ReadText(dir / "out" / "report-replay.js"),
+            "// The replays of report.html (talus-testbed report), loaded by the page.\n"
+            "window.talusReportReplays = [];\n");  // none recorded
   // Missing charting library: a clear error naming the file.
   auto missing = WriteReport(SmallResults(), dir / "out2", dir / "missing.js");
   ASSERT_FALSE(missing);
@@ -356,6 +360,7 @@ TEST(TestbedCommand, RunWritesDeterministicResultsAndRefusesBadArguments) {
   EXPECT_EQ(ReadText(dir / "a" / "results.json"), ReadText(dir / "b" / "results.json"));
   EXPECT_EQ(ReadText(dir / "a" / "results.trajectories.json"),
             ReadText(dir / "b" / "results.trajectories.json"));
+  EXPECT_EQ(ReadText(dir / "a" / "results.replays.json"), ReadText(dir / "b" / "results.replays.json"));
   EXPECT_EQ(Shell(binary + " run " + scenario + " -q -b havok -o " + (dir / "c").string()), 2);
   EXPECT_EQ(Shell(binary + " run /nonexistent.json -q -o " + (dir / "c").string()), 2);
   EXPECT_EQ(Shell(binary + " run --jobs -3"), 2);

@@ -2,16 +2,18 @@
 // runs, one viewport per engine on one WebGL canvas, with contacts drawn as
 // points and normals; the Quickhull trace (the write-up's figure 1); the
 // broad-phase funnel per step (figure 2). The replays' frames come from
-// report-data.js beside the page (window.talusReportData.replays). Writes what
+// report-replay.js beside the page (window.talusReportReplays). Writes what
 // it managed into #report-status, which the headless-browser test reads.
 (function () {
   'use strict';
   const status = window.talusReport;
   const data = JSON.parse(document.getElementById('replay-data').textContent);
-  // The replays come from report-data.js beside the page, loaded before
-  // this script (the plots' script reports a missing file).
-  const replayFileFound = Boolean(window.talusReportData);
-  data.runs = replayFileFound ? window.talusReportData.replays : [];
+  // The replays come from report-replay.js beside the page, loaded before
+  // this script; a missing file is said in the replay section and counted
+  // as an error (the plots' script reports a missing report-data.js).
+  const replayFileFound = Boolean(window.talusReportReplays);
+  data.runs = replayFileFound ? window.talusReportReplays : [];
+  if (!replayFileFound) status.errors.push('report-replay.js was not found beside the page');
   const palette = [0x1f77b4, 0xd62728, 0x2ca02c, 0xff7f0e, 0x9467bd, 0x8c564b, 0xe377c2, 0x17becf];
   const background = 0xf4f4f4;
 
@@ -108,7 +110,7 @@
   function setupReplay() {
     const root = document.getElementById('replay');
     if (!replayFileFound) {
-      root.textContent = 'The replay data (report-data.js, written beside report.html) was not found: ' +
+      root.textContent = 'The replay data (report-replay.js, written beside report.html) was not found: ' +
         'keep the two files together.';
       return;
     }
@@ -172,12 +174,23 @@
       });
     }
 
-    function showFrame() {
+    // While playing, poses between two recorded frames are interpolated
+    // (positions linearly, orientations by slerp) at the screen's rate, so
+    // the display-rate frames (docs/testbed-report.md "Sizes") play
+    // smoothly; contacts are those of the earlier frame.
+    const qa = new THREE.Quaternion(), qb = new THREE.Quaternion();
+    function showFrame(alpha) {
       views.forEach(v => {
-        const f = v.result.frames[Math.min(frame, v.result.frames.length - 1)];
+        const lastFrame = v.result.frames.length - 1;
+        const f = v.result.frames[Math.min(frame, lastFrame)];
+        const g = v.result.frames[Math.min(frame + 1, lastFrame)];
+        const a = alpha || 0;
         v.bodies.forEach((mesh, b) => {
-          mesh.position.set(f.p[b][0], f.p[b][1], f.p[b][2]);
-          mesh.quaternion.set(f.q[b][1], f.q[b][2], f.q[b][3], f.q[b][0]);
+          mesh.position.set(f.p[b][0] + a * (g.p[b][0] - f.p[b][0]), f.p[b][1] + a * (g.p[b][1] - f.p[b][1]),
+                            f.p[b][2] + a * (g.p[b][2] - f.p[b][2]));
+          qa.set(f.q[b][1], f.q[b][2], f.q[b][3], f.q[b][0]).normalize();
+          qb.set(g.q[b][1], g.q[b][2], g.q[b][3], g.q[b][0]).normalize();
+          mesh.quaternion.slerpQuaternions(qa, qb, a);
         });
         const p = v.contactPoints.geometry.attributes.position, n = v.contactNormals.geometry.attributes.position;
         f.c.forEach((c, k) => {
@@ -233,14 +246,15 @@
       const frames = views[0].result.frames;
       while (frame + 1 < frames.length && frames[frame + 1].t <= clock) ++frame;
       slider.value = String(frame);
-      showFrame();
+      const next = frames[Math.min(frame + 1, frames.length - 1)];
+      showFrame(next.t > frames[frame].t ? Math.min(1, (clock - frames[frame].t) / (next.t - frames[frame].t)) : 0);
       if (frame + 1 >= frames.length) { playing = false; play.textContent = 'Play'; return; }
       requestAnimationFrame(tick);
     }
 
     select.addEventListener('change', () => load(Number(select.value)));
     slider.addEventListener('input', () => { frame = Number(slider.value); showFrame(); });
-    toggle.addEventListener('change', showFrame);
+    toggle.addEventListener('change', () => showFrame());
     play.addEventListener('click', () => {
       playing = !playing;
       play.textContent = playing ? 'Pause' : 'Play';

@@ -20,13 +20,15 @@
 #include "talus/harness/report/bench_summary.h"
 #include "talus/harness/report/report.h"
 #include "talus/harness/report/sat_check_results.h"
+#include "talus/harness/run/display_trajectory.h"
 #include "talus/harness/support/atomic_file.h"
 #include "talus/harness/sweep/sweep.h"
 
 namespace talus::harness {
 namespace {
 
-// What the page's script plots, as JSON.
+// What the page's script plots, as JSON, in the display form (the page
+// draws the same lines from it; display_trajectory.h).
 nlohmann::ordered_json PlotData(const ResultsFile& file) {
   nlohmann::ordered_json data;
   data["backends"] = file.backends;
@@ -36,12 +38,13 @@ nlohmann::ordered_json PlotData(const ResultsFile& file) {
       data["runs"].push_back(
           {{"id", r.runId}, {"bodies", r.bodyNames}, {"results", nlohmann::ordered_json::array()}});
     }
+    const PlotSeries shown = file.trajectoriesInDisplayForm ? r.series : DisplaySeries(r.series);
     nlohmann::ordered_json entry;
     entry["backend"] = r.backend;
     entry["wallSeconds"] = r.wallSeconds;
-    entry["time"] = r.series.time;
-    entry["heights"] = r.series.heights;
-    entry["energy"] = r.series.energy;
+    entry["time"] = shown.time;
+    entry["heights"] = shown.heights;
+    entry["energy"] = shown.energy;
     data["runs"].back()["results"].push_back(entry);
   }
   return data;
@@ -193,8 +196,9 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, s
   tables.insert(tables.find("<h2 id=\"overview\">"), ScorecardChartHtml(card));
   out << tables;
   out << "<h2>Plots</h2>\n<div class=\"plots\" id=\"plots\"></div>\n";
-  // The series and replays: most of a report's bytes, in their own file.
+  // The series and replays: most of a report's bytes, in their own files.
   out << "<script src=\"" << kReportDataFile << "\"></script>\n";
+  out << "<script src=\"" << kReportReplayFile << "\"></script>\n";
   out << "<script>\n" << ScriptSafe(std::string(chartLibrary)) << "\n</script>\n";
   out << ReplaySections(file, threeLibrary);
   out << "<script>" << kScript << "</script>\n";
@@ -210,11 +214,17 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary, s
 std::string ReportDataScript(const ResultsFile& file) {
   nlohmann::ordered_json data;
   data["plots"] = PlotData(file);
-  data["replays"] = ReplayRunsForPage(file);
   return Concat(
-      {"// The plot series and replays of report.html (talus-testbed report), loaded by the "
-       "page.\nwindow.talusReportData = ",
+      {"// The plot series of report.html (talus-testbed report), loaded by the page.\n"
+       "window.talusReportData = ",
        data.dump(), ";\n"});
+}
+
+std::string ReportReplayScript(const ResultsFile& file) {
+  return Concat(
+      {"// The replays of report.html (talus-testbed report), loaded by the page.\n"
+       "window.talusReportReplays = ",
+       ReplayRunsForPage(file).dump(), ";\n"});
 }
 
 Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesystem::path& folder,
@@ -252,6 +262,7 @@ Result<std::monostate> WriteReport(const ResultsFile& file, const std::filesyste
   for (FileText& text : ResultsFileTexts(folder / "results.json", file)) files.push_back(std::move(text));
   files.push_back({folder / "report.html", ReportHtml(file, js.str(), three.str(), extras)});
   files.push_back({folder / kReportDataFile, ReportDataScript(file)});
+  files.push_back({folder / kReportReplayFile, ReportReplayScript(file)});
   return WriteFilesAtomically(files);
 }
 

@@ -1,11 +1,11 @@
 // The report's replay and figure sections (see report_html_replay.h).
 //
 // Data for the page:
-//   runs       (in kReportDataFile beside the page, a script setting
-//              window.talusReportData.replays) per run recorded for replay: its id,
+//   runs       (in kReportReplayFile beside the page, a script setting
+//              window.talusReportReplays) per run recorded for replay: its id,
 //              the body shapes (same for every backend), and per backend
-//              the frames (poses, contacts, step counters) as the replay
-//              file holds them, rounded for drawing. They are most of a
+//              the frames (poses, contacts, step counters) in the display
+//              form (display_trajectory.h's DisplayReplay). They are most of a
 //              report's bytes, so the page itself stays small;
 //   hullTrace  (as JSON in a <script type="application/json"> element)
 //              a Quickhull build traced step by step (talus/
@@ -17,13 +17,12 @@
 #include "report/report_html_replay.h"
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "report/report_assets.h"
 #include "support/text_util.h"
+#include "talus/harness/run/display_trajectory.h"
 #include "talus/harness/support/split_mix64.h"
 #include "talus/hull_builder.h"
 
@@ -88,20 +87,6 @@ Json HullTraceJson() {
   return j;
 }
 
-// `value` with every number rounded to 7 significant digits (%.7g read
-// back), the precision the page draws at (report_html_replay.h).
-Json RoundedForDrawing(Json value) {
-  if (value.is_number_float()) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.7g", value.get<double>());
-    return Json(std::strtod(text, nullptr));
-  }
-  if (value.is_structured()) {
-    for (Json& item : value) item = RoundedForDrawing(std::move(item));
-  }
-  return value;
-}
-
 Json ReplayRunsJson(const ResultsFile& file) {
   Json runs = Json::array();
   for (const RunResult& r : file.results) {
@@ -113,7 +98,7 @@ Json ReplayRunsJson(const ResultsFile& file) {
                       {"shapes", replay["shapes"]},
                       {"results", Json::array()}});
     }
-    const Json replay = ReplayToJson(r.replay);
+    const Json replay = ReplayToJson(file.trajectoriesInDisplayForm ? r.replay : DisplayReplay(r.replay));
     runs.back()["results"].push_back(
         {{"backend", r.backend}, {"counters", replay["counters"]}, {"frames", replay["frames"]}});
   }
@@ -201,6 +186,6 @@ std::string ReplaySections(const ResultsFile& file, std::string_view threeLibrar
   return out.str();
 }
 
-Json ReplayRunsForPage(const ResultsFile& file) { return RoundedForDrawing(ReplayRunsJson(file)); }
+Json ReplayRunsForPage(const ResultsFile& file) { return ReplayRunsJson(file); }
 
 }  // namespace talus::harness

@@ -23,14 +23,14 @@ std::string StructureThatRan(const Replay& replay);
 /// The sections' HTML: headings, containers, the Quickhull trace's data,
 /// `threeLibrary` (three.js, inlined; empty leaves the 3D views with a
 /// message saying so) and scripts. The replays' frames are not in it: the
-/// page reads them from kReportDataFile (ReplayRunsForPage).
+/// page reads them from kReportReplayFile (ReplayRunsForPage).
 std::string ReplaySections(const ResultsFile& file, std::string_view threeLibrary);
 
 /// The replays as the page reads them: per run recorded for replay, its
-/// id, bodies and shapes, and per backend its counters and frames, every
-/// number rounded to 7 significant digits (the page draws them in WebGL's
-/// 32-bit floats, whose 24-bit significand holds about 7; more digits
-/// cannot move a pixel, and they doubled the data).
+/// id, bodies and shapes, and per backend its counters and frames in the
+/// display form (display_trajectory.h's DisplayReplay: fixed decimal
+/// steps far below a pixel; the exact numbers took the default report's
+/// replays to 19 MB).
 nlohmann::ordered_json ReplayRunsForPage(const ResultsFile& file);
 
 }  // namespace talus::harness

@@ -6,6 +6,9 @@
 
 #include "talus/harness/support/atomic_file.h"
 
+#include "talus/harness/run/display_trajectory.h"
+
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -56,16 +59,21 @@ Json MetricToJson(const MetricResult& m) {
   return j;
 }
 
-// A result's trajectory: its plot series and, when recorded, its replay.
-void TrajectoryToJson(const RunResult& r, Json& j) {
+// A result's trajectory: its plot series and, when recorded and
+// `withReplay`, its replay; in the display form of display_trajectory.h
+// unless `exact`.
+void TrajectoryToJson(const RunResult& r, Json& j, bool exact = true, bool withReplay = true) {
+  const PlotSeries shown = exact ? r.series : DisplaySeries(r.series);
   Json series;
-  series["time"] = r.series.time;
-  series["heights"] = r.series.heights;
+  series["time"] = shown.time;
+  series["heights"] = shown.heights;
   series["energy"] = Json::array();
-  for (double e : r.series.energy) series["energy"].push_back(Number(e));
+  for (double e : shown.energy) series["energy"].push_back(Number(e));
   j["series"] = series;
   // Only runs recorded for replay carry one, so other files are unchanged.
-  if (!r.replay.frames.empty()) j["replay"] = ReplayToJson(r.replay);
+  if (withReplay && !r.replay.frames.empty()) {
+    j["replay"] = ReplayToJson(exact ? r.replay : DisplayReplay(r.replay));
+  }
 }
 
 // The result; its trajectory too when `withTrajectory` (the one-text form).
@@ -301,13 +309,25 @@ Json ResultsJson(const ResultsFile& file, bool withTrajectories) {
   return j;
 }
 
+std::size_t ReplayCount(const ResultsFile& file) {
+  return static_cast<std::size_t>(std::count_if(file.results.begin(), file.results.end(),
+                                                [](const RunResult& r) { return !r.replay.frames.empty(); }));
+}
+
+// Whether the trajectories are written exact: asked for, or read from a
+// display-form file (rounding them twice could move a value by a step).
+bool WrittenExact(const ResultsFile& file) { return file.fullTrajectories || file.trajectoriesInDisplayForm; }
+
 // The trajectory file's text: one line per result (compact: a trajectory
 // is hundreds to thousands of numbers, which an indented file would put one
-// per line), in the results' order.
+// per line), in the results' order; "replays" says how many lines the
+// replay file holds.
 std::string TrajectoriesToJson(const ResultsFile& file) {
   Json head;
   head["format"] = kTrajectoriesFormat;
   head["version"] = kResultsVersion;
+  head["resolution"] = file.fullTrajectories ? "full" : "display";
+  head["replays"] = ReplayCount(file);
   std::string text = head.dump();
   text.pop_back();  // the closing brace: the trajectories follow
   text += ",\"trajectories\":[";
@@ -317,21 +337,89 @@ std::string TrajectoriesToJson(const ResultsFile& file) {
     line["result"] = i;
     line["run"] = r.runId;
     line["backend"] = r.backend;
-    TrajectoryToJson(r, line);
+    TrajectoryToJson(r, line, WrittenExact(file), false);
     text += Concat({i == 0 ? "\n" : ",\n", line.dump()});
   }
   return text + "\n]}\n";
 }
 
+// The replay file's text: one line per result recorded for replay, in the
+// results' order, each naming its result.
+std::string ReplaysToJson(const ResultsFile& file) {
+  Json head;
+  head["format"] = kReplaysFormat;
+  head["version"] = kResultsVersion;
+  std::string text = head.dump();
+  text.pop_back();  // the closing brace: the replays follow
+  text += ",\"replays\":[";
+  bool first = true;
+  for (std::size_t i = 0; i < file.results.size(); ++i) {
+    const RunResult& r = file.results[i];
+    if (r.replay.frames.empty()) continue;
+    Json line;
+    line["result"] = i;
+    line["run"] = r.runId;
+    line["backend"] = r.backend;
+    line["replay"] = ReplayToJson(WrittenExact(file) ? r.replay : DisplayReplay(r.replay));
+    text += Concat({first ? "\n" : ",\n", line.dump()});
+    first = false;
+  }
+  return text + (first ? "]}\n" : "\n]}\n");
+}
+
+// Puts each line of the replay file into its result: `expected` lines, in
+// increasing result order, each naming its result's run and backend.
+void ReadReplays(const Json& j, std::size_t expected, ResultsFile& file) {
+  if (GetString(j, "format", "") != kReplaysFormat) {
+    throw ParseFailure{Concat({"/format: not a \"", kReplaysFormat, "\" file"})};
+  }
+  if (GetInt(j, "version", "") != kResultsVersion) {
+    throw ParseFailure{Concat({"/version: unsupported, expected ", std::to_string(kResultsVersion)})};
+  }
+  const Json& lines = GetArray(j, "replays", "");
+  if (lines.size() != expected) {
+    throw ParseFailure{Concat({"/replays: ", std::to_string(lines.size()),
+                               " replays where the trajectory file says ", std::to_string(expected)})};
+  }
+  int previous = -1;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string where = Concat({"/replays/", std::to_string(i)});
+    const int index = GetInt(lines[i], "result", where);
+    if (index <= previous || index >= static_cast<int>(file.results.size())) {
+      throw ParseFailure{Concat({where, ": result ", std::to_string(index), " is not after result ",
+                                 std::to_string(previous), " and within the ",
+                                 std::to_string(file.results.size()), " results"})};
+    }
+    previous = index;
+    RunResult& r = file.results[static_cast<std::size_t>(index)];
+    if (GetString(lines[i], "run", where) != r.runId || GetString(lines[i], "backend", where) != r.backend) {
+      throw ParseFailure{Concat({where, ": not the replay of result ", std::to_string(index), " (", r.runId,
+                                 " with ", r.backend, ")"})};
+    }
+    auto replay = ReplayFromJson(Field(lines[i], "replay", where), Place(where, "replay"));
+    if (!replay) throw ParseFailure{replay.GetError().message};
+    r.replay = std::move(replay).Value();
+  }
+}
+
 // Puts each line of the trajectory file into its result, checking that
 // there is one per result, in order, naming the result's run and backend.
-void ReadTrajectories(const Json& j, ResultsFile& file) {
+// Returns the number of replays its replay file holds, or -1 for a file
+// written before the replays had their own (they are inside its lines).
+int ReadTrajectories(const Json& j, ResultsFile& file) {
   if (GetString(j, "format", "") != kTrajectoriesFormat) {
     throw ParseFailure{Concat({"/format: not a \"", kTrajectoriesFormat, "\" file"})};
   }
   if (GetInt(j, "version", "") != kResultsVersion) {
     throw ParseFailure{Concat({"/version: unsupported, expected ", std::to_string(kResultsVersion)})};
   }
+  // Files written before the display form have no "resolution" and are exact.
+  const std::string resolution = j.contains("resolution") ? GetString(j, "resolution", "") : "full";
+  if (resolution != "full" && resolution != "display") {
+    throw ParseFailure{Concat({"/resolution: \"", resolution, "\", expected \"full\" or \"display\""})};
+  }
+  file.fullTrajectories = resolution == "full";
+  file.trajectoriesInDisplayForm = !file.fullTrajectories;
   const Json& lines = GetArray(j, "trajectories", "");
   if (lines.size() != file.results.size()) {
     throw ParseFailure{
@@ -348,6 +436,10 @@ void ReadTrajectories(const Json& j, ResultsFile& file) {
     }
     TrajectoryFromJson(lines[i], where, r);
   }
+  if (!j.contains("replays")) return -1;
+  const int replays = GetInt(j, "replays", "");
+  if (replays < 0) throw ParseFailure{"/replays: expected a count >= 0"};
+  return replays;
 }
 
 // The trajectory file's text, read only when results.json is in the file
@@ -357,7 +449,8 @@ struct TrajectorySource {
   std::function<Result<std::string>()> read;
 };
 
-Result<ResultsFile> ParseResults(std::string_view text, const TrajectorySource& source) {
+Result<ResultsFile> ParseResults(std::string_view text, const TrajectorySource& source,
+                                 const TrajectorySource& replaySource) {
   const Json j = Json::parse(text, nullptr, false);
   if (j.is_discarded()) return Error{"not valid JSON"};
   ResultsFile file;
@@ -385,15 +478,29 @@ Result<ResultsFile> ParseResults(std::string_view text, const TrajectorySource& 
   } catch (const ParseFailure& failure) {
     return Error{failure.message};
   }
-  if (!split) return file;
+  if (!split) {
+    file.fullTrajectories = true;  // the one-text form keeps every number
+    return file;
+  }
   auto trajectoryText = source.read();
   if (!trajectoryText) return Error{Concat({"its trajectories: ", trajectoryText.GetError().message})};
   const Json trajectories = Json::parse(trajectoryText.Value(), nullptr, false);
   if (trajectories.is_discarded()) return Error{Concat({source.name, ": not valid JSON"})};
+  int replays = -1;
   try {
-    ReadTrajectories(trajectories, file);
+    replays = ReadTrajectories(trajectories, file);
   } catch (const ParseFailure& failure) {
     return Error{Concat({source.name, ": ", failure.message})};
+  }
+  if (replays < 0) return file;
+  auto replayText = replaySource.read();
+  if (!replayText) return Error{Concat({"its replays: ", replayText.GetError().message})};
+  const Json replayJson = Json::parse(replayText.Value(), nullptr, false);
+  if (replayJson.is_discarded()) return Error{Concat({replaySource.name, ": not valid JSON"})};
+  try {
+    ReadReplays(replayJson, static_cast<std::size_t>(replays), file);
+  } catch (const ParseFailure& failure) {
+    return Error{Concat({replaySource.name, ": ", failure.message})};
   }
   return file;
 }
@@ -402,11 +509,18 @@ Result<ResultsFile> ParseResults(std::string_view text, const TrajectorySource& 
 
 std::string ResultsToJson(const ResultsFile& file) { return ResultsJson(file, true).dump(2) + "\n"; }
 
-Result<ResultsFile> ResultsFromJson(std::string_view text, std::string_view trajectoryText) {
-  return ParseResults(text, {"trajectory file", [trajectoryText]() -> Result<std::string> {
-                               if (trajectoryText.empty()) return Error{"no trajectory file was given"};
-                               return std::string(trajectoryText);
-                             }});
+Result<ResultsFile> ResultsFromJson(std::string_view text, std::string_view trajectoryText,
+                                    std::string_view replayText) {
+  return ParseResults(text,
+                      {"trajectory file",
+                       [trajectoryText]() -> Result<std::string> {
+                         if (trajectoryText.empty()) return Error{"no trajectory file was given"};
+                         return std::string(trajectoryText);
+                       }},
+                      {"replay file", [replayText]() -> Result<std::string> {
+                         if (replayText.empty()) return Error{"no replay file was given"};
+                         return std::string(replayText);
+                       }});
 }
 
 std::filesystem::path TrajectoryFilePath(const std::filesystem::path& resultsPath) {
@@ -416,9 +530,17 @@ std::filesystem::path TrajectoryFilePath(const std::filesystem::path& resultsPat
   return path;
 }
 
+std::filesystem::path ReplayFilePath(const std::filesystem::path& resultsPath) {
+  std::filesystem::path path = resultsPath;
+  if (path.extension() == ".json") path.replace_extension();
+  path += ".replays.json";
+  return path;
+}
+
 std::vector<FileText> ResultsFileTexts(const std::filesystem::path& path, const ResultsFile& file) {
   return {{path, ResultsJson(file, false).dump(2) + "\n"},
-          {TrajectoryFilePath(path), TrajectoriesToJson(file)}};
+          {TrajectoryFilePath(path), TrajectoriesToJson(file)},
+          {ReplayFilePath(path), ReplaysToJson(file)}};
 }
 
 std::string RunResultToWire(const RunResult& result) {
@@ -452,9 +574,12 @@ Result<ResultsFile> ReadResultsFile(const std::filesystem::path& path) {
   auto text = ReadTextFile(path, "the results file");
   if (!text) return text.GetError();
   const std::filesystem::path trajectoryPath = TrajectoryFilePath(path);
-  auto file = ParseResults(text.Value(), {trajectoryPath.string(), [&trajectoryPath] {
-                                            return ReadTextFile(trajectoryPath, "the trajectory file");
-                                          }});
+  const std::filesystem::path replayPath = ReplayFilePath(path);
+  auto file = ParseResults(
+      text.Value(),
+      {trajectoryPath.string(),
+       [&trajectoryPath] { return ReadTextFile(trajectoryPath, "the trajectory file"); }},
+      {replayPath.string(), [&replayPath] { return ReadTextFile(replayPath, "the replay file"); }});
   if (!file) return Error{Concat({path.string(), ": ", file.GetError().message})};
   return file;
 }

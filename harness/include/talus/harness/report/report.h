@@ -36,11 +36,14 @@
 
 namespace talus::harness {
 
-/// The file beside report.html that holds the plots' series and the
+/// The files beside report.html that hold the plots' series and the
 /// replays' frames (most of a report's bytes), which the page loads with
 /// a <script src> (a page opened from disk may load a script beside it,
-/// but not fetch a JSON file).
+/// but not fetch a JSON file). Two files, as their sizes grow with two
+/// different things: the plots with the runs, the replays with the runs
+/// recorded for replay (docs/testbed-report.md "Sizes").
 inline constexpr std::string_view kReportDataFile = "report-data.js";
+inline constexpr std::string_view kReportReplayFile = "report-replay.js";
 
 /// The analyses a report can add after the run's own sections, each read
 /// from its own program's output; a null pointer leaves its section out.
@@ -83,12 +86,16 @@ std::string ReportHtml(const ResultsFile& file, std::string_view chartLibrary,
                        std::string_view threeLibrary = {}, const ReportExtras& extras = {});
 
 /// kReportDataFile's text: a script setting window.talusReportData to
-/// {"plots": the series per run and backend, "replays": the replays as
-/// report_html_replay.h's ReplayRunsForPage gives them}.
+/// {"plots": the series per run and backend, in the display form of
+/// display_trajectory.h}.
 std::string ReportDataScript(const ResultsFile& file);
 
+/// kReportReplayFile's text: a script setting window.talusReportReplays to
+/// the replays as report_html_replay.h's ReplayRunsForPage gives them.
+std::string ReportReplayScript(const ResultsFile& file);
+
 /// Writes summary.md, results.csv, results.json (and its trajectory file),
-/// report.html and kReportDataFile into `folder` (created if missing), as
+/// report.html, kReportDataFile and kReportReplayFile into `folder` (created if missing), as
 /// one set: all of them or, on any failure, none (WriteFilesAtomically).
 /// Reads the charting library from `chartLibraryPath` and three.js from
 /// `threeLibraryPath` (empty: none); errors name the file. The extras add

@@ -114,9 +114,11 @@ struct RunnerOptions {
   /// Runs whose replay (poses, contacts, step counters) is recorded: run
   /// ids, scenario names, or "all"; empty (default) records none.
   std::vector<std::string> replay;
-  /// Most frames of a replay, >= 2. 120 frames of a 20-body scene with its
-  /// contacts are about 100 kB of JSON per backend.
-  int replayFrames = 120;
+  /// Most frames of a replay, >= 2: the display rate of the 3D replay,
+  /// which interpolates poses between frames as it plays, so 60 frames
+  /// (6 a second over the 10 s box_pyramid_4, 60 over the 1 s free fall)
+  /// move smoothly; more only add bytes (docs/testbed-report.md "Sizes").
+  int replayFrames = 60;
   /// Called (serialised) after each job with a line such as
   /// "[3/24] box_slide[mu=0.3,v0=1] bullet 0.12 s"; may be empty.
   std::function<void(const std::string&)> progress;
