@@ -14,11 +14,13 @@
 
 namespace talus::harness {
 
-/// Most points of each plotted series. A plot is about 700 px wide, so 100
-/// points put a vertex every 7 px: a line drawn through them differs from
-/// the 200-point one by less than a pixel except at the corners of
-/// impacts, which it rounds within one point's span (1% of the run).
-inline constexpr int kDisplayPlotPoints = 100;
+/// Most points of each plotted series. A plot is about 700 px wide, so 50
+/// points put a vertex every 14 px: a line drawn through them follows the
+/// 200-point one within a few pixels on the smooth stretches and rounds
+/// the corners of impacts within one point's span (2% of the run). 100
+/// points (every 7 px) took the series over the 5 MB budget once the suite
+/// grew to 36 files (docs/testbed-report.md, "Sizes").
+inline constexpr int kDisplayPlotPoints = 50;
 
 /// A plotted value is rounded to a decimal step at most this fraction of
 /// its own series' range (max - min): the plot scales its axis to the
