@@ -1,6 +1,6 @@
 // The contact solver on the reference pyramid (its specification:
 // docs/bench-scenes.md): the scalar Sequential Impulses against the
-// coloured wide solver (WorldSettings::contactSolver), per step and per
+// coloured wide solver (MethodSettings::contactOrder), per step and per
 // stage. Google Benchmark's time is the thread's CPU time, which a busy
 // shared machine disturbs far less than wall-clock time; the stage
 // counters are StepStatistics' wall-clock seconds per step, in ms. Speed
@@ -19,13 +19,13 @@ constexpr double kH = 1.0 / 60.0;
 // + (i odd), y = 1 + 2.5 i, z likewise, friction 0.2, density 1000, on a
 // static floor box whose top is y = 0; sleeping off, as the testbed runs
 // it. Stepped `settle` steps before timing.
-World MakePyramid(int h, ContactSolverKind kind, int settle) {
+World MakePyramid(int h, ContactOrder kind, int settle) {
   WorldSettings settings;
   settings.sleeping = false;
-  settings.contactSolver = kind;
+  settings.methods.contactOrder = kind;
   // The per-point friction rows both orders have (the coloured solver has
   // no joint block), so the two differ by their order alone.
-  settings.frictionSolve = FrictionSolve::PerPoint;
+  settings.methods.frictionSolve = FrictionSolve::PerPoint;
   settings.timeStages = true;  // the per-stage counters below read StepStatistics::seconds
   World world = World::Create(settings).Value();
   (void)world.CreateBody({.type = BodyType::Static,
@@ -49,10 +49,10 @@ World MakePyramid(int h, ContactSolverKind kind, int settle) {
   return world;
 }
 
-// Arguments: pyramid height, ContactSolverKind (0 sequential, 1 coloured
+// Arguments: pyramid height, ContactOrder (0 sequential, 1 coloured
 // wide), steps before timing (120: the layers have landed).
 void BM_PyramidStep(benchmark::State& state) {
-  World world = MakePyramid(static_cast<int>(state.range(0)), static_cast<ContactSolverKind>(state.range(1)),
+  World world = MakePyramid(static_cast<int>(state.range(0)), static_cast<ContactOrder>(state.range(1)),
                             static_cast<int>(state.range(2)));
   StageTimes sum;
   StepStatistics last;

@@ -51,8 +51,8 @@ BENCHMARK(BM_StepStacks)
 void BM_StepStacksOptions(benchmark::State& state) {
   WorldSettings settings;
   settings.sleeping = false;
-  settings.warmStarting = state.range(0) != 0;
-  settings.positionCorrection = static_cast<PositionCorrection>(state.range(1));
+  settings.methods.warmStarting = state.range(0) != 0;
+  settings.methods.positionCorrection = static_cast<PositionCorrection>(state.range(1));
   World world = MakeStacks(4, 5, settings);
   for (auto _ : state) benchmark::DoNotOptimize(world.Step(1.0 / 60.0));
 }

@@ -1,4 +1,4 @@
-// Bounces timed inside the step (WorldSettings::bounceTiming =
+// Bounces timed inside the step (MethodSettings::bounceTiming =
 // TimeOfImpact, dynamics/bounce_timing.h): the time of impact and the
 // reflected flight against their closed forms, then whole worlds against
 // the analytic apex e^(2k) H of a ball dropped from H, a resting ball that
@@ -120,8 +120,8 @@ WorldSettings BounceSettings() {
   s.gravity = {0.0, -kG, 0.0};
   s.sleeping = false;
   s.restitutionCombine = RestitutionCombine::Max;
-  s.bounceTiming = BounceTiming::TimeOfImpact;
-  s.translation = TranslationIntegrator::ExactConstantAcceleration;
+  s.methods.bounceTiming = BounceTiming::TimeOfImpact;
+  s.methods.translation = TranslationIntegrator::ExactConstantAcceleration;
   return s;
 }
 
@@ -215,7 +215,7 @@ TEST(TimedBounces, StepBoundaryBouncesMissTheApexByAStepOfTravel) {
   // 1/60 s errs by more than the 0.5% above (it is found up to v h = 7 cm
   // from the surface), so the test above can fail.
   WorldSettings s = BounceSettings();
-  s.bounceTiming = BounceTiming::StepBoundary;
+  s.methods.bounceTiming = BounceTiming::StepBoundary;
   BallScene scene = DropBall(1.0, 0.7, s);
   const std::vector<double> apexes = Apexes(scene, 1, kH);
   ASSERT_EQ(apexes.size(), 1u);
@@ -291,10 +291,10 @@ TEST(TimedBounces, HeadOnBallsKeepMomentumAndReflectTheRelativeSpeed) {
 
 TEST(TimedBounces, AnUnknownBounceTimingIsRefusedByName) {
   WorldSettings s;
-  s.bounceTiming = static_cast<BounceTiming>(7);
+  s.methods.bounceTiming = static_cast<BounceTiming>(7);
   const auto world = World::Create(s);
   ASSERT_FALSE(world);
-  EXPECT_NE(world.GetError().message.find("WorldSettings.bounceTiming = 7 is not a BounceTiming"),
+  EXPECT_NE(world.GetError().message.find("WorldSettings.methods.bounceTiming = 7 is not a BounceTiming"),
             std::string::npos)
       << world.GetError().message;
   EXPECT_EQ(ValidateSettings(BounceSettings()), "");

@@ -1,4 +1,4 @@
-// The coloured wide contact solver (ContactSolverKind::ColouredWide): the
+// The coloured wide contact solver (ContactOrder::ByColour): the
 // colouring's invariant, the wide lanes against the scalar reference where
 // the two must agree bit for bit (pairs that share no movable body), any cut
 // of a colour into ranges (and threads) giving bit-identical states, and
@@ -113,12 +113,12 @@ TEST(ConstraintColouring, StaticBodiesDoNotCountAndABusyBodyOverflows) {
 // order: the two solvers must agree to the last bit. Sliding, spinning,
 // tilted, bouncing and frictionless boxes exercise every row kind, the
 // block solve and its row-by-row fallback, and the extra sweeps.
-WorldSettings SettingsFor(ContactSolverKind kind) {
+WorldSettings SettingsFor(ContactOrder kind) {
   WorldSettings settings;
-  settings.contactSolver = kind;
+  settings.methods.contactOrder = kind;
   // The per-point friction rows both solvers have (the coloured one has no
   // joint block; World::Create refuses it there).
-  settings.frictionSolve = FrictionSolve::PerPoint;
+  settings.methods.frictionSolve = FrictionSolve::PerPoint;
   return settings;
 }
 
@@ -136,8 +136,8 @@ void AddLooseBoxes(ContactScene& scene) {
 }
 
 TEST(ColouredSolver, PairsSharingNoMovableBodyMatchTheScalarSolverBitForBit) {
-  ContactScene scalar(SettingsFor(ContactSolverKind::SequentialImpulses));
-  ContactScene wide(SettingsFor(ContactSolverKind::ColouredWide));
+  ContactScene scalar(SettingsFor(ContactOrder::PairByPair));
+  ContactScene wide(SettingsFor(ContactOrder::ByColour));
   AddLooseBoxes(scalar);
   AddLooseBoxes(wide);
   for (int step = 0; step < 240; ++step) {
@@ -173,7 +173,7 @@ void AddPyramid(ContactScene& scene) {
 // Runs the pyramid for `steps` with each phase cut into `cuts` ranges,
 // optionally run in reverse order or on threads; returns the state hash.
 std::uint64_t RunPyramid(int cuts, bool reverse, bool threads, int steps, StepStatistics* last = nullptr) {
-  ContactScene scene(SettingsFor(ContactSolverKind::ColouredWide), 0.02);
+  ContactScene scene(SettingsFor(ContactOrder::ByColour), 0.02);
   AddPyramid(scene);
   if (cuts > 0) {
     // Each phase (Prepare's pairs, the packing, each colour's bundles) cut
@@ -227,8 +227,7 @@ TEST(ColouredSolver, PyramidStandsLikeTheScalarSolver) {
   // started (they are placed touching; the Baumgarte slop is 4 mm, so a box
   // that sinks by the slop in each of 4 layers would be 1.6 cm off) and at
   // rest to 1 cm/s.
-  for (const ContactSolverKind kind :
-       {ContactSolverKind::SequentialImpulses, ContactSolverKind::ColouredWide}) {
+  for (const ContactOrder kind : {ContactOrder::PairByPair, ContactOrder::ByColour}) {
     ContactScene scene(SettingsFor(kind), 0.02);
     AddPyramid(scene);
     std::vector<Vec3> start;
@@ -251,7 +250,7 @@ TEST(ColouredSolver, PairsPastTheLastColourAreSolvedInTheOverflow) {
   // 30 small boxes on one large dynamic slab, the slab on the ground: all
   // 31 pairs share the slab, so 24 colours fill and 7 pairs overflow. They must rest as
   // well as the rest: after 1 s nothing moves faster than 1 cm/s.
-  ContactScene scene(SettingsFor(ContactSolverKind::ColouredWide), 0.02);
+  ContactScene scene(SettingsFor(ContactOrder::ByColour), 0.02);
   scene.EnableBoxPairs();
   scene.AddPlane({.normal = Vec3::UnitY(), .offset = 0.0, .friction = 0.5});
   scene.AddBox(Vec3(0.0, 0.25, 0.0), Vec3(4.0, 0.25, 4.0), 500.0);

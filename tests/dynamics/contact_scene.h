@@ -93,16 +93,16 @@ class ContactScene {
     m_previous.swap(m_contacts);
     m_contacts.clear();
     Collide();
-    if (m_settings.warmStarting) m_stats.warmStartedPoints = CarryImpulses(m_previous, m_contacts);
+    if (m_settings.methods.warmStarting) m_stats.warmStartedPoints = CarryImpulses(m_previous, m_contacts);
     m_solver.Prepare(m_bodies, m_contacts, m_settings, h, m_stats);
-    if (m_settings.warmStarting) m_solver.WarmStart();
-    m_solver.SolveVelocities(m_settings.velocityIterations, m_settings.maxVelocityIterations,
-                             m_settings.velocityTolerance);
+    if (m_settings.methods.warmStarting) m_solver.WarmStart();
+    m_solver.SolveVelocities(m_settings.velocityIterations, m_settings.methods.maxVelocityIterations,
+                             m_settings.methods.velocityTolerance);
     const bool pseudo = m_solver.UsesPseudoVelocities();
     if (pseudo) m_solver.SolveSplitImpulses(m_settings.positionIterations);
     m_solver.Scatter(m_bodies, pseudo);
     m_solver.StoreImpulses(m_contacts);
-    IntegratePositions(m_bodies, h, pseudo, m_settings.rotation, m_settings.translation);
+    IntegratePositions(m_bodies, h, pseudo, m_settings.methods.rotation, m_settings.methods.translation);
   }
 
   /// Kinetic plus potential energy of all boxes, J.

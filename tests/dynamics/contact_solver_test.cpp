@@ -80,10 +80,10 @@ TEST(ContactSolver, SlidingBoxFollowsTheDiscreteFrictionRecurrence) {
 TEST(ContactSolver, StopDistanceHoldsWithoutWarmStartingAndWithSplitImpulses) {
   const double expected = 25.0 / (2.0 * 0.5 * kG);
   WorldSettings cold = Settings();
-  cold.warmStarting = false;
+  cold.methods.warmStarting = false;
   EXPECT_NEAR(StopDistance(5.0, 0.5, cold, kSlideH), expected, 0.02 * expected);
   WorldSettings split = Settings();
-  split.positionCorrection = PositionCorrection::SplitImpulses;
+  split.methods.positionCorrection = PositionCorrection::SplitImpulses;
   EXPECT_NEAR(StopDistance(5.0, 0.5, split, kSlideH), expected, 0.02 * expected);
 }
 
@@ -206,9 +206,9 @@ void RunClosedRoom(const WorldSettings& settings, int steps, std::vector<double>
 
 TEST(ContactSolver, FrictionlessInelasticClosedSystemNeverGainsEnergy) {
   WorldSettings settings = Settings();
-  settings.positionCorrection = PositionCorrection::SplitImpulses;
+  settings.methods.positionCorrection = PositionCorrection::SplitImpulses;
   for (const bool warm : {false, true}) {
-    settings.warmStarting = warm;
+    settings.methods.warmStarting = warm;
     std::vector<double> energies;
     RunClosedRoom(settings, 600, &energies);
     for (std::size_t n = 1; n < energies.size(); ++n) {
@@ -225,7 +225,8 @@ TEST(ContactSolver, SplitImpulsesPushOutWithoutLaunching) {
   // pseudo-velocities and leave its real velocity near zero.
   const auto peakUpwardSpeed = [](bool split) {
     WorldSettings settings = Settings();
-    settings.positionCorrection = split ? PositionCorrection::SplitImpulses : PositionCorrection::Baumgarte;
+    settings.methods.positionCorrection =
+        split ? PositionCorrection::SplitImpulses : PositionCorrection::Baumgarte;
     ContactScene scene(settings);
     scene.AddPlane({});
     const int box = scene.AddBox({0, 0.45, 0}, Vec3::Constant(0.5), 1.0);
@@ -247,8 +248,8 @@ TEST(ContactSolver, BlockSolvedCornersOfAColdBoxShareTheLoadEvenly) {
   // a quarter. Round-off tolerance on impulses of ~0.16 N s.
   for (const bool block : {false, true}) {
     WorldSettings settings = Settings();
-    settings.blockSolver = block;
-    settings.maxVelocityIterations = 1;
+    settings.methods.blockSolver = block;
+    settings.methods.maxVelocityIterations = 1;
     settings.velocityIterations = 1;
     ContactScene scene(settings);
     scene.AddPlane({});
@@ -371,8 +372,8 @@ std::uint64_t HashBodies(ContactScene& scene, int bodyCount) {
 TEST(ContactSolver, SameSceneSteppedTwiceGivesBitIdenticalStates) {
   const auto run = [] {
     WorldSettings settings = Settings();
-    settings.rotation = RotationIntegrator::MomentumSplitting;
-    settings.translation = TranslationIntegrator::ExactConstantAcceleration;
+    settings.methods.rotation = RotationIntegrator::MomentumSplitting;
+    settings.methods.translation = TranslationIntegrator::ExactConstantAcceleration;
     ContactScene scene(settings);
     scene.AddPlane({});
     scene.AddPlane({.normal = Vec3(-1, 0, 0), .offset = -2.0});

@@ -30,8 +30,8 @@ TEST(Integrator, FreeFallFollowsTheSymplecticEulerRecurrence) {
   // The write-up's scheme, selected explicitly (the default is exact for
   // constant gravity; tested below).
   World world = MakeWorld({.gravity = {0.0, -9.81, 0.0},
-                           .translation = TranslationIntegrator::SymplecticEuler,
-                           .sleeping = false});
+                           .sleeping = false,
+                           .methods = {.translation = TranslationIntegrator::SymplecticEuler}});
   const double y0 = 100.0;
   const BodyId id = world.CreateBody({.type = BodyType::Dynamic, .position = {0, y0, 0}}).Value();
   for (int n = 1; n <= 240; ++n) {
@@ -48,8 +48,8 @@ TEST(Integrator, FreeFallFollowsTheSymplecticEulerRecurrence) {
 
 TEST(Integrator, ProjectileFollowsTheRecurrenceOnEveryAxis) {
   const Vec3 g(0.0, -9.81, 0.0);
-  World world =
-      MakeWorld({.gravity = g, .translation = TranslationIntegrator::SymplecticEuler, .sleeping = false});
+  World world = MakeWorld(
+      {.gravity = g, .sleeping = false, .methods = {.translation = TranslationIntegrator::SymplecticEuler}});
   const Vec3 x0(1.0, 2.0, 3.0);
   const Vec3 v0(4.0, 12.0, -3.0);
   const BodyId id =
@@ -107,8 +107,9 @@ TEST(Integrator, DefaultFreeFallIsIndependentOfTheStep) {
 }
 
 TEST(Integrator, SpinAboutAPrincipalAxisConservesAngularMomentumWithoutGyroscopicTerm) {
-  World world =
-      MakeWorld({.gravity = Vec3::Zero(), .rotation = RotationIntegrator::ConstantRate, .sleeping = false});
+  World world = MakeWorld({.gravity = Vec3::Zero(),
+                           .sleeping = false,
+                           .methods = {.rotation = RotationIntegrator::ConstantRate}});
   const Mat3 inertia = Vec3(1.0, 2.0, 3.0).asDiagonal();
   const Quat tilt(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
   const Vec3 w = tilt * Vec3(0.0, 0.0, 4.0);
@@ -129,7 +130,7 @@ TEST(Integrator, SpinAboutAPrincipalAxisConservesAngularMomentumWithoutGyroscopi
 // body's intermediate axis periodically turns over (the Dzhanibekov effect),
 // which only the gyroscopic term produces.
 double MinimumIntermediateAxisAlignment(RotationIntegrator rotation) {
-  World world = MakeWorld({.gravity = Vec3::Zero(), .rotation = rotation, .sleeping = false});
+  World world = MakeWorld({.gravity = Vec3::Zero(), .sleeping = false, .methods = {.rotation = rotation}});
   const Mat3 inertia = Vec3(1.0, 2.0, 3.0).asDiagonal();
   const BodyId id =
       world

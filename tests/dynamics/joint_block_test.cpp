@@ -1,4 +1,4 @@
-// FrictionSolve::JointBlock through the World: a sticking pair's normals and
+// FrictionSolve::CoupledBlock through the World: a sticking pair's normals and
 // friction solved as one block. Analytic answers first (the discrete Coulomb
 // stop distance, a box held on a slope, a box sliding down one), then the
 // property that matters for trusting it (it converges to what the per-point
@@ -23,7 +23,7 @@ WorldSettings Settings(FrictionSolve friction, int iterations) {
   settings.sleeping = false;
   settings.velocityIterations = iterations;
   settings.positionIterations = iterations;
-  settings.frictionSolve = friction;
+  settings.methods.frictionSolve = friction;
   return settings;
 }
 
@@ -91,7 +91,7 @@ double DiscreteStopDistance(double v0, double mu, double h) {
 TEST(JointBlock, BoxStoppingAtThirtyHertzWithFiveSweepsStopsAtTheDiscreteCoulombDistance) {
   const double h = 1.0 / 30.0;
   const double expected = DiscreteStopDistance(3.0, 0.5, h);
-  const Stop joint = SlideAndStop(Settings(FrictionSolve::JointBlock, 5), 3.0, 0.5, h);
+  const Stop joint = SlideAndStop(Settings(FrictionSolve::CoupledBlock, 5), 3.0, 0.5, h);
   // 1e-9 m: the scale of the testbed's input perturbation; the round-off of
   // eighteen steps' sums is 1e-15 m. At rest means no velocity above
   // round-off: the block leaves a sticking pair exactly solved.
@@ -117,7 +117,7 @@ TEST(JointBlock, StopDistanceIsExactOverFrictionSpeedAndStep) {
   for (const double mu : {0.3, 0.5, 0.8}) {
     for (const double v0 : {1.0, 3.0}) {
       for (const double h : {1.0 / 30.0, 1.0 / 60.0}) {
-        const Stop stop = SlideAndStop(Settings(FrictionSolve::JointBlock, 5), v0, mu, h);
+        const Stop stop = SlideAndStop(Settings(FrictionSolve::CoupledBlock, 5), v0, mu, h);
         // As above; mu 0.8 stops a 1 m/s box in 4 steps at 30 Hz.
         EXPECT_NEAR(stop.distance, DiscreteStopDistance(v0, mu, h), 1e-9)
             << "mu " << mu << " v0 " << v0 << " h " << h;
@@ -155,8 +155,9 @@ TEST(JointBlock, BoxOnASlopeBelowTheFrictionAngleStaysPut) {
   // tan(20 deg) = 0.36 < mu = 0.5: static friction holds. 1e-9 m in 2 s:
   // the block is accepted every sweep, so nothing creeps beyond round-off.
   const double angle = 20.0 * std::numbers::pi / 180.0;
-  EXPECT_LT(std::abs(SlopeDisplacement(Settings(FrictionSolve::JointBlock, 5), angle, 0.5, 1.0 / 60.0, 120)),
-            1e-9);
+  EXPECT_LT(
+      std::abs(SlopeDisplacement(Settings(FrictionSolve::CoupledBlock, 5), angle, 0.5, 1.0 / 60.0, 120)),
+      1e-9);
 }
 
 TEST(JointBlock, BoxOnASlopeAboveTheFrictionAngleSlidesAtGTimesSinMinusMuCos) {
@@ -169,7 +170,7 @@ TEST(JointBlock, BoxOnASlopeAboveTheFrictionAngleSlidesAtGTimesSinMinusMuCos) {
   const int steps = 60;
   const double a = kG * (std::sin(angle) - 0.3 * std::cos(angle));
   const double expected = a * h * h * steps * (steps + 1) / 2.0;
-  const double moved = SlopeDisplacement(Settings(FrictionSolve::JointBlock, 5), angle, 0.3, h, steps);
+  const double moved = SlopeDisplacement(Settings(FrictionSolve::CoupledBlock, 5), angle, 0.3, h, steps);
   EXPECT_NEAR(moved, expected, 1e-9 * expected);
 }
 
@@ -193,10 +194,10 @@ TEST(JointBlock, ConvergesToWhereThePerPointRowsConverge) {
     Vec3 slabFinal[2];
     for (int variant = 0; variant < 2; ++variant) {
       WorldSettings settings =
-          Settings(variant == 0 ? FrictionSolve::PerPoint : FrictionSolve::JointBlock, 200);
+          Settings(variant == 0 ? FrictionSolve::PerPoint : FrictionSolve::CoupledBlock, 200);
       // The sweeps' fixed points are compared: shock propagation's per-point
       // rows after them move both a little (5.3e-6 m apart at trial 4 with it).
-      settings.shockPropagation = false;
+      settings.methods.shockPropagation = false;
       World world = World::Create(settings).Value();
       AddGround(world, mu);
       BodyId slab{};
@@ -228,7 +229,7 @@ TEST(JointBlock, ConvergesToWhereThePerPointRowsConverge) {
 // (no impulse touches it, so it moves exactly under gravity).
 TEST(JointBlock, ACubeLeavingTheGroundIsNotHeldDown) {
   const double h = 1.0 / 60.0;
-  World world = World::Create(Settings(FrictionSolve::JointBlock, 10)).Value();
+  World world = World::Create(Settings(FrictionSolve::CoupledBlock, 10)).Value();
   AddGround(world, 0.8);
   const BodyId box = AddCube(world, {0, 0.25, 0}, {0.5, 1.0, 0}, {0, 2.0, 0}, 0.8);
   for (int n = 1; n <= 10; ++n) {
@@ -249,9 +250,9 @@ TEST(JointBlock, ACubeLeavingTheGroundIsNotHeldDown) {
 // Row by row, one sweep leaves it turning.
 TEST(JointBlock, ASlowSpinStopsInOneSweep) {
   for (const bool cubeFirst : {false, true}) {
-    for (const FrictionSolve friction : {FrictionSolve::JointBlock, FrictionSolve::PerPoint}) {
+    for (const FrictionSolve friction : {FrictionSolve::CoupledBlock, FrictionSolve::PerPoint}) {
       WorldSettings settings = Settings(friction, 1);
-      settings.maxVelocityIterations = 1;  // one sweep, no extra sweeps for the new pair
+      settings.methods.maxVelocityIterations = 1;  // one sweep, no extra sweeps for the new pair
       World world = World::Create(settings).Value();
       if (!cubeFirst) AddGround(world, 0.5);
       const BodyId box = AddCube(world, {0, 0.25, 0}, Vec3::Zero(), {0, 0.3, 0}, 0.5);
@@ -259,7 +260,7 @@ TEST(JointBlock, ASlowSpinStopsInOneSweep) {
       EXPECT_TRUE(world.Step(1.0 / 60.0));
       const BodyState s = world.GetBodyState(box).Value();
       const double motion = s.angularVelocity.norm() + s.linearVelocity.norm();
-      if (friction == FrictionSolve::JointBlock) {
+      if (friction == FrictionSolve::CoupledBlock) {
         EXPECT_LT(motion, 1e-12) << "cube first " << cubeFirst;  // round-off of one solve
       } else {
         EXPECT_GT(motion, 1e-6) << "cube first " << cubeFirst;  // the scene tells them apart
@@ -278,8 +279,8 @@ TEST(JointBlock, ASlowSpinStopsInOneSweep) {
 // rightly refused.)
 TEST(JointBlock, StoredImpulsesAreTheOnesThatMovedTheBody) {
   for (const bool planeFirst : {true, false}) {
-    WorldSettings settings = Settings(FrictionSolve::JointBlock, 1);
-    settings.maxVelocityIterations = 1;
+    WorldSettings settings = Settings(FrictionSolve::CoupledBlock, 1);
+    settings.methods.maxVelocityIterations = 1;
     settings.gravity = Vec3(0, -kG, 0);
     testing::ContactScene scene(settings);
     const double mass = 62.5;
@@ -328,39 +329,39 @@ TEST(JointBlock, StoredImpulsesAreTheOnesThatMovedTheBody) {
 // settings are refused, naming both settings, instead of silently running
 // the per-point rows; with PerPoint the same settings are accepted.
 TEST(JointBlock, IsRefusedWhereItWouldDoNothingAndOutOfRange) {
-  WorldSettings coloured = Settings(FrictionSolve::JointBlock, 10);
-  coloured.contactSolver = ContactSolverKind::ColouredWide;
+  WorldSettings coloured = Settings(FrictionSolve::CoupledBlock, 10);
+  coloured.methods.contactOrder = ContactOrder::ByColour;
   const auto refused = World::Create(coloured);
   ASSERT_FALSE(refused);
-  EXPECT_NE(refused.GetError().message.find("frictionSolve = JointBlock"), std::string::npos)
+  EXPECT_NE(refused.GetError().message.find("frictionSolve = CoupledBlock"), std::string::npos)
       << refused.GetError().message;
-  EXPECT_NE(refused.GetError().message.find("SequentialImpulses"), std::string::npos)
+  EXPECT_NE(refused.GetError().message.find("contactOrder = PairByPair"), std::string::npos)
       << refused.GetError().message;
-  coloured.frictionSolve = FrictionSolve::PerPoint;
+  coloured.methods.frictionSolve = FrictionSolve::PerPoint;
   EXPECT_TRUE(World::Create(coloured));
 
-  WorldSettings rowByRow = Settings(FrictionSolve::JointBlock, 10);
-  rowByRow.blockSolver = false;
+  WorldSettings rowByRow = Settings(FrictionSolve::CoupledBlock, 10);
+  rowByRow.methods.blockSolver = false;
   const auto noBlock = World::Create(rowByRow);
   ASSERT_FALSE(noBlock);
-  EXPECT_NE(noBlock.GetError().message.find("frictionSolve = JointBlock"), std::string::npos)
+  EXPECT_NE(noBlock.GetError().message.find("frictionSolve = CoupledBlock"), std::string::npos)
       << noBlock.GetError().message;
   EXPECT_NE(noBlock.GetError().message.find("blockSolver"), std::string::npos) << noBlock.GetError().message;
-  rowByRow.frictionSolve = FrictionSolve::PerPoint;
+  rowByRow.methods.frictionSolve = FrictionSolve::PerPoint;
   EXPECT_TRUE(World::Create(rowByRow));
 
   // SetSettings applies the same rule and leaves the world as it was.
-  World world = World::Create(Settings(FrictionSolve::JointBlock, 10)).Value();
+  World world = World::Create(Settings(FrictionSolve::CoupledBlock, 10)).Value();
   WorldSettings change = world.Settings();
-  change.blockSolver = false;
+  change.methods.blockSolver = false;
   EXPECT_FALSE(world.SetSettings(change));
-  EXPECT_TRUE(world.Settings().blockSolver);
+  EXPECT_TRUE(world.Settings().methods.blockSolver);
 
   WorldSettings unknown = Settings(FrictionSolve::PerPoint, 10);
-  unknown.frictionSolve = static_cast<FrictionSolve>(7);
+  unknown.methods.frictionSolve = static_cast<FrictionSolve>(7);
   const auto bad = World::Create(unknown);
   ASSERT_FALSE(bad);
-  EXPECT_NE(bad.GetError().message.find("WorldSettings.frictionSolve = 7"), std::string::npos)
+  EXPECT_NE(bad.GetError().message.find("WorldSettings.methods.frictionSolve = 7"), std::string::npos)
       << bad.GetError().message;
 }
 
@@ -369,7 +370,7 @@ TEST(JointBlock, IsRefusedWhereItWouldDoNothingAndOutOfRange) {
 TEST(JointBlock, BitIdenticalForAnyThreadCount) {
   std::vector<std::vector<double>> runs;
   for (const int threads : {1, 2, 3}) {
-    WorldSettings settings = Settings(FrictionSolve::JointBlock, 10);
+    WorldSettings settings = Settings(FrictionSolve::CoupledBlock, 10);
     settings.threads = threads;
     World world = World::Create(settings).Value();
     AddGround(world, 0.6);

@@ -1,4 +1,4 @@
-// The free rigid body splitting (WorldSettings::rotation =
+// The free rigid body splitting (MethodSettings::rotation =
 // MomentumSplitting) and the translation exact for constant acceleration,
 // through the World's public API, judged with oracles the engine does not
 // share: the invariants of Euler's equations, the elliptic-integral period of
@@ -68,7 +68,7 @@ struct SpinRun {
 
 SpinRun Spin(const Vec3& inertia, const Vec3& omegaBody, int axis, double h, int steps,
              RotationIntegrator rotation = RotationIntegrator::MomentumSplitting) {
-  World world = MakeWorld({.gravity = Vec3::Zero(), .rotation = rotation, .sleeping = false});
+  World world = MakeWorld({.gravity = Vec3::Zero(), .sleeping = false, .methods = {.rotation = rotation}});
   const Quat tilt(Eigen::AngleAxisd(0.4, Vec3(1, 2, 3).normalized()));
   const BodyId id = world
                         .CreateBody({.type = BodyType::Dynamic,
@@ -211,8 +211,9 @@ TEST(MomentumSplitting, GeneralInertiaUsesItsPrincipalAxes) {
   EXPECT_LT((frame * Mat3(axes.moments.asDiagonal()) * frame.transpose() - inertia).norm(), 1e-12);
   EXPECT_NEAR(frame.determinant(), 1.0, 1e-12);
 
-  World world = MakeWorld(
-      {.gravity = Vec3::Zero(), .rotation = RotationIntegrator::MomentumSplitting, .sleeping = false});
+  World world = MakeWorld({.gravity = Vec3::Zero(),
+                           .sleeping = false,
+                           .methods = {.rotation = RotationIntegrator::MomentumSplitting}});
   const BodyId id =
       world
           .CreateBody(
@@ -279,8 +280,9 @@ TEST(MomentumSplitting, SameRunTwiceIsBitIdentical) {
 
 TEST(MomentumSplitting, TorqueChangesAngularMomentumByItsImpulse) {
   // dL/dt = tau: one step applies h tau to L (the drift keeps it after).
-  World world = MakeWorld(
-      {.gravity = Vec3::Zero(), .rotation = RotationIntegrator::MomentumSplitting, .sleeping = false});
+  World world = MakeWorld({.gravity = Vec3::Zero(),
+                           .sleeping = false,
+                           .methods = {.rotation = RotationIntegrator::MomentumSplitting}});
   const BodyId id = world
                         .CreateBody({.type = BodyType::Dynamic,
                                      .angularVelocity = {0.5, 1.0, 0.2},
@@ -298,8 +300,9 @@ TEST(MomentumSplitting, TorqueChangesAngularMomentumByItsImpulse) {
 
 TEST(ExactConstantAcceleration, ProjectileFollowsTheParabolaOnEveryAxis) {
   const Vec3 g(0.0, 0.0, -9.8);
-  World world = MakeWorld(
-      {.gravity = g, .translation = TranslationIntegrator::ExactConstantAcceleration, .sleeping = false});
+  World world = MakeWorld({.gravity = g,
+                           .sleeping = false,
+                           .methods = {.translation = TranslationIntegrator::ExactConstantAcceleration}});
   const Vec3 x0(1.0, 2.0, 3.0);
   const Vec3 v0(-2.0, 2.0, 8.0);
   const BodyId id =
@@ -318,7 +321,7 @@ TEST(ExactConstantAcceleration, ProjectileFollowsTheParabolaOnEveryAxis) {
 // A box dropped on the ground with both translation schemes: the exact one
 // only changes free flight, so the box comes to the same rest.
 BodyState DropBox(TranslationIntegrator translation, RotationIntegrator rotation) {
-  World world = MakeWorld({.rotation = rotation, .translation = translation, .sleeping = false});
+  World world = MakeWorld({.sleeping = false, .methods = {.rotation = rotation, .translation = translation}});
   EXPECT_TRUE(world.CreateBody({.type = BodyType::Static,
                                 .position = {0.0, -0.5, 0.0},
                                 .shape = Shape::CreateBox({10.0, 0.5, 10.0}).Value()}));

@@ -101,9 +101,9 @@ TEST(ContactSolver, PrecomputedRowsGiveARestingBoxTheImpulseMgh) {
   const double mass = 2.0;
   for (const bool block : {true, false}) {
     WorldSettings settings{.gravity = {0.0, -kG, 0.0}, .sleeping = false};
-    settings.blockSolver = block;
-    settings.velocityTolerance = 1e-12;
-    settings.maxVelocityIterations = 1000;
+    settings.methods.blockSolver = block;
+    settings.methods.velocityTolerance = 1e-12;
+    settings.methods.maxVelocityIterations = 1000;
     ContactScene scene(settings);
     scene.AddPlane({});
     const int box = scene.AddBox({0, 0.5, 0}, Vec3::Constant(0.5), mass);

@@ -64,7 +64,7 @@ TEST(Replay, TalusCountersShowTheBroadPhaseFunnelForFifteenFallingCubes) {
   RunnerOptions options;
   // talus-writeup keeps the write-up's fixed 2 cm speculative margin, so the
   // spheres are the shapes' own plus 2 cm; talus grows them by each body's
-  // reach this step (WorldSettings::speculativeMotion, the next test).
+  // reach this step (MethodSettings::speculativeMotion, the next test).
   options.backends = {"talus-writeup"};
   options.replay = {"all"};
   const RunResult result = RunOne(MakeRegistry(), run, "talus-writeup", options);

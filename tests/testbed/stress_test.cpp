@@ -87,7 +87,7 @@ TEST(StressSpeed, ASlowBoxStopsAtTheWallAndAFastOneTunnelsThroughAFixedMargin) {
   // it must be stopped. At 600 m/s it moves 10 m per step: with a fixed
   // 2 cm speculative margin (talus-writeup) the wall is never in a
   // manifold and the box must end beyond it; talus grows the margin to the
-  // step's reach (WorldSettings::speculativeMotion), so the wall is a
+  // step's reach (MethodSettings::speculativeMotion), so the wall is a
   // speculative contact the step before and the box must end against it,
   // its centre 0.05 + 0.025 m from the wall's, to within 1 mm.
   for (const char* backend : {"talus", "talus-writeup"}) {

@@ -71,8 +71,9 @@ WorldSettings WithoutScenarioChoices(WorldSettings s, const harness::Run& run) {
   s.restitutionCombine = defaults.restitutionCombine;
   EXPECT_FALSE(s.sleeping);  // the peers never sleep
   s.sleeping = defaults.sleeping;
-  EXPECT_EQ(s.rotation, world.gyroscopic ? defaults.rotation : RotationIntegrator::ConstantRate);
-  s.rotation = defaults.rotation;
+  EXPECT_EQ(s.methods.rotation,
+            world.gyroscopic ? defaults.methods.rotation : RotationIntegrator::ConstantRate);
+  s.methods.rotation = defaults.methods.rotation;
   switch (world.broadPhase) {
     case harness::BroadPhaseChoice::Auto:
       break;
@@ -84,17 +85,17 @@ WorldSettings WithoutScenarioChoices(WorldSettings s, const harness::Run& run) {
           {harness::BroadPhaseChoice::AabbTree, BroadPhaseKind::AabbTree},
           {harness::BroadPhaseChoice::BruteForce, BroadPhaseKind::BruteForce}};
       EXPECT_EQ(s.broadPhase, kinds.at(world.broadPhase));
-      EXPECT_TRUE(s.forceBroadPhase);
+      EXPECT_TRUE(s.methods.forceBroadPhase);
       s.broadPhase = defaults.broadPhase;
-      s.forceBroadPhase = defaults.forceBroadPhase;
+      s.methods.forceBroadPhase = defaults.methods.forceBroadPhase;
       break;
     }
   }
   if (world.bounceTiming != harness::BounceTimingChoice::Auto) {
-    EXPECT_EQ(s.bounceTiming, world.bounceTiming == harness::BounceTimingChoice::StepBoundary
-                                  ? BounceTiming::StepBoundary
-                                  : BounceTiming::TimeOfImpact);
-    s.bounceTiming = defaults.bounceTiming;
+    EXPECT_EQ(s.methods.bounceTiming, world.bounceTiming == harness::BounceTimingChoice::StepBoundary
+                                          ? BounceTiming::StepBoundary
+                                          : BounceTiming::TimeOfImpact);
+    s.methods.bounceTiming = defaults.methods.bounceTiming;
   }
   return s;
 }
@@ -133,7 +134,7 @@ TEST(TalusRows, TheTalusRowDepartsOnlyByWhatTheScenarioStates) {
   left.threads = WorldSettings{}.threads;
   EXPECT_TRUE(left == WorldSettings{});
   // The comparison can fail: one field off the defaults is seen.
-  left.speculativeMotion = !left.speculativeMotion;
+  left.methods.speculativeMotion = !left.methods.speculativeMotion;
   EXPECT_FALSE(left == WorldSettings{});
 }
 
@@ -143,36 +144,36 @@ TEST(TalusRows, EachVariantDepartsFromTheTalusRowByItsListedSettingsOnly) {
     const WorldSettings talus = TalusRowSettings(run, "talus").Value();
 
     WorldSettings split = talus;
-    split.positionCorrection = PositionCorrection::SplitImpulses;
+    split.methods.positionCorrection = PositionCorrection::SplitImpulses;
     EXPECT_TRUE(TalusRowSettings(run, "talus-split").Value() == split);
 
     WorldSettings coloured = talus;
-    coloured.contactSolver = ContactSolverKind::ColouredWide;
-    coloured.frictionSolve = FrictionSolve::PerPoint;
+    coloured.methods.contactOrder = ContactOrder::ByColour;
+    coloured.methods.frictionSolve = FrictionSolve::PerPoint;
     EXPECT_TRUE(TalusRowSettings(run, "talus-coloured").Value() == coloured);
 
     WorldSettings soft = talus;
-    soft.stepSolver = StepSolver::SoftStep;
-    soft.frictionSolve = FrictionSolve::PerPoint;
+    soft.methods.stepSolver = StepSolver::SoftStep;
+    soft.methods.frictionSolve = FrictionSolve::PerPoint;
     EXPECT_TRUE(TalusRowSettings(run, "talus-soft").Value() == soft);
 
     WorldSettings writeUp = talus;
-    if (run.scenario.world.gyroscopic) writeUp.rotation = RotationIntegrator::MomentumSplitting;
+    if (run.scenario.world.gyroscopic) writeUp.methods.rotation = RotationIntegrator::MomentumSplitting;
     if (run.scenario.world.bounceTiming == harness::BounceTimingChoice::Auto) {
-      writeUp.bounceTiming = BounceTiming::StepBoundary;
+      writeUp.methods.bounceTiming = BounceTiming::StepBoundary;
     }
-    writeUp.translation = TranslationIntegrator::SymplecticEuler;
-    writeUp.narrowPhase.satMode = SatMode::Full;
-    writeUp.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
-    writeUp.narrowPhase.useSatCache = false;
-    writeUp.narrowPhase.reuseDistance = 0.0;
-    writeUp.narrowPhase.persistence = ManifoldPersistence::Fresh;
-    writeUp.speculativeMotion = false;
-    writeUp.warmStarting = false;
-    writeUp.blockSolver = false;
-    writeUp.maxVelocityIterations = 1;
-    writeUp.frictionSolve = FrictionSolve::PerPoint;
-    writeUp.shockPropagation = false;
+    writeUp.methods.translation = TranslationIntegrator::SymplecticEuler;
+    writeUp.methods.narrowPhase.satMode = SatMode::Full;
+    writeUp.methods.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
+    writeUp.methods.narrowPhase.useSatCache = false;
+    writeUp.methods.narrowPhase.reuseDistance = 0.0;
+    writeUp.methods.narrowPhase.persistence = ManifoldPersistence::Fresh;
+    writeUp.methods.speculativeMotion = false;
+    writeUp.methods.warmStarting = false;
+    writeUp.methods.blockSolver = false;
+    writeUp.methods.maxVelocityIterations = 1;
+    writeUp.methods.frictionSolve = FrictionSolve::PerPoint;
+    writeUp.methods.shockPropagation = false;
     EXPECT_TRUE(TalusRowSettings(run, "talus-writeup").Value() == writeUp);
   }
   const auto unknown = TalusRowSettings(BoxRest(), "talus-fast");

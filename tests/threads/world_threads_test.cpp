@@ -246,17 +246,17 @@ TEST(WorldThreads, EverySolverVariantIsBitIdentical) {
     AddRandomBoxes(world, 60, 5);
   };
   WorldSettings split;
-  split.positionCorrection = PositionCorrection::SplitImpulses;
-  split.rotation = RotationIntegrator::MomentumSplitting;
+  split.methods.positionCorrection = PositionCorrection::SplitImpulses;
+  split.methods.rotation = RotationIntegrator::MomentumSplitting;
   ExpectSameBitsForEveryThreadCount(build, split, 40);
   WorldSettings writeUp;
-  writeUp.narrowPhase.satMode = SatMode::Full;
-  writeUp.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
-  writeUp.narrowPhase.reuseDistance = 0.0;
-  writeUp.blockSolver = false;  // the write-up's row-by-row solver, friction per point
-  writeUp.frictionSolve = FrictionSolve::PerPoint;
-  writeUp.speculativeMotion = false;  // and its fixed speculative margin
-  writeUp.translation = TranslationIntegrator::ExactConstantAcceleration;
+  writeUp.methods.narrowPhase.satMode = SatMode::Full;
+  writeUp.methods.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
+  writeUp.methods.narrowPhase.reuseDistance = 0.0;
+  writeUp.methods.blockSolver = false;  // the write-up's row-by-row solver, friction per point
+  writeUp.methods.frictionSolve = FrictionSolve::PerPoint;
+  writeUp.methods.speculativeMotion = false;  // and its fixed speculative margin
+  writeUp.methods.translation = TranslationIntegrator::ExactConstantAcceleration;
   writeUp.broadPhase = BroadPhaseKind::AabbTree;
   ExpectSameBitsForEveryThreadCount(build, writeUp, 40);
 }
@@ -271,8 +271,8 @@ TEST(WorldThreads, ColouredSolverSpreadsColoursWithoutChangingABit) {
     AddPyramid(world, 7);
   };
   WorldSettings coloured;
-  coloured.contactSolver = ContactSolverKind::ColouredWide;
-  coloured.frictionSolve = FrictionSolve::PerPoint;  // the coloured solver has no joint block
+  coloured.methods.contactOrder = ContactOrder::ByColour;
+  coloured.methods.frictionSolve = FrictionSolve::PerPoint;  // the coloured solver has no joint block
   const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, coloured, 12);
   EXPECT_GT(one.manifolds, 2 * 8 * 8);  // several chunks of 8 bundles of 4 pairs
 }
@@ -318,9 +318,9 @@ TEST(WorldThreads, ColouredSolverWithOverflowBouncesAndSplitImpulsesIsBitIdentic
     AddBouncingBoxesOnASlab(world);
   };
   WorldSettings settings;
-  settings.contactSolver = ContactSolverKind::ColouredWide;
-  settings.frictionSolve = FrictionSolve::PerPoint;  // the coloured solver has no joint block
-  settings.positionCorrection = PositionCorrection::SplitImpulses;
+  settings.methods.contactOrder = ContactOrder::ByColour;
+  settings.methods.frictionSolve = FrictionSolve::PerPoint;  // the coloured solver has no joint block
+  settings.methods.positionCorrection = PositionCorrection::SplitImpulses;
   const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, settings, 30);
   // The scene reaches what it is here for.
   EXPECT_GT(one.overflowPairs, 0);

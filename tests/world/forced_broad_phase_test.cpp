@@ -1,10 +1,10 @@
-// WorldSettings::forceBroadPhase: a small world (at most kTinyWorldProxies
+// MethodSettings::forceBroadPhase: a small world (at most kTinyWorldProxies
 // bodies, where the default takes brute force) runs the selected structure,
 // finds exactly the pairs of an all-pairs bounding-sphere test written here,
 // and therefore steps bit for bit like the brute-force world. The oracle
 // shares nothing with the engine's broad phase but the bounding sphere each
 // shape declares (Shape::LocalBoundingSphere, public) and the speculative
-// margin every proxy is grown by (WorldSettings::narrowPhase).
+// margin every proxy is grown by (MethodSettings::narrowPhase).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -103,14 +103,14 @@ TEST(ForcedBroadPhase, SmallWorldsRunTheForcedStructureAndFindTheOraclePairs) {
       settings.gravity = Vec3::Zero();
       settings.sleeping = false;
       settings.broadPhase = configurations[c].selected;
-      settings.forceBroadPhase = configurations[c].force;
+      settings.methods.forceBroadPhase = configurations[c].force;
       // The oracle grows each sphere by the fixed margin; speculative
       // motion (the default) would grow it by each body's reach as well.
-      settings.speculativeMotion = false;
+      settings.methods.speculativeMotion = false;
       worlds.push_back(World::Create(settings).Value());
       for (const RandomBody& body : bodies) ids[c].push_back(worlds[c].CreateBody(body.def).Value());
     }
-    const double margin = worlds[0].Settings().narrowPhase.speculativeMargin;
+    const double margin = worlds[0].Settings().methods.narrowPhase.speculativeMargin;
     for (int step = 0; step < kSteps; ++step) {
       const std::int64_t expected = OraclePairCount(worlds[0], ids[0], bodies, margin);
       oracleTotal += expected;

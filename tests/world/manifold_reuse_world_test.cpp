@@ -30,7 +30,7 @@ Shape Box(const Vec3& half) { return Shape::CreateBox(half).Value(); }
 WorldSettings Settings(double reuseDistance) {
   WorldSettings settings;
   settings.sleeping = false;
-  settings.narrowPhase.reuseDistance = reuseDistance;
+  settings.methods.narrowPhase.reuseDistance = reuseDistance;
   return settings;
 }
 
@@ -262,7 +262,7 @@ TEST(ManifoldReuse, BadReuseDistanceIsRefusedWithTheFieldNamed) {
     EXPECT_NE(world.GetError().message.find("narrowPhase.reuseDistance"), std::string::npos);
   }
   EXPECT_TRUE(World::Create(Settings(0.0)));
-  EXPECT_EQ(WorldSettings{}.narrowPhase.reuseDistance, 0.0005);
+  EXPECT_EQ(WorldSettings{}.methods.narrowPhase.reuseDistance, 0.0005);
 }
 
 }  // namespace

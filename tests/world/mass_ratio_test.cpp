@@ -1,5 +1,5 @@
 // Heavy loads on light supports under the engine's defaults
-// (WorldSettings::shockPropagation, docs/dynamics.md "Shock propagation").
+// (MethodSettings::shockPropagation, docs/dynamics.md "Shock propagation").
 // Judged by what rigid contact allows, not by the solver's own numbers:
 // bodies placed touching may sink into their contacts by at most the slop
 // each (position correction leaves that band alone), may not rise above
@@ -93,7 +93,7 @@ TEST(MassRatio, ASlabUpToAThousandTimesItsSupportsRestsOnThem) {
 TEST(MassRatio, WithoutShockPropagationTheThousandToOneSlabIsThrown) {
   // The same check fails the sweeps alone: what the default is for.
   WorldSettings settings = Defaults();
-  settings.shockPropagation = false;
+  settings.methods.shockPropagation = false;
   const Extremes e = SlabOnTwoBoxes(1000.0, settings);
   const double rise = *std::max_element(e.highest.begin(), e.highest.end());
   EXPECT_GT(std::max(rise, e.energyRise / (1000.0 * kG)), 1e-4);

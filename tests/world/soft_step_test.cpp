@@ -1,4 +1,4 @@
-// The soft step (WorldSettings::stepSolver = SoftStep, dynamics/
+// The soft step (MethodSettings::stepSolver = SoftStep, dynamics/
 // soft_step_solver.h) through the whole pipeline: its settings refused when
 // invalid, the soft row against the implicit Euler spring it stands for,
 // rest heights against the springs' static deflection, a sliding stop
@@ -26,7 +26,7 @@ Shape Box(const Vec3& half) { return Shape::CreateBox(half).Value(); }
 
 WorldSettings SoftSettings() {
   WorldSettings settings;
-  settings.stepSolver = StepSolver::SoftStep;
+  settings.methods.stepSolver = StepSolver::SoftStep;
   settings.sleeping = false;  // every step solves the scene
   return settings;
 }
@@ -63,33 +63,33 @@ TEST(SoftStep, InvalidSettingsAreRefusedNamingTheField) {
     void (*spoil)(WorldSettings&);
   };
   const Case cases[] = {
-      {"softStep.substeps", [](WorldSettings& s) { s.softStep.substeps = 0; }},
-      {"softStep.substeps", [](WorldSettings& s) { s.softStep.substeps = 1001; }},
-      {"softStep.contactHertz", [](WorldSettings& s) { s.softStep.contactHertz = std::nan(""); }},
-      {"softStep.contactHertz", [](WorldSettings& s) { s.softStep.contactHertz = INFINITY; }},
-      {"softStep.contactHertz", [](WorldSettings& s) { s.softStep.contactHertz = 0.0; }},
-      {"softStep.dampingRatio", [](WorldSettings& s) { s.softStep.dampingRatio = -1.0; }},
-      {"softStep.dampingRatio", [](WorldSettings& s) { s.softStep.dampingRatio = std::nan(""); }},
-      {"softStep.pushOutSpeed", [](WorldSettings& s) { s.softStep.pushOutSpeed = 0.0; }},
-      {"softStep.pushOutSpeed", [](WorldSettings& s) { s.softStep.pushOutSpeed = -INFINITY; }},
-      {"stepSolver", [](WorldSettings& s) { s.stepSolver = static_cast<StepSolver>(7); }},
+      {"softStep.substeps", [](WorldSettings& s) { s.methods.softStep.substeps = 0; }},
+      {"softStep.substeps", [](WorldSettings& s) { s.methods.softStep.substeps = 1001; }},
+      {"softStep.contactHertz", [](WorldSettings& s) { s.methods.softStep.contactHertz = std::nan(""); }},
+      {"softStep.contactHertz", [](WorldSettings& s) { s.methods.softStep.contactHertz = INFINITY; }},
+      {"softStep.contactHertz", [](WorldSettings& s) { s.methods.softStep.contactHertz = 0.0; }},
+      {"softStep.dampingRatio", [](WorldSettings& s) { s.methods.softStep.dampingRatio = -1.0; }},
+      {"softStep.dampingRatio", [](WorldSettings& s) { s.methods.softStep.dampingRatio = std::nan(""); }},
+      {"softStep.pushOutSpeed", [](WorldSettings& s) { s.methods.softStep.pushOutSpeed = 0.0; }},
+      {"softStep.pushOutSpeed", [](WorldSettings& s) { s.methods.softStep.pushOutSpeed = -INFINITY; }},
+      {"stepSolver", [](WorldSettings& s) { s.methods.stepSolver = static_cast<StepSolver>(7); }},
   };
   for (const Case& c : cases) {
     WorldSettings settings = SoftSettings();
     c.spoil(settings);
     const Result<World> world = World::Create(settings);
     ASSERT_FALSE(world) << c.field;
-    EXPECT_NE(world.GetError().message.find(std::string("WorldSettings.") + c.field), std::string::npos)
+    EXPECT_NE(world.GetError().message.find(std::string("WorldSettings.methods.") + c.field), std::string::npos)
         << world.GetError().message;
     // The same check guards SetSettings, and a refusal changes nothing.
     World valid = World::Create(SoftSettings()).Value();
     EXPECT_FALSE(valid.SetSettings(settings));
-    EXPECT_EQ(valid.Settings().softStep.substeps, SoftStepSettings{}.substeps);
+    EXPECT_EQ(valid.Settings().methods.softStep.substeps, SoftStepSettings{}.substeps);
   }
   // Bad soft values are refused even while Sequential Impulses is selected,
   // so switching solvers later cannot meet them.
   WorldSettings settings;
-  settings.softStep.substeps = 0;
+  settings.methods.softStep.substeps = 0;
   EXPECT_FALSE(World::Create(settings));
 }
 

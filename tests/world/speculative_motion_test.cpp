@@ -1,4 +1,4 @@
-// WorldSettings::speculativeMotion: each pair's speculative margin grows to
+// MethodSettings::speculativeMotion: each pair's speculative margin grows to
 // the step's reach of its two bodies, h (|v| + |w| rho + g h), where that is
 // larger than the fixed margin. Judged by kinematics the engine does not
 // share: where a body's lowest point is after each step (from its pose and
@@ -24,7 +24,7 @@ WorldSettings Settings(bool motion) {
   WorldSettings s;
   s.gravity = Vec3::Zero();  // constant velocities: the flights are straight lines and fixed turns
   s.sleeping = false;
-  s.speculativeMotion = motion;
+  s.methods.speculativeMotion = motion;
   return s;
 }
 

@@ -102,22 +102,23 @@ TEST(WorldPhysics, ColumnOfTenBoxesStandsWithTheWriteUpSolver) {
   // contact point; docs/collision-narrow-phase.md).
   WorldSettings settings;
   settings.sleeping = false;
-  settings.maxVelocityIterations = settings.velocityIterations;
-  settings.blockSolver = false;
-  settings.frictionSolve = FrictionSolve::PerPoint;  // the write-up's rows (the joint block needs the block)
-  settings.speculativeMotion = false;                // and its fixed speculative margin
-  settings.positionCorrection = PositionCorrection::Baumgarte;
+  settings.methods.maxVelocityIterations = settings.velocityIterations;
+  settings.methods.blockSolver = false;
+  settings.methods.frictionSolve =
+      FrictionSolve::PerPoint;                 // the write-up's rows (the joint block needs the block)
+  settings.methods.speculativeMotion = false;  // and its fixed speculative margin
+  settings.methods.positionCorrection = PositionCorrection::Baumgarte;
   // ... and its narrow phase every step, as in the talus-writeup backend.
   // This column is marginal: with manifold reuse on it sways 14 cm at a
   // 0.1 mm reuse distance and falls at 1 mm (measured), while the default
   // block solver keeps it within 1 mm with reuse (the test above).
-  settings.narrowPhase.reuseDistance = 0.0;
+  settings.methods.narrowPhase.reuseDistance = 0.0;
   // ... and its order: pair after pair up the column. Row by row in the
   // coloured order (every other contact, then the rest) the load climbs
   // the column half as fast per sweep and this marginal column falls
   // (measured: 9 m); with the block solver (the default) both orders hold
   // it (the test above).
-  settings.contactSolver = ContactSolverKind::SequentialImpulses;
+  settings.methods.contactOrder = ContactOrder::PairByPair;
   const ColumnDeviation writeUp = RunColumn(settings);
   EXPECT_LT(writeUp.vertical, 3e-2);
   EXPECT_LT(writeUp.overhang, 0.5);
@@ -138,7 +139,7 @@ TEST(WorldPhysics, WarmStartedRestingColumnStopsAtTheLeastSweeps) {
   }
   const StepStatistics first = world.Step(kH).Value();
   EXPECT_GT(first.velocitySweeps, settings.velocityIterations);
-  EXPECT_LE(first.velocitySweeps, settings.maxVelocityIterations);
+  EXPECT_LE(first.velocitySweeps, settings.methods.maxVelocityIterations);
   StepStatistics last;
   for (int n = 0; n < 120; ++n) last = world.Step(kH).Value();
   EXPECT_EQ(last.velocitySweeps, settings.velocityIterations);
@@ -336,8 +337,8 @@ std::uint64_t HashWorld(const World& world) {
 
 std::uint64_t RunPile(RotationIntegrator rotation, TranslationIntegrator translation) {
   WorldSettings settings;
-  settings.rotation = rotation;
-  settings.translation = translation;
+  settings.methods.rotation = rotation;
+  settings.methods.translation = translation;
   World world = MakeWorld(settings);
   AddGround(world);
   for (int i = 0; i < 12; ++i) {
@@ -358,8 +359,8 @@ TEST(WorldPhysics, SameWorldSteppedTwiceFromScratchIsBitIdentical) {
   // The write-up's integrators, then the defaults.
   EXPECT_EQ(RunPile(RotationIntegrator::ConstantRate, TranslationIntegrator::SymplecticEuler),
             RunPile(RotationIntegrator::ConstantRate, TranslationIntegrator::SymplecticEuler));
-  EXPECT_EQ(RunPile(WorldSettings{}.rotation, WorldSettings{}.translation),
-            RunPile(WorldSettings{}.rotation, WorldSettings{}.translation));
+  EXPECT_EQ(RunPile(WorldSettings{}.methods.rotation, WorldSettings{}.methods.translation),
+            RunPile(WorldSettings{}.methods.rotation, WorldSettings{}.methods.translation));
 }
 
 TEST(WorldPhysics, DestroyingASupportWakesWhatRestedOnIt) {

@@ -14,7 +14,7 @@ namespace talus {
 
 /// Which structure finds the candidate pairs. Default: UniformGrid (the
 /// write-up's choice). Worlds with at most a handful of bodies take the brute
-/// force path whatever is selected, unless WorldSettings::forceBroadPhase
+/// force path whatever is selected, unless MethodSettings::forceBroadPhase
 /// (see BroadPhaseStats::kindUsed and docs/collision-broad-phase.md for the
 /// crossover).
 enum class BroadPhaseKind {
@@ -33,7 +33,7 @@ enum class BroadPhaseKind {
 };
 
 /// Worlds with at most this many active bodies run brute force whatever
-/// structure is selected, unless WorldSettings::forceBroadPhase: below it
+/// structure is selected, unless MethodSettings::forceBroadPhase: below it
 /// brute force is measured faster (docs/collision-broad-phase.md).
 inline constexpr int kTinyWorldBodies = 128;
 

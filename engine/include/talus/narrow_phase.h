@@ -89,15 +89,14 @@ struct NarrowPhaseSettings {
   /// apart along the surfaces by more than this (then it no longer marks a
   /// place where the shapes touch), or when it lies this close to a kept
   /// point (it adds no support). At most 1% of the smaller body's
-  /// bounding radius is used (kPersistentRelative). Default 5 mm, about the
-  /// Baumgarte slop (WorldSettings::slop): a remembered point is then about
-  /// as far from the true contact as a resting one is allowed to sink.
-  /// Measured on the 1000-hull pile with a 5 mm slop
-  /// (docs/collision-narrow-phase.md): 2 mm, 5 mm and 1 cm all end at the
-  /// slop's depth; 2 cm keeps drifted points and ends at 1.27 cm.
+  /// bounding radius is used (kPersistentRelative). Default 5 mm, of the
+  /// order of the Baumgarte slop (WorldSettings::slop): a remembered point
+  /// is then about as far from the true contact as a resting one is allowed
+  /// to sink. The measurements that chose it (the 1000-hull pile at several
+  /// distances) are in docs/collision-narrow-phase.md.
   double persistenceDistance = 0.005;
 
-  /// Field by field (WorldSettings compares its narrow phase with it).
+  /// Field by field (MethodSettings compares its narrow phase with it).
   friend bool operator==(const NarrowPhaseSettings&, const NarrowPhaseSettings&) = default;
 };
 

@@ -52,8 +52,8 @@ struct StepStatistics {
   std::int64_t islands = 0;               ///< islands of awake dynamic bodies
   std::int64_t velocitySweeps = 0;        ///< Gauss-Seidel velocity sweeps run (see maxVelocityIterations)
   std::int64_t shockSweeps =
-      0;  ///< shock propagation's sweeps, over all levels (WorldSettings::shockPropagation)
-  std::int64_t solverColours = 0;     ///< colours of the coloured solver (ContactSolverKind::ColouredWide)
+      0;  ///< shock propagation's sweeps, over all levels (MethodSettings::shockPropagation)
+  std::int64_t solverColours = 0;     ///< colours of the coloured solver (ContactOrder::ByColour)
   std::int64_t overflowPairs = 0;     ///< pairs it solved one by one after the colours
   std::int64_t positionSweeps = 0;    ///< position sweeps run (split impulses, timed bounces' position rows)
   BroadPhaseStats broadPhase = {};    ///< the broad phase's own counters

@@ -1,6 +1,6 @@
 // Bounce timing: where inside a step a contact point reaches the surface and
 // where the reflected flight leaves it at the step's end
-// (WorldSettings::bounceTiming = TimeOfImpact).
+// (MethodSettings::bounceTiming = TimeOfImpact).
 //
 // Along the contact normal the point's gap (metres, > 0 apart) moves, while
 // nothing touches it, as

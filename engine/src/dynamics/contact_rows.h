@@ -44,7 +44,7 @@ struct PointCold {
   Vec3 armB = Vec3::Zero();  ///< rB = p - cB
 };
 
-/// A friction impulse pattern of FrictionSolve::JointBlock as the sweep
+/// A friction impulse pattern of FrictionSolve::CoupledBlock as the sweep
 /// reads it: the angular parts of its generalised row (sums of r x P over
 /// the points). Their images under the inverse inertia are needed only to
 /// build the operator, so they are not kept.
@@ -53,7 +53,7 @@ struct PatternRow {
   Vec3 angularB = Vec3::Zero();  ///< sum rB_i x P_i, metres
 };
 
-/// FrictionSolve::JointBlock's per-step data of a pair with a normal block
+/// FrictionSolve::CoupledBlock's per-step data of a pair with a normal block
 /// (dynamics/contact_solver.h): three friction impulse patterns as
 /// generalised rows (slip along t1, along t2, spin about n), the pieces of
 /// the block's solve operator, and the points' places in the contact plane.

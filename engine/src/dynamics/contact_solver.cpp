@@ -90,9 +90,9 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
   m_pairs.clear();
   m_newPairs = 0;
   m_timedBounces = 0;
-  m_split = settings.positionCorrection == PositionCorrection::SplitImpulses;
-  m_jointBlock = settings.frictionSolve == FrictionSolve::JointBlock;
-  m_shock = settings.shockPropagation;
+  m_split = settings.methods.positionCorrection == PositionCorrection::SplitImpulses;
+  m_jointBlock = settings.methods.frictionSolve == FrictionSolve::CoupledBlock;
+  m_shock = settings.methods.shockPropagation;
   m_shockTouching.clear();
   int points = 0;
   int frictions = 0;
@@ -114,10 +114,10 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
     pair.normal = contact.manifold.normal;
     pair.friction = contact.friction;
     pair.hasFriction = contact.friction > 0.0;
-    pair.persisted = contact.persisted && settings.warmStarting;
+    pair.persisted = contact.persisted && settings.methods.warmStarting;
     pair.invMassA = m_bodies.InvMass(pair.bodyA);
     pair.invMassB = m_bodies.InvMass(pair.bodyB);
-    if (settings.blockSolver && pair.pointCount >= 2 && pair.pointCount <= 4) pair.block = blocks++;
+    if (settings.methods.blockSolver && pair.pointCount >= 2 && pair.pointCount <= 4) pair.block = blocks++;
     points += pair.pointCount;
     stats.contactPoints += pair.pointCount;
     if (pair.hasFriction) {
@@ -168,7 +168,7 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
   stats.timedBounces += m_timedBounces;
   stats.restitutionSkipped += restitutionSkipped.load();
 
-  m_useWide = settings.contactSolver == ContactSolverKind::ColouredWide;
+  m_useWide = settings.methods.contactOrder == ContactOrder::ByColour;
   if (m_useWide) {
     m_wide.Build(m_pairs, m_normals, m_frictions, m_cold, m_blockInverses, m_bodies, m_runner);
     stats.solverColours = m_wide.ColourCount();
@@ -211,20 +211,20 @@ void ContactSolver::PreparePair(std::span<const BodySim> bodies, const Contact& 
     if (cp.depth < 0.0) {
       // Not touching yet: the gap may close this step, no further.
       row.target = cp.depth * invH;
-    } else if (settings.positionCorrection == PositionCorrection::Baumgarte) {
+    } else if (settings.methods.positionCorrection == PositionCorrection::Baumgarte) {
       row.target = correction;
     }
     PointCold cold;
     cold.armA = rA;
     cold.armB = rB;
-    const bool split = settings.positionCorrection == PositionCorrection::SplitImpulses;
+    const bool split = settings.methods.positionCorrection == PositionCorrection::SplitImpulses;
     cold.positionTarget = split && cp.depth > 0.0 ? correction : 0.0;
     if (contact.restitution > 0.0) {
       const double vn = n.dot(
           RelativeVelocity(a.linearVelocity, a.angularVelocity, rA, b.linearVelocity, b.angularVelocity, rB));
       TimedBounce bounce;
       double acceleration = 0.0;
-      if (settings.bounceTiming == BounceTiming::TimeOfImpact) {
+      if (settings.methods.bounceTiming == BounceTiming::TimeOfImpact) {
         const double u0 = n.dot(RelativeVelocity(StartVelocity(a), a.angularVelocity, rA, StartVelocity(b),
                                                  b.angularVelocity, rB));
         acceleration = (vn - u0) * invH;
@@ -236,14 +236,14 @@ void ContactSolver::PreparePair(std::span<const BodySim> bodies, const Contact& 
         cold.positionTarget = (bounce.endGap + cp.depth) * invH - bounce.endSpeed;
         cold.timedBounce = true;
         ++counts.timedBounces;
-      } else if (settings.bounceTiming == BounceTiming::StepBoundary || bounce.tooDeep) {
+      } else if (settings.methods.bounceTiming == BounceTiming::StepBoundary || bounce.tooDeep) {
         // Bounce when closing fast enough and the point touches by the end
         // of the step (a speculative point that stays apart must not bounce).
         if (vn < -settings.restitutionThreshold && cp.depth - vn * h > 0.0) {
           row.target = std::max(row.target, -contact.restitution * vn);
         }
       } else if (cp.depth < 0.0 && vn < 0.0 &&
-                 settings.translation == TranslationIntegrator::ExactConstantAcceleration &&
+                 settings.methods.translation == TranslationIntegrator::ExactConstantAcceleration &&
                  bounce.speed > settings.restitutionThreshold) {
         // An approach that misses the surface this step and will bounce
         // when it lands (its impact speed, which TimeBounce gives for a
@@ -259,13 +259,14 @@ void ContactSolver::PreparePair(std::span<const BodySim> bodies, const Contact& 
     } else {
       ++counts.restitutionSkipped;
     }
-    if (settings.warmStarting) row.impulse = contact.normalImpulse[pi];
+    if (settings.methods.warmStarting) row.impulse = contact.normalImpulse[pi];
     if (pair.hasFriction) {
       for (int k = 0; k < 2; ++k) {
         FrictionRow friction;
         friction.j = MakeJacobian(pair.tangent[k], rA, rB, invInertiaA, invInertiaB);
         friction.mass = RowMass(friction.j, pair);
-        if (settings.warmStarting) friction.impulse = contact.frictionImpulse[pi].dot(pair.tangent[k]);
+        if (settings.methods.warmStarting)
+          friction.impulse = contact.frictionImpulse[pi].dot(pair.tangent[k]);
         m_frictions[static_cast<std::size_t>(pair.firstFriction + 2 * i + k)] = friction;
       }
     }

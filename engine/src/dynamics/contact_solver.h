@@ -50,7 +50,7 @@
 //   Accumulated impulse clamped to [-mu lambda_n, mu lambda_n] with the
 //   point's current lambda_n, re-read every time after the normal row moved.
 //
-// Joint block (FrictionSolve::JointBlock, the default; face contacts of 3-4
+// Joint block (FrictionSolve::CoupledBlock, the default; face contacts of 3-4
 //   points with a normal block). With weights
 //   w_i = lambda_n,i / sum lambda_n, three friction impulse patterns over the
 //   pair's points: P1_i = w_i t1, P2_i = w_i t2 (a force through the centre
@@ -70,7 +70,7 @@
 //   block and the per-point friction rows run as usual, and the block is
 //   not tried again that step.
 //
-// Position correction (WorldSettings::positionCorrection). Baumgarte (the
+// Position correction (MethodSettings::positionCorrection). Baumgarte (the
 //   write-up's) is the bias in the velocity target above. Split impulses
 //   move it to pseudo-velocities: the same normal row on (pv, pw) with
 //   target beta/h max(depth - slop, 0), solved after the velocities and
@@ -149,7 +149,7 @@ class ContactSolver {
   /// a new pair by more than `tolerance` (m/s), up to `maxIterations` sweeps
   /// in all. Returns the sweeps run.
   int SolveVelocities(int minIterations, int maxIterations, double tolerance);
-  /// Shock propagation (WorldSettings::shockPropagation; derivation in
+  /// Shock propagation (MethodSettings::shockPropagation; derivation in
   /// contact_solver_shock.cpp): the pairs level by level from the
   /// immovable bodies up, each pair's lower body held, up to `maxSweeps`
   /// sweeps per level until a sweep changes no velocity by more than
@@ -178,10 +178,10 @@ class ContactSolver {
 
   /// Number of point rows built by the last Prepare.
   [[nodiscard]] int PointCount() const { return static_cast<int>(m_normals.size()); }
-  /// The coloured solver of the last Prepare (empty unless ColouredWide).
+  /// The coloured solver of the last Prepare (empty unless ByColour).
   [[nodiscard]] const WideContactSolver& Wide() const { return m_wide; }
 
-  /// FrictionSolve::JointBlock's tries in the last step's sweeps.
+  /// FrictionSolve::CoupledBlock's tries in the last step's sweeps.
   struct JointBlockCounts {
     std::int64_t accepted = 0;  ///< the pair stuck: normals and friction solved as one block
     std::int64_t refused = 0;   ///< a pulling normal, a friction past its bound, or no lever for the twist
@@ -215,7 +215,7 @@ class ContactSolver {
   bool SolveNormalBlock(const PairRows& pair);
   template <bool kTrack>
   void SolveFriction(const PairRows& pair);
-  /// Whether FrictionSolve::JointBlock applies to `pair`: selected, a
+  /// Whether FrictionSolve::CoupledBlock applies to `pair`: selected, a
   /// normal block, friction, and at least three points (a face). Edge
   /// contacts (two points) keep the per-point rows: measured, the block on
   /// them changed how boxes tip over an edge (box_toss at 1/120 s, 5
@@ -225,11 +225,11 @@ class ContactSolver {
   [[nodiscard]] bool UsesJointBlock(const PairRows& pair) const {
     return m_jointBlock && pair.block >= 0 && pair.hasFriction && pair.pointCount >= 3;
   }
-  /// FrictionSolve::JointBlock's patterns and solve operator of a pair with
+  /// FrictionSolve::CoupledBlock's patterns and solve operator of a pair with
   /// a normal block and friction, from its rows and warm-started impulses
   /// (built at the pair's first try of the step, before they change).
   [[nodiscard]] JointBlockRows BuildJointBlock(const PairRows& pair) const;
-  /// FrictionSolve::JointBlock on a pair with a normal block and friction:
+  /// FrictionSolve::CoupledBlock on a pair with a normal block and friction:
   /// true when accepted (normals and friction written and applied). Builds
   /// the operator at the step's first try.
   template <bool kTrack>
@@ -260,10 +260,10 @@ class ContactSolver {
   std::vector<FrictionRow> m_frictions;  ///< two per point (t1, t2) of the pairs with friction
   std::vector<PointCold> m_cold;         ///< one per point
   std::vector<Eigen::Matrix4d> m_blockInverses;
-  /// Per block, FrictionSolve::JointBlock only: the operator, stored at the
+  /// Per block, FrictionSolve::CoupledBlock only: the operator, stored at the
   /// first try of the step unless that try refused the block.
   std::vector<JointBlockRows> m_jointBlocks;
-  /// Per block, FrictionSolve::JointBlock's last outcome this step. Unbuilt:
+  /// Per block, FrictionSolve::CoupledBlock's last outcome this step. Unbuilt:
   /// not tried yet this step (the operator is built at the first try; an
   /// operator that is not usable counts as refused). Refused
   /// (the pair slides or lifts): later sweeps of the step do not try again,
@@ -276,10 +276,10 @@ class ContactSolver {
   enum JointState : unsigned char { kJointUnbuilt, kJointUntried, kJointRefused, kJointAccepted };
   std::vector<JointState> m_jointState;
   WideContactSolver m_wide;
-  bool m_useWide = false;     ///< ColouredWide selected at the last Prepare
+  bool m_useWide = false;     ///< ByColour selected at the last Prepare
   bool m_split = false;       ///< SplitImpulses selected at the last Prepare
-  bool m_jointBlock = false;  ///< FrictionSolve::JointBlock selected at the last Prepare
-  bool m_shock = false;       ///< WorldSettings::shockPropagation at the last Prepare
+  bool m_jointBlock = false;  ///< FrictionSolve::CoupledBlock selected at the last Prepare
+  bool m_shock = false;       ///< MethodSettings::shockPropagation at the last Prepare
   // Shock propagation's scratch (kept between steps: no allocation in steady state).
   std::vector<unsigned char> m_shockTouching;  ///< per pair: some point within one slop of touching
   std::vector<int> m_shockLevels;              ///< per solver body

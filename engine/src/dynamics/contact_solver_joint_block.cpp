@@ -1,4 +1,4 @@
-// FrictionSolve::JointBlock: a face contact's normal rows and its friction
+// FrictionSolve::CoupledBlock: a face contact's normal rows and its friction
 // solved as one block (the derivation is in dynamics/contact_solver.h).
 //
 // Why. Row by row, a friction impulse at a box's base turns the box (the

@@ -1,4 +1,4 @@
-// Shock propagation (WorldSettings::shockPropagation): after the velocity
+// Shock propagation (MethodSettings::shockPropagation): after the velocity
 // sweeps, one pass over the contact graph from the immovable bodies up, in
 // which each pair's lower body counts as immovable (Guendelman, Bridson and
 // Fedkiw, "Nonconvex rigid bodies with stacking", SIGGRAPH 2003, section

@@ -187,7 +187,7 @@ void ContactSolver::Sweep() {
 // to 1e-3 m/s in ten sweeps); sweeping the new pairs' rows alone pushed
 // bodies into the contacts left unsolved and the pyramid drifted 0.45 m.
 //
-// Coloured (ContactSolverKind::ColouredWide), the same sweeps visit each
+// Coloured (ContactOrder::ByColour), the same sweeps visit each
 // colour's pairs four at a time, then the overflow pairs one by one; the
 // impulses go back to the scalar rows at the end, where the position
 // passes and StoreImpulses read them.

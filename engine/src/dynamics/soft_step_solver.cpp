@@ -112,24 +112,26 @@ Softness MakeSoftness(double hertz, double dampingRatio, double h) {
 }
 
 std::string ValidateSoftStepSettings(const WorldSettings& settings) {
-  const SoftStepSettings& s = settings.softStep;
-  if (settings.stepSolver != StepSolver::SequentialImpulses && settings.stepSolver != StepSolver::SoftStep) {
-    return "WorldSettings.stepSolver = " + std::to_string(static_cast<int>(settings.stepSolver)) +
-           " is not a StepSolver";
+  const SoftStepSettings& s = settings.methods.softStep;
+  if (settings.methods.stepSolver != StepSolver::SequentialImpulses &&
+      settings.methods.stepSolver != StepSolver::SoftStep) {
+    return "WorldSettings.methods.stepSolver = " +
+           std::to_string(static_cast<int>(settings.methods.stepSolver)) + " is not a StepSolver";
   }
   if (s.substeps < 1 || s.substeps > 1000) {
-    return "WorldSettings.softStep.substeps = " + std::to_string(s.substeps) + " is outside [1, 1000]";
+    return "WorldSettings.methods.softStep.substeps = " + std::to_string(s.substeps) +
+           " is outside [1, 1000]";
   }
   if (!std::isfinite(s.contactHertz) || !(s.contactHertz > 0.0)) {
-    return "WorldSettings.softStep.contactHertz = " + std::to_string(s.contactHertz) +
+    return "WorldSettings.methods.softStep.contactHertz = " + std::to_string(s.contactHertz) +
            " Hz must be finite and > 0";
   }
   if (!std::isfinite(s.dampingRatio) || s.dampingRatio < 0.0) {
-    return "WorldSettings.softStep.dampingRatio = " + std::to_string(s.dampingRatio) +
+    return "WorldSettings.methods.softStep.dampingRatio = " + std::to_string(s.dampingRatio) +
            " must be finite and >= 0";
   }
   if (!std::isfinite(s.pushOutSpeed) || !(s.pushOutSpeed > 0.0)) {
-    return "WorldSettings.softStep.pushOutSpeed = " + std::to_string(s.pushOutSpeed) +
+    return "WorldSettings.methods.softStep.pushOutSpeed = " + std::to_string(s.pushOutSpeed) +
            " m/s must be finite and > 0";
   }
   return {};
@@ -140,7 +142,7 @@ std::string ValidateSoftStepSettings(const WorldSettings& settings) {
 // second fills each pair's rows in its own places on the runner's threads.
 void SoftStepSolver::Prepare(std::span<const BodySim> bodies, std::span<const Contact> contacts,
                              const WorldSettings& settings, double dt, StepStatistics& stats) {
-  const SoftStepSettings& soft = settings.softStep;
+  const SoftStepSettings& soft = settings.methods.softStep;
   m_substeps = soft.substeps;
   m_h = dt / soft.substeps;
   m_pushOutSpeed = soft.pushOutSpeed;
@@ -219,7 +221,7 @@ void SoftStepSolver::PreparePair(std::span<const BodySim> bodies, const Contact&
   pair.tangent[0] = speed > kSlidingSpeed ? Vec3(slide.normalized()) : AnyPerpendicular(n);
   pair.tangent[1] = n.cross(pair.tangent[0]);
   // Impulses are stored per step (StoreImpulses); a sub-step carries its share.
-  const double share = settings.warmStarting ? 1.0 / m_substeps : 0.0;
+  const double share = settings.methods.warmStarting ? 1.0 / m_substeps : 0.0;
   for (int i = 0; i < pair.pointCount; ++i) {
     const std::size_t pi = static_cast<std::size_t>(i);
     const ContactPoint& cp = contact.manifold.points[pi];
@@ -326,7 +328,7 @@ int SoftStepSolver::Step(std::span<BodySim> bodies, const WorldSettings& setting
   for (int s = 0; s < m_substeps; ++s) {
     m_jobs.push_back({.kind = PhaseJob::Kind::IntegrateVelocities});
     m_phases.push_back({.count = bodyCount, .grain = kBodyGrain});
-    if (settings.warmStarting || s > 0) AddPass(Pass::WarmStart);
+    if (settings.methods.warmStarting || s > 0) AddPass(Pass::WarmStart);
     AddPass(Pass::Solve);
     m_jobs.push_back({.kind = PhaseJob::Kind::IntegratePositions});
     m_phases.push_back({.count = bodyCount, .grain = kBodyGrain});
@@ -358,7 +360,7 @@ int SoftStepSolver::Step(std::span<BodySim> bodies, const WorldSettings& setting
         return;
       }
       case PhaseJob::Kind::IntegratePositions:
-        IntegratePositions(chunk, m_h, false, settings.rotation, settings.translation);
+        IntegratePositions(chunk, m_h, false, settings.methods.rotation, settings.methods.translation);
         return;
       case PhaseJob::Kind::ClearForces:
         for (BodySim& body : chunk) {

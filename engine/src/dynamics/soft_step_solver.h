@@ -1,4 +1,4 @@
-// SoftStepSolver: the soft step (WorldSettings::stepSolver =
+// SoftStepSolver: the soft step (MethodSettings::stepSolver =
 // StepSolver::SoftStep), after Box2D v3 and Box3D (Catto's Solver2D study,
 // 2024: of the solvers it compared, the most robust per unit of cost). Our
 // own code; the rows and notation are the Sequential Impulses solver's

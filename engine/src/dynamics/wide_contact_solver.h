@@ -1,6 +1,6 @@
 // WideContactSolver: the contact rows of one step, coloured and packed four
 // pairs to a bundle, solved a bundle at a time with SIMD lanes
-// (WorldSettings::contactSolver = ColouredWide).
+// (MethodSettings::contactOrder = ByColour).
 //
 // The algorithm per pair is the scalar solver's (dynamics/contact_solver.h:
 // the same rows, clamps, block solve with its row-by-row fallback, friction

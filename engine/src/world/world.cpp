@@ -97,96 +97,123 @@ void WakeBody(WorldData& d, std::size_t i) {
 
 }  // namespace
 
-std::string ValidateSettings(const WorldSettings& s) {
+namespace {
+
+// An enum field holding a value outside its enum (a cast integer, memory
+// garbage): names the field and its type.
+template <typename Enum>
+std::string NotAnEnum(const char* field, Enum value, const char* type) {
+  return std::string("WorldSettings.methods.") + field + " = " + std::to_string(static_cast<int>(value)) +
+         " is not a " + type;
+}
+
+std::string CheckMethodEnums(const MethodSettings& m) {
+  if (m.positionCorrection != PositionCorrection::Baumgarte &&
+      m.positionCorrection != PositionCorrection::SplitImpulses) {
+    return NotAnEnum("positionCorrection", m.positionCorrection, "PositionCorrection");
+  }
+  if (m.rotation != RotationIntegrator::ConstantRate && m.rotation != RotationIntegrator::MomentumSplitting &&
+      m.rotation != RotationIntegrator::MomentumSplittingFourthOrder) {
+    return NotAnEnum("rotation", m.rotation, "RotationIntegrator");
+  }
+  if (m.contactOrder != ContactOrder::PairByPair && m.contactOrder != ContactOrder::ByColour) {
+    return NotAnEnum("contactOrder", m.contactOrder, "ContactOrder");
+  }
+  if (m.frictionSolve != FrictionSolve::PerPoint && m.frictionSolve != FrictionSolve::CoupledBlock) {
+    return NotAnEnum("frictionSolve", m.frictionSolve, "FrictionSolve");
+  }
+  if (m.translation != TranslationIntegrator::SymplecticEuler &&
+      m.translation != TranslationIntegrator::ExactConstantAcceleration) {
+    return NotAnEnum("translation", m.translation, "TranslationIntegrator");
+  }
+  if (m.bounceTiming != BounceTiming::StepBoundary && m.bounceTiming != BounceTiming::TimeOfImpact) {
+    return NotAnEnum("bounceTiming", m.bounceTiming, "BounceTiming");
+  }
+  if (m.narrowPhase.persistence != ManifoldPersistence::Fresh &&
+      m.narrowPhase.persistence != ManifoldPersistence::Accumulate) {
+    return NotAnEnum("narrowPhase.persistence", m.narrowPhase.persistence, "ManifoldPersistence");
+  }
+  return {};
+}
+
+// Combinations in which a switch would do nothing are refused rather than
+// silently run as something else.
+std::string CheckMethodCombinations(const MethodSettings& m) {
+  // The coupled block is a pair's normal block with its friction: without
+  // either it would silently be the per-point rows.
+  if (m.frictionSolve == FrictionSolve::CoupledBlock && m.contactOrder != ContactOrder::PairByPair) {
+    return "WorldSettings.methods.frictionSolve = CoupledBlock (the default) needs contactOrder = "
+           "PairByPair: the coloured order has no coupled block; select frictionSolve = PerPoint with it";
+  }
+  if (m.frictionSolve == FrictionSolve::CoupledBlock && !m.blockSolver) {
+    return "WorldSettings.methods.frictionSolve = CoupledBlock (the default) needs blockSolver = true: the "
+           "coupled block extends a pair's normal block, which blockSolver = false turns off; select "
+           "frictionSolve = PerPoint with it";
+  }
+  return {};
+}
+
+std::string CheckMethodRanges(const MethodSettings& m) {
+  if (m.maxVelocityIterations < 1 || m.maxVelocityIterations > 1000) {
+    return "WorldSettings.methods.maxVelocityIterations = " + std::to_string(m.maxVelocityIterations) +
+           " is outside [1, 1000]";
+  }
+  if (!std::isfinite(m.velocityTolerance) || m.velocityTolerance < 0.0) {
+    return "WorldSettings.methods.velocityTolerance = " + std::to_string(m.velocityTolerance) +
+           " m/s must be finite and >= 0";
+  }
+  const NarrowPhaseSettings& n = m.narrowPhase;
+  if (!std::isfinite(n.speculativeMargin) || n.speculativeMargin < 0.0) {
+    return "WorldSettings.methods.narrowPhase.speculativeMargin = " + std::to_string(n.speculativeMargin) +
+           " m must be finite and >= 0";
+  }
+  if (!std::isfinite(n.reuseDistance) || n.reuseDistance < 0.0) {
+    return "WorldSettings.methods.narrowPhase.reuseDistance = " + std::to_string(n.reuseDistance) +
+           " m must be finite and >= 0 (0 turns manifold reuse off)";
+  }
+  if (!std::isfinite(n.persistenceDistance) || !(n.persistenceDistance > 0.0)) {
+    return "WorldSettings.methods.narrowPhase.persistenceDistance = " +
+           std::to_string(n.persistenceDistance) + " m must be finite and > 0";
+  }
+  return {};
+}
+
+std::string CheckUserChoices(const WorldSettings& s) {
   if (!Finite(s.gravity)) return "WorldSettings.gravity " + Describe(s.gravity) + " is not finite";
   if (s.velocityIterations < 1 || s.velocityIterations > 1000) {
     return "WorldSettings.velocityIterations = " + std::to_string(s.velocityIterations) +
            " is outside [1, 1000]";
   }
-  if (s.maxVelocityIterations < 1 || s.maxVelocityIterations > 1000) {
-    return "WorldSettings.maxVelocityIterations = " + std::to_string(s.maxVelocityIterations) +
+  if (s.positionIterations < 1 || s.positionIterations > 1000) {
+    return "WorldSettings.positionIterations = " + std::to_string(s.positionIterations) +
            " is outside [1, 1000]";
-  }
-  if (s.positionCorrection != PositionCorrection::Baumgarte &&
-      s.positionCorrection != PositionCorrection::SplitImpulses) {
-    return "WorldSettings.positionCorrection = " + std::to_string(static_cast<int>(s.positionCorrection)) +
-           " is not a PositionCorrection";
-  }
-  if (s.rotation != RotationIntegrator::ConstantRate && s.rotation != RotationIntegrator::MomentumSplitting &&
-      s.rotation != RotationIntegrator::MomentumSplittingFourthOrder) {
-    return "WorldSettings.rotation = " + std::to_string(static_cast<int>(s.rotation)) +
-           " is not a RotationIntegrator";
-  }
-  if (s.contactSolver != ContactSolverKind::SequentialImpulses &&
-      s.contactSolver != ContactSolverKind::ColouredWide) {
-    return "WorldSettings.contactSolver = " + std::to_string(static_cast<int>(s.contactSolver)) +
-           " is not a ContactSolverKind";
-  }
-  if (s.frictionSolve != FrictionSolve::PerPoint && s.frictionSolve != FrictionSolve::JointBlock) {
-    return "WorldSettings.frictionSolve = " + std::to_string(static_cast<int>(s.frictionSolve)) +
-           " is not a FrictionSolve";
-  }
-  // The joint block is a pair's normal block with its friction: without
-  // either it would silently be the per-point rows.
-  if (s.frictionSolve == FrictionSolve::JointBlock &&
-      s.contactSolver != ContactSolverKind::SequentialImpulses) {
-    return "WorldSettings.frictionSolve = JointBlock (the default) needs contactSolver = "
-           "SequentialImpulses: the coloured wide solver has no joint block; select "
-           "frictionSolve = PerPoint with it";
-  }
-  if (s.frictionSolve == FrictionSolve::JointBlock && !s.blockSolver) {
-    return "WorldSettings.frictionSolve = JointBlock (the default) needs blockSolver = true: the "
-           "joint block extends a pair's normal block, which blockSolver = false turns off; select "
-           "frictionSolve = PerPoint with it";
-  }
-  if (s.translation != TranslationIntegrator::SymplecticEuler &&
-      s.translation != TranslationIntegrator::ExactConstantAcceleration) {
-    return "WorldSettings.translation = " + std::to_string(static_cast<int>(s.translation)) +
-           " is not a TranslationIntegrator";
-  }
-  if (s.bounceTiming != BounceTiming::StepBoundary && s.bounceTiming != BounceTiming::TimeOfImpact) {
-    return "WorldSettings.bounceTiming = " + std::to_string(static_cast<int>(s.bounceTiming)) +
-           " is not a BounceTiming";
   }
   if (s.broadPhase != BroadPhaseKind::UniformGrid && s.broadPhase != BroadPhaseKind::AabbTree &&
       s.broadPhase != BroadPhaseKind::BruteForce) {
     return "WorldSettings.broadPhase = " + std::to_string(static_cast<int>(s.broadPhase)) +
            " is not a BroadPhaseKind";
   }
-  if (s.positionIterations < 1 || s.positionIterations > 1000) {
-    return "WorldSettings.positionIterations = " + std::to_string(s.positionIterations) +
-           " is outside [1, 1000]";
-  }
   if (s.threads < 1 || s.threads > kMaxThreads) {
     return "WorldSettings.threads = " + std::to_string(s.threads) + " is outside [1, " +
            std::to_string(kMaxThreads) + "]";
   }
-  if (!std::isfinite(s.narrowPhase.speculativeMargin) || s.narrowPhase.speculativeMargin < 0.0) {
-    return "WorldSettings.narrowPhase.speculativeMargin = " +
-           std::to_string(s.narrowPhase.speculativeMargin) + " m must be finite and >= 0";
-  }
-  if (!std::isfinite(s.narrowPhase.reuseDistance) || s.narrowPhase.reuseDistance < 0.0) {
-    return "WorldSettings.narrowPhase.reuseDistance = " + std::to_string(s.narrowPhase.reuseDistance) +
-           " m must be finite and >= 0 (0 turns manifold reuse off)";
-  }
-  if (s.narrowPhase.persistence != ManifoldPersistence::Fresh &&
-      s.narrowPhase.persistence != ManifoldPersistence::Accumulate) {
-    return "WorldSettings.narrowPhase.persistence = " +
-           std::to_string(static_cast<int>(s.narrowPhase.persistence)) + " is not a ManifoldPersistence";
-  }
-  if (!std::isfinite(s.narrowPhase.persistenceDistance) || !(s.narrowPhase.persistenceDistance > 0.0)) {
-    return "WorldSettings.narrowPhase.persistenceDistance = " +
-           std::to_string(s.narrowPhase.persistenceDistance) + " m must be finite and > 0";
-  }
-  if (std::string error = ValidateSoftStepSettings(s); !error.empty()) return error;
   constexpr double kHuge = 1e300;
   for (const std::string& error :
        {CheckRange("baumgarte", s.baumgarte, 0.0, 1.0), CheckRange("slop", s.slop, 0.0, 1.0),
-        CheckRange("velocityTolerance", s.velocityTolerance, 0.0, kHuge),
         CheckRange("restitutionThreshold", s.restitutionThreshold, 0.0, kHuge),
         CheckRange("sleepLinearVelocity", s.sleepLinearVelocity, 0.0, kHuge),
         CheckRange("sleepAngularVelocity", s.sleepAngularVelocity, 0.0, kHuge),
         CheckRange("timeToSleep", s.timeToSleep, 0.0, kHuge)}) {
+    if (!error.empty()) return error;
+  }
+  return {};
+}
+
+}  // namespace
+
+std::string ValidateSettings(const WorldSettings& s) {
+  for (std::string error : {CheckUserChoices(s), CheckMethodEnums(s.methods), CheckMethodRanges(s.methods),
+                            CheckMethodCombinations(s.methods), ValidateSoftStepSettings(s)}) {
     if (!error.empty()) return error;
   }
   return {};

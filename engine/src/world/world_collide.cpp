@@ -64,7 +64,7 @@ double RadiusAboutOrigin(const Shape& shape) {
 // since then. Returns false (nothing written) otherwise.
 bool ReuseManifold(const WorldData& d, const Contact& before, const ManifoldAnchors& anchors, std::size_t a,
                    std::size_t b, const Transform& xfA, const Transform& xfB, ContactManifold* manifold) {
-  const double reuseDistance = d.settings.narrowPhase.reuseDistance;
+  const double reuseDistance = d.settings.methods.narrowPhase.reuseDistance;
   const Shape& shapeA = *d.shapes[a];
   const Shape& shapeB = *d.shapes[b];
   if (!(reuseDistance > 0.0) || !anchors.recorded || shapeA.Type() == ShapeType::Sphere ||
@@ -89,7 +89,7 @@ double TurningRadius(const Shape& shape, const BodySim& sim) {
 }
 
 // How far the two bodies can close on each other this step
-// (WorldSettings::speculativeMotion): the step times the relative speed of
+// (MethodSettings::speculativeMotion): the step times the relative speed of
 // their centres, as gravity has already left them (IntegrateVelocities ran),
 // plus each one's turn rate times its turning radius; a free body moves on
 // the mean of its old and new velocity, up to g h / 2 off the new one, so a
@@ -166,8 +166,8 @@ void CollidePair(const WorldData& d, const BroadPhasePair& pair, double h, Narro
                                         : SatCache{}};
   // A is the lower slot: the manifold's normal points from b towards a.
   out.persistentPoints = 0;
-  NarrowPhaseSettings narrow = d.settings.narrowPhase;
-  if (d.settings.speculativeMotion) {
+  NarrowPhaseSettings narrow = d.settings.methods.narrowPhase;
+  if (d.settings.methods.speculativeMotion) {
     narrow.speculativeMargin = std::max(narrow.speculativeMargin, PairReach(d, simA, simB, a, b, h));
   }
   if (!Collide(*d.shapes[a], xfA, *d.shapes[b], xfB, narrow, &out.cache.cache, &out.stats, &manifold,
@@ -233,8 +233,8 @@ Result<int> UpdateBroadPhase(WorldData& d, double h) {
   // body's own reach this step where that is larger: |v| + g h (gravity is
   // still to come) plus |w| times its turning radius, so any pair whose
   // PairReach exceeds the margin is found.
-  const double margin = d.settings.narrowPhase.speculativeMargin;
-  const bool motion = d.settings.speculativeMotion;
+  const double margin = d.settings.methods.narrowPhase.speculativeMargin;
+  const bool motion = d.settings.methods.speculativeMotion;
   const double gravityStep = d.settings.gravity.norm() * h;
   d.proxies.resize(count);
   d.jobs->ParallelFor(
@@ -262,7 +262,7 @@ Result<int> UpdateBroadPhase(WorldData& d, double h) {
         }
       });
   d.broadPhase.SetKind(d.settings.broadPhase);
-  d.broadPhase.SetTinyWorldProxies(d.settings.forceBroadPhase ? 0 : kTinyWorldProxies);
+  d.broadPhase.SetTinyWorldProxies(d.settings.methods.forceBroadPhase ? 0 : kTinyWorldProxies);
   return d.broadPhase.Update(d.proxies);
 }
 

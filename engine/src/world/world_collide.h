@@ -38,7 +38,7 @@
 namespace talus {
 
 /// Feeds the broad phase this step's bounding spheres, each grown by the
-/// speculative margin or, with WorldSettings::speculativeMotion, by its
+/// speculative margin or, with MethodSettings::speculativeMotion, by its
 /// body's reach over the step of `h` seconds where that is larger; an
 /// Error (nothing changed) when a body left the broad phase's valid range.
 Result<int> UpdateBroadPhase(WorldData& d, double h);

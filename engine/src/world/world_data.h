@@ -110,7 +110,7 @@ struct WorldData {
   std::vector<ManifoldAnchors> contactAnchors;
   std::vector<ManifoldAnchors> previousContactAnchors;  ///< same index as `previousContacts`
   ContactSolver solver;
-  SoftStepSolver softSolver;  ///< WorldSettings::stepSolver = SoftStep
+  SoftStepSolver softSolver;  ///< MethodSettings::stepSolver = SoftStep
   SleepManager sleepManager;
 
   /// The step's threads, settings.threads of them (no worker for 1).

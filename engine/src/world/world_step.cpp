@@ -5,7 +5,7 @@
 // order is the pipeline of section 3 of the original write-up; the broad
 // phase comes first because it is the only stage that may refuse.
 //
-// With WorldSettings::stepSolver = SoftStep the stages after the broad
+// With MethodSettings::stepSolver = SoftStep the stages after the broad
 // phase are StepSoft's instead (RunSoftStage): contacts, soft rows, the
 // sub-steps (each integrating velocities and positions) under
 // SolveVelocities, impulses stored, sleep; the soft step has no stage of
@@ -70,7 +70,8 @@ void CountBodies(const WorldData& d, StepStatistics& stats) {
 // colour runs as one range on the caller (the results are the same bits
 // either way: tests/threads, tests/dynamics/coloured_solver_test.cpp).
 void PrepareContacts(WorldData& d, double h, StepStatistics& stats) {
-  if (d.settings.warmStarting) stats.warmStartedPoints = CarryImpulses(d.previousContacts, d.contacts);
+  if (d.settings.methods.warmStarting)
+    stats.warmStartedPoints = CarryImpulses(d.previousContacts, d.contacts);
   if (d.jobs->ThreadCount() > 1) {
     d.solver.SetPhaseRunner(
         [&d](std::span<const JobPhase> phases, const std::function<void(int, int, int)>& fn) {
@@ -84,9 +85,9 @@ void PrepareContacts(WorldData& d, double h, StepStatistics& stats) {
 
 void SolveVelocities(WorldData& d, StepStatistics& stats) {
   const WorldSettings& s = d.settings;
-  if (s.warmStarting) d.solver.WarmStart();
-  stats.velocitySweeps =
-      d.solver.SolveVelocities(s.velocityIterations, s.maxVelocityIterations, s.velocityTolerance);
+  if (s.methods.warmStarting) d.solver.WarmStart();
+  stats.velocitySweeps = d.solver.SolveVelocities(s.velocityIterations, s.methods.maxVelocityIterations,
+                                                  s.methods.velocityTolerance);
   stats.shockSweeps = d.solver.ShockSweeps();
 }
 
@@ -130,7 +131,7 @@ void IntegratePositionsOnThreads(WorldData& d, double h) {
   const bool split = d.solver.UsesPseudoVelocities();
   d.jobs->ParallelFor(static_cast<int>(d.sims.size()), kBodyGrain, [&d, h, split](int begin, int end) {
     const std::span<BodySim> bodies(d.sims.data() + begin, static_cast<std::size_t>(end - begin));
-    IntegratePositions(bodies, h, split, d.settings.rotation, d.settings.translation);
+    IntegratePositions(bodies, h, split, d.settings.methods.rotation, d.settings.methods.translation);
   });
 }
 
@@ -140,7 +141,8 @@ void UpdateSleep(WorldData& d, double h, StepStatistics& stats) {
 }
 
 void SoftPrepareContacts(WorldData& d, double dt, StepStatistics& stats) {
-  if (d.settings.warmStarting) stats.warmStartedPoints = CarryImpulses(d.previousContacts, d.contacts);
+  if (d.settings.methods.warmStarting)
+    stats.warmStartedPoints = CarryImpulses(d.previousContacts, d.contacts);
   if (d.jobs->ThreadCount() > 1) {
     d.softSolver.SetPhaseRunner(
         [&d](std::span<const JobPhase> phases, const std::function<void(int, int, int)>& fn) {
@@ -231,7 +233,7 @@ Result<StepStatistics> World::Step(double dt) {
   CountBodies(d, stats);
   stats.seconds[Stage::UpdateBroadPhase] = clock.Lap();
 
-  const bool soft = d.settings.stepSolver == StepSolver::SoftStep;
+  const bool soft = d.settings.methods.stepSolver == StepSolver::SoftStep;
   for (const StageInfo& stage : std::span(kStages).subspan(1)) {
     if (soft) {
       RunSoftStage(stage.stage, d, dt, stats);

@@ -174,14 +174,14 @@ std::string TranslationText(TranslationIntegrator translation) {
 }
 
 std::string SolverText(const WorldSettings& s) {
-  if (s.stepSolver == StepSolver::SoftStep) {
-    const SoftStepSettings& soft = s.softStep;
+  if (s.methods.stepSolver == StepSolver::SoftStep) {
+    const SoftStepSettings& soft = s.methods.softStep;
     return "soft step: " + std::to_string(soft.substeps) + " sub-steps, contacts at " +
            SettingNumber(soft.contactHertz) + " Hz (at most a quarter of the sub-step rate), damping ratio " +
            SettingNumber(soft.dampingRatio) + ", push-out " + SettingNumber(soft.pushOutSpeed) +
            " m/s; the sweep settings below are unused";
   }
-  return s.contactSolver == ContactSolverKind::SequentialImpulses
+  return s.methods.contactOrder == ContactOrder::PairByPair
              ? "sequential impulses (scalar, pair order)"
              : "sequential impulses, coloured, four pairs per SIMD bundle";
 }
@@ -194,9 +194,9 @@ std::string FrictionSolveText(FrictionSolve friction) {
 }
 
 std::string ExtraSweepsText(const WorldSettings& s) {
-  if (s.maxVelocityIterations <= s.velocityIterations) return "none";
-  return "up to " + std::to_string(s.maxVelocityIterations) + " sweeps, until changes < " +
-         SettingNumber(s.velocityTolerance) + " m/s";
+  if (s.methods.maxVelocityIterations <= s.velocityIterations) return "none";
+  return "up to " + std::to_string(s.methods.maxVelocityIterations) + " sweeps, until changes < " +
+         SettingNumber(s.methods.velocityTolerance) + " m/s";
 }
 
 std::string BounceTimingText(BounceTiming timing) {
@@ -221,20 +221,20 @@ std::string PersistenceText(const NarrowPhaseSettings& n) {
 }
 
 std::string SpeculativeMarginText(const WorldSettings& s) {
-  const std::string fixed = SettingNumber(s.narrowPhase.speculativeMargin);
-  if (!s.speculativeMotion) return fixed + " (fixed)";
+  const std::string fixed = SettingNumber(s.methods.narrowPhase.speculativeMargin);
+  if (!s.methods.speculativeMotion) return fixed + " (fixed)";
   return fixed + ", or the pair's reach this step where larger (h (|v| + |w| rho + g h) of each body)";
 }
 
 std::string GyroscopicText(RotationIntegrator rotation) {
   switch (rotation) {
     case RotationIntegrator::ConstantRate:
-      return "off (WorldSettings::rotation = ConstantRate)";
+      return "off (MethodSettings::rotation = ConstantRate)";
     case RotationIntegrator::MomentumSplitting:
-      return "on (WorldSettings::rotation = MomentumSplitting: L kept, exact rotations about the "
+      return "on (MethodSettings::rotation = MomentumSplitting: L kept, exact rotations about the "
              "principal axes)";
     case RotationIntegrator::MomentumSplittingFourthOrder:
-      return "on (WorldSettings::rotation = MomentumSplittingFourthOrder: L kept, exact rotations about "
+      return "on (MethodSettings::rotation = MomentumSplittingFourthOrder: L kept, exact rotations about "
              "the principal axes, fourth order)";
   }
   return "unknown";
@@ -258,7 +258,7 @@ WorldSettings ScenarioSettings(const Run& run, FrictionCombine friction, Restitu
   settings.sleeping = false;
   // The scenario's gyroscopic term: on, the engine's default rotation;
   // off, the write-up's constant rate.
-  if (!run.scenario.world.gyroscopic) settings.rotation = RotationIntegrator::ConstantRate;
+  if (!run.scenario.world.gyroscopic) settings.methods.rotation = RotationIntegrator::ConstantRate;
   // The scenario's broad phase: auto keeps the engine's default (the grid,
   // brute force in tiny worlds); any other choice runs in every world.
   switch (run.scenario.world.broadPhase) {
@@ -266,15 +266,15 @@ WorldSettings ScenarioSettings(const Run& run, FrictionCombine friction, Restitu
       break;
     case harness::BroadPhaseChoice::UniformGrid:
       settings.broadPhase = BroadPhaseKind::UniformGrid;
-      settings.forceBroadPhase = true;
+      settings.methods.forceBroadPhase = true;
       break;
     case harness::BroadPhaseChoice::AabbTree:
       settings.broadPhase = BroadPhaseKind::AabbTree;
-      settings.forceBroadPhase = true;
+      settings.methods.forceBroadPhase = true;
       break;
     case harness::BroadPhaseChoice::BruteForce:
       settings.broadPhase = BroadPhaseKind::BruteForce;
-      settings.forceBroadPhase = true;
+      settings.methods.forceBroadPhase = true;
       break;
   }
   // The scenario's bounce timing; auto keeps the engine's default.
@@ -282,10 +282,10 @@ WorldSettings ScenarioSettings(const Run& run, FrictionCombine friction, Restitu
     case harness::BounceTimingChoice::Auto:
       break;
     case harness::BounceTimingChoice::TimeOfImpact:
-      settings.bounceTiming = BounceTiming::TimeOfImpact;
+      settings.methods.bounceTiming = BounceTiming::TimeOfImpact;
       break;
     case harness::BounceTimingChoice::StepBoundary:
-      settings.bounceTiming = BounceTiming::StepBoundary;
+      settings.methods.bounceTiming = BounceTiming::StepBoundary;
       break;
   }
   return settings;
@@ -298,25 +298,25 @@ void ApplyWriteUp(const Run& run, WorldSettings& settings) {
   if (run.scenario.world.gyroscopic) {
     // The second-order splitting: the write-up has no gyroscopic term, and
     // the scenario asks for one; the least of the engine's.
-    settings.rotation = RotationIntegrator::MomentumSplitting;
+    settings.methods.rotation = RotationIntegrator::MomentumSplitting;
   }
   if (run.scenario.world.bounceTiming == harness::BounceTimingChoice::Auto) {
-    settings.bounceTiming = BounceTiming::StepBoundary;
+    settings.methods.bounceTiming = BounceTiming::StepBoundary;
   }
-  settings.translation = TranslationIntegrator::SymplecticEuler;
-  settings.narrowPhase.satMode = SatMode::Full;
-  settings.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
-  settings.narrowPhase.useSatCache = false;
-  settings.narrowPhase.reuseDistance = 0.0;                       // the narrow phase every step
-  settings.narrowPhase.persistence = ManifoldPersistence::Fresh;  // and only its points
-  settings.speculativeMotion = false;                             // a fixed speculative margin
-  settings.warmStarting = false;
+  settings.methods.translation = TranslationIntegrator::SymplecticEuler;
+  settings.methods.narrowPhase.satMode = SatMode::Full;
+  settings.methods.narrowPhase.manifoldMode = ManifoldMode::WriteUp;
+  settings.methods.narrowPhase.useSatCache = false;
+  settings.methods.narrowPhase.reuseDistance = 0.0;                       // the narrow phase every step
+  settings.methods.narrowPhase.persistence = ManifoldPersistence::Fresh;  // and only its points
+  settings.methods.speculativeMotion = false;                             // a fixed speculative margin
+  settings.methods.warmStarting = false;
   // Plain row-by-row Gauss-Seidel, a fixed number of sweeps (a cap below
   // the iteration count means no extra sweeps), friction per point.
-  settings.blockSolver = false;
-  settings.maxVelocityIterations = 1;
-  settings.frictionSolve = FrictionSolve::PerPoint;
-  settings.shockPropagation = false;  // the sweeps alone
+  settings.methods.blockSolver = false;
+  settings.methods.maxVelocityIterations = 1;
+  settings.methods.frictionSolve = FrictionSolve::PerPoint;
+  settings.methods.shockPropagation = false;  // the sweeps alone
 }
 
 // The variant's settings: the scenario's on WorldSettings{}, then the
@@ -331,20 +331,20 @@ WorldSettings MakeSettings(const WorldSettings& base, const Run& run, Variant va
       ApplyWriteUp(run, settings);
       break;
     case Variant::SplitImpulses:
-      settings.positionCorrection = PositionCorrection::SplitImpulses;
+      settings.methods.positionCorrection = PositionCorrection::SplitImpulses;
       break;
     case Variant::Coloured:
       // The coloured order, with the friction rows it has (no joint block).
-      settings.contactSolver = ContactSolverKind::ColouredWide;
-      settings.frictionSolve = FrictionSolve::PerPoint;
+      settings.methods.contactOrder = ContactOrder::ByColour;
+      settings.methods.frictionSolve = FrictionSolve::PerPoint;
       break;
     case Variant::Soft:
       // The soft step (docs/dynamics.md, "The soft step") at the engine's
       // 4 sub-steps; the run's iterations are a sweep count, which this
       // solver does not have. Its friction rows are per point (it has no
       // joint block).
-      settings.stepSolver = StepSolver::SoftStep;
-      settings.frictionSolve = FrictionSolve::PerPoint;
+      settings.methods.stepSolver = StepSolver::SoftStep;
+      settings.methods.frictionSolve = FrictionSolve::PerPoint;
       break;
   }
   return settings;
@@ -545,25 +545,26 @@ const char* OnOff(bool on) { return on ? "on" : "off"; }
 
 void TalusBackend::AddSettings(const Run& run, const WorldSettings& base) {
   const WorldSettings& s = m_world.Settings();
-  const NarrowPhaseSettings& n = s.narrowPhase;
-  const NarrowPhaseSettings& bn = base.narrowPhase;
+  const NarrowPhaseSettings& n = s.methods.narrowPhase;
+  const NarrowPhaseSettings& bn = base.methods.narrowPhase;
   const std::string broadPhase =
-      s.forceBroadPhase ? std::string(BroadPhaseName(s.broadPhase)) +
-                              ", forced in every world (scenario world.broadPhase \"" +
-                              harness::BroadPhaseChoiceName(run.scenario.world.broadPhase) + "\")"
-                        : std::string(BroadPhaseName(s.broadPhase)) + "; brute force in worlds of at most " +
-                              std::to_string(kTinyWorldBodies) + " bodies (engine default)";
+      s.methods.forceBroadPhase
+          ? std::string(BroadPhaseName(s.broadPhase)) +
+                ", forced in every world (scenario world.broadPhase \"" +
+                harness::BroadPhaseChoiceName(run.scenario.world.broadPhase) + "\")"
+          : std::string(BroadPhaseName(s.broadPhase)) + "; brute force in worlds of at most " +
+                std::to_string(kTinyWorldBodies) + " bodies (engine default)";
   m_settings = {
       {"engine", "Talus (double)"},
       {"variant", VariantName(m_variant)},
       {"time step (s)", SettingNumber(run.timeStep)},
       {"stepping", "World::Step(h), one step per Step()"},
-      Choice("integrator", TranslationText(s.translation), TranslationText(base.translation),
+      Choice("integrator", TranslationText(s.methods.translation), TranslationText(base.methods.translation),
              "the write-up's symplectic Euler: free flight lags the parabola by g h t / 2 (docs/dynamics.md, "
              "\"Translation exact for constant gravity\")"),
       Choice(
           "solver", SolverText(s), SolverText(base),
-          s.stepSolver == StepSolver::SoftStep
+          s.methods.stepSolver == StepSolver::SoftStep
               ? "the soft step: soft contact springs over sub-steps instead of sweeps with Baumgarte's push "
                 "(docs/dynamics.md, \"The soft step\")"
               : "the coloured order, whose colours split across threads with bit-identical results: the "
@@ -571,18 +572,20 @@ void TalusBackend::AddSettings(const Run& run, const WorldSettings& base) {
                 "(docs/dynamics.md, \"The coloured wide solver\")"),
       {"velocity iterations",
        std::to_string(s.velocityIterations) + (run.iterations > 0 ? "" : " (engine default)")},
-      Choice("warm starting", OnOff(s.warmStarting), OnOff(base.warmStarting),
+      Choice("warm starting", OnOff(s.methods.warmStarting), OnOff(base.methods.warmStarting),
              "the write-up's: every step's solve starts from zero impulses, so a stack carries its load only "
              "after many sweeps"),
-      Choice("block solver (a pair's normal rows together)", OnOff(s.blockSolver), OnOff(base.blockSolver),
+      Choice("block solver (a pair's normal rows together)", OnOff(s.methods.blockSolver),
+             OnOff(base.methods.blockSolver),
              "the write-up's row by row: the first corner solved takes more load, and a 10-box column sways "
              "7.9 cm where the defaults hold it to 1e-14 m (docs/dynamics.md, \"Measured\")"),
       Choice(
-          "friction solve", FrictionSolveText(s.frictionSolve), FrictionSolveText(base.frictionSolve),
+          "friction solve", FrictionSolveText(s.methods.frictionSolve),
+          FrictionSolveText(base.methods.frictionSolve),
           "the per-point rows (the write-up's; the only ones the coloured solver and the row-by-row "
           "normals have): a stopping box keeps about 0.6 of its slip a sweep instead of stopping in one "
           "(box_slide at 1/30 s, 5 sweeps: 2.6e-5 m short and rocking; docs/dynamics.md, \"Joint block\")"),
-      Choice("shock propagation", OnOff(s.shockPropagation), OnOff(base.shockPropagation),
+      Choice("shock propagation", OnOff(s.methods.shockPropagation), OnOff(base.methods.shockPropagation),
              "the sweeps alone: a load on supports of a tenth of its mass or less is carried only after "
              "many steps, and meanwhile drives them into the ground and is thrown back (a 1000 kg slab on "
              "two 1 kg boxes drifts 0.7 m; docs/dynamics.md, \"Shock propagation\")"),
@@ -590,17 +593,18 @@ void TalusBackend::AddSettings(const Run& run, const WorldSettings& base) {
              "the write-up's fixed sweep count: a new stack's first solve is left unconverged (a cold 10-box "
              "column needs about 150 sweeps not to sag by 1 mm; docs/dynamics.md, \"Constraints\")"),
       Choice(
-          "position correction", PositionCorrectionName(s.positionCorrection),
-          PositionCorrectionName(base.positionCorrection),
+          "position correction", PositionCorrectionName(s.methods.positionCorrection),
+          PositionCorrectionName(base.methods.positionCorrection),
           "Bullet's split impulses: the push-out moves positions only, so it adds no kinetic energy (a box "
           "started 5 cm deep leaves at < 1e-3 m/s instead of > 0.3 m/s; docs/dynamics.md, \"Constraints\")"),
-      {"position iterations", s.positionCorrection == PositionCorrection::Baumgarte
+      {"position iterations", s.methods.positionCorrection == PositionCorrection::Baumgarte
                                   ? "unused"
                                   : std::to_string(s.positionIterations)},
       {"baumgarte factor", SettingNumber(s.baumgarte)},
       {"slop (m)", SettingNumber(s.slop)},
       {"restitution threshold (m/s)", SettingNumber(s.restitutionThreshold)},
-      Choice("bounce timing", BounceTimingText(s.bounceTiming), BounceTimingText(base.bounceTiming),
+      Choice("bounce timing", BounceTimingText(s.methods.bounceTiming),
+             BounceTimingText(base.methods.bounceTiming),
              "the write-up's: the impact is taken at the step's boundary, so a 1 m drop at 60 Hz lands up to "
              "a step early or late and its apex errs by up to (1 + e^2) v h (docs/dynamics.md, \"Bounces "
              "timed inside the step\")"),
@@ -624,7 +628,7 @@ void TalusBackend::AddSettings(const Run& run, const WorldSettings& base) {
           "the write-up's fixed margin: a corner that lands within the step sinks in and is pushed out (at "
           "1/30 s tall_box_tipping 15 degrees 4.4e-4 -> 0.18 tolerances, hull_rest 4e-14 -> 0.54; "
           "docs/testbed-sweeps.md)"),
-      Choice("gyroscopic term", GyroscopicText(s.rotation), GyroscopicText(base.rotation),
+      Choice("gyroscopic term", GyroscopicText(s.methods.rotation), GyroscopicText(base.methods.rotation),
              "the second-order splitting, the write-up's order of accuracy: L still kept, the energy error "
              "O((h w)^2), 36 times the fourth order's at 1/30 s on gazebo_boxes (docs/dynamics.md, "
              "\"Rotation\")"),

@@ -43,7 +43,7 @@ int main() {
   const auto state = w.GetBodyState(body.Value());
   if (!state) return Fail("state refused");
   // At rest its centre is 0.5 m up (a resting box settles within 3e-7 m of
-  // it, WorldSettings::narrowPhase.speculativeMargin): 1 mm covers it with
+  // it, MethodSettings::narrowPhase.speculativeMargin): 1 mm covers it with
   // margin while a cube that fell through or bounced off is metres away.
   const double height = state.Value().position.y();
   if (std::abs(height - 0.5) > 1e-3) return Fail("cube did not come to rest on the ground");

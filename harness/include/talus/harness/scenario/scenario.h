@@ -40,7 +40,7 @@ const char* CombineRuleName(CombineRule rule);
 /// Which broad-phase structure Talus runs (file: world.broadPhase). Auto is
 /// the engine's default: the uniform grid, with brute force in worlds of
 /// at most 128 bodies, where it is faster; each other choice runs that
-/// structure in every world (talus::WorldSettings::forceBroadPhase), as the
+/// structure in every world (talus::MethodSettings::forceBroadPhase), as the
 /// write-up's figure 2 needs on a 15-body scene. Every structure finds the
 /// same pairs, so results do not change, only the work counted. The peers
 /// keep their own broad phases (listed in their settings).

@@ -16,14 +16,14 @@
 //   "talus-split"    the defaults with split impulses (position correction
 //                    that adds no kinetic energy).
 //   "talus-coloured" the defaults with the coloured wide solver
-//                    (ContactSolverKind::ColouredWide: pairs coloured, four
+//                    (ContactOrder::ByColour: pairs coloured, four
 //                    per SIMD bundle) and the per-point friction it has.
 //
 // What a scenario states, common to all: gravity; iterations from the run
 // (0 = the engine's default, 10); the combine rules (restitution "sqrt" has
 // no engine rule and is refused); sleeping off (the peers never sleep, and
 // a sleeping body would hide jitter); the gyroscopic term (off:
-// WorldSettings::rotation = ConstantRate); world.broadPhase (auto keeps the
+// MethodSettings::rotation = ConstantRate); world.broadPhase (auto keeps the
 // engine's); world.bounceTiming (auto keeps the row's). Threads come from
 // TalusBackendOptions (default 1). Each row's departures from the engine's
 // default are listed in its settings (engineDefault and effect) and in
