@@ -5,7 +5,7 @@
 // survive to the next step for warm starting: the accumulated normal and
 // friction impulses of each point, keyed by the point's feature id, and the
 // pair's mixed friction and restitution. The solver's per-step rows
-// (dynamics/contact_solver.h) are rebuilt from Contacts every step; only
+// (dynamics/contact_row_set.h) are rebuilt from Contacts every step; only
 // impulses flow back. Keeping the two apart keeps the rows small and dense
 // and lets the warm start survive any change of manifold point order.
 //

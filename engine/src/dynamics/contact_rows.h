@@ -1,7 +1,9 @@
-// The per-step rows of the contact solver (see dynamics/contact_solver.h
-// for the derivations): one header per touching pair, one normal row and
-// two friction rows per point, cold per-point data apart. Shared by the
-// scalar Sequential Impulses (contact_solver*.cpp) and the coloured wide
+// The per-step rows of the contact solver (ContactRowSet builds them; the
+// derivations are in dynamics/contact_row_set.h): one header per touching
+// pair, one normal row and two friction rows per point, cold per-point data
+// apart. Shared by the scalar Sequential Impulses
+// (sequential_impulse_sweeps.cpp, joint_block_solver.cpp,
+// shock_propagation.cpp, split_impulses.cpp) and the coloured wide
 // solver (wide_contact_solver.{h,cpp}), which packs them into lanes.
 #pragma once
 
@@ -24,12 +26,20 @@ struct NormalRow {
   double target = 0.0;   ///< m/s, least normal separation speed
   double impulse = 0.0;  ///< N s, accumulated
 };
+// The hot records the sweeps stream every pass (docs/dynamics.md, "Solver
+// data layout"): a normal row is 120 bytes, under two 64-byte cache lines,
+// a friction row 112, so a point's three rows are 344 bytes (the wide
+// solver's WidePoint is compared against this figure). Growing one is a
+// choice to make on purpose.
+static_assert(sizeof(RowJacobian) == 96, "RowJacobian: four Vec3, 96 bytes");
+static_assert(sizeof(NormalRow) == 120, "NormalRow: 120 bytes, under two cache lines per point");
 
 struct FrictionRow {
   RowJacobian j;
   double mass = 0.0;     ///< kg, effective mass
   double impulse = 0.0;  ///< N s, accumulated
 };
+static_assert(sizeof(FrictionRow) == 112, "FrictionRow: 112 bytes, under two cache lines per tangent");
 
 /// Per point, read only by the split impulses, the timed bounces and the
 /// wide solver's packing.
@@ -43,6 +53,9 @@ struct PointCold {
   Vec3 armA = Vec3::Zero();  ///< rA = p - cA, world, metres (the wide solver's input)
   Vec3 armB = Vec3::Zero();  ///< rB = p - cB
 };
+// Cold: no sweep reads it, so it is kept out of the rows; 72 bytes, the
+// budget of the split-impulse sweep and the wide packing that walk it.
+static_assert(sizeof(PointCold) <= 72, "PointCold: 72 bytes, apart from the hot rows");
 
 /// A friction impulse pattern of FrictionSolve::CoupledBlock as the sweep
 /// reads it: the angular parts of its generalised row (sums of r x P over
@@ -54,7 +67,7 @@ struct PatternRow {
 };
 
 /// FrictionSolve::CoupledBlock's per-step data of a pair with a normal block
-/// (dynamics/contact_solver.h): three friction impulse patterns as
+/// (dynamics/joint_block_solver.h): three friction impulse patterns as
 /// generalised rows (slip along t1, along t2, spin about n), the pieces of
 /// the block's solve operator, and the points' places in the contact plane.
 /// 384 bytes, six cache lines (the sweep that tries every face pair is
@@ -85,5 +98,10 @@ struct PairRows {
   bool hasFriction = false;
   bool persisted = false;  ///< the pair touched last step (see Contact::persisted)
 };
+// Every pass over a pair reads its header first: 136 bytes, just over two
+// cache lines (the wide solver's bundle header is compared against this
+// figure, wide_contact_solver.h). The Mat3s and the block inverse it once
+// carried (~450 bytes) live apart (docs/dynamics.md, "Compact headers").
+static_assert(sizeof(PairRows) <= 136, "PairRows: 136 bytes, about two cache lines per pair");
 
 }  // namespace talus

@@ -1,7 +1,8 @@
 // The per-pass helpers the scalar contact sweeps share
-// (contact_solver_sweep.cpp and the joint block of normals and friction,
-// contact_solver_joint_block.cpp): a pair's two body velocities held in locals
-// for one pass over its rows, and the change tracking of the extra sweeps.
+// (sequential_impulse_sweeps.cpp, the joint block of normals and friction
+// in joint_block_solver.cpp, shock_propagation.cpp): a pair's two body
+// velocities held in locals for one pass over its rows, and the change
+// tracking of the extra sweeps.
 #pragma once
 
 #include <algorithm>

@@ -2,7 +2,7 @@
 // StepSolver::SoftStep), after Box2D v3 and Box3D (Catto's Solver2D study,
 // 2024: of the solvers it compared, the most robust per unit of cost). Our
 // own code; the rows and notation are the Sequential Impulses solver's
-// (dynamics/contact_solver.h: n from B to A, rA = p - cA, rB = p - cB,
+// (dynamics/contact_row_set.h: n from B to A, rA = p - cA, rB = p - cB,
 // dv = (vA + wA x rA) - (vB + wB x rB), J = [n, rA x n, -n, -rB x n]).
 //
 // The step (h = dt / substeps):

@@ -2,7 +2,7 @@
 // pairs to a bundle, solved a bundle at a time with SIMD lanes
 // (MethodSettings::contactOrder = ByColour).
 //
-// The algorithm per pair is the scalar solver's (dynamics/contact_solver.h:
+// The algorithm per pair is the scalar solver's (dynamics/sequential_impulse_sweeps.h:
 // the same rows, clamps, block solve with its row-by-row fallback, friction
 // bounded by the current normal impulse); what changes is the order in
 // which pairs are visited. The pairs are coloured (dynamics/
@@ -20,7 +20,8 @@
 // they may run concurrently; and since a bundle's result depends on its own
 // rows and bodies alone, any split of a colour into ranges gives
 // bit-identical results (tested). Colours must run one after the other,
-// and the overflow pairs after all colours (ContactSolver does that).
+// and the overflow pairs after all colours (ColouredContactDispatch does that,
+// dynamics/coloured_contact_dispatch.h).
 //
 // Layout (structure of arrays per bundle, 32-byte aligned lanes): a bundle
 // header (normals, tangents, inverse masses, friction, inverse inertias,
@@ -30,6 +31,7 @@
 // mass and Jacobian, so they add exactly zero and keep zero impulse.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -137,6 +139,28 @@ class WideContactSolver {
     int points = 0;
   };
 
+  /// Where each colour's pairs start in m_order (a running sum of the
+  /// counts): colour c's are [starts[c], starts[c + 1]), the overflow
+  /// colour's from starts[kOverflowColour].
+  using ColourStarts = std::array<int, kColourCount + 2>;
+  /// The arrays Build packs from (the scalar solver's).
+  struct RowsToPack {
+    std::span<const PairRows> pairs;
+    std::span<const NormalRow> normals;
+    std::span<const FrictionRow> frictions;
+    std::span<const PointCold> cold;
+    std::span<const Eigen::Matrix4d> blocks;
+    const SolverBodies& bodies;
+  };
+
+  /// Colours the pairs (m_colourOf).
+  void Colour(std::span<const PairRows> pairs, const SolverBodies& bodies);
+  /// The pairs grouped by colour into m_order and the overflow pairs listed.
+  ColourStarts OrderByColour(std::size_t pairCount);
+  /// Each bundle's pairs and points (m_layout, m_colourStart); returns the wide points.
+  int LayOutBundles(std::span<const PairRows> pairs, const ColourStarts& starts);
+  void PackBundle(int b, const RowsToPack& rows);
+  void PackLane(Bundle& bundle, int lane, int p, const RowsToPack& rows);
   void UnpackBundle(const Bundle& bundle, std::span<const PairRows> pairs, std::span<NormalRow> normals,
                     std::span<FrictionRow> frictions) const;
 

@@ -1,0 +1,348 @@
+// ContactRowSet: building the rows of one step's contacts (Prepare) and
+// storing their impulses back. The derivations and the data layout are in
+// dynamics/contact_row_set.h.
+#include "dynamics/contact_row_set.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
+#include "dynamics/bounce_timing.h"
+
+namespace talus {
+namespace {
+
+// Below this tangential speed (m/s) the friction basis is a fixed function
+// of the normal instead of the sliding direction: a direction computed from
+// round-off would only add noise.
+constexpr double kSlidingSpeed = 1e-9;
+
+// Pairs per chunk of Prepare's parallel pass: a pair's rows (with its
+// block's eigen decomposition) cost a few microseconds.
+constexpr int kPairGrain = 32;
+
+// A unit vector orthogonal to the unit `n`, from the world axis least
+// aligned with it (deterministic and well conditioned).
+Vec3 AnyPerpendicular(const Vec3& n) {
+  const Vec3 a = n.cwiseAbs();
+  Vec3 axis = Vec3::UnitX();
+  if (a.y() <= a.x() && a.y() <= a.z()) {
+    axis = Vec3::UnitY();
+  } else if (a.z() <= a.x() && a.z() <= a.y()) {
+    axis = Vec3::UnitZ();
+  }
+  return n.cross(axis).normalized();
+}
+
+// Linear velocity at the step's start: the integrator records it for the
+// bodies it accelerated (awake dynamic); every other body keeps its own.
+const Vec3& StartVelocity(const BodySim& body) {
+  return body.IsSolverDynamic() ? body.startLinearVelocity : body.linearVelocity;
+}
+
+// Velocity of A relative to B at the contact point (see header).
+Vec3 RelativeVelocity(const Vec3& vA, const Vec3& wA, const Vec3& rA, const Vec3& vB, const Vec3& wB,
+                      const Vec3& rB) {
+  return (vA + wA.cross(rA)) - (vB + wB.cross(rB));
+}
+
+RowJacobian MakeJacobian(const Vec3& d, const Vec3& rA, const Vec3& rB, const Mat3& invInertiaA,
+                         const Mat3& invInertiaB) {
+  RowJacobian j;
+  j.angularA = rA.cross(d);
+  j.angularB = rB.cross(d);
+  j.imageA = invInertiaA * j.angularA;
+  j.imageB = invInertiaB * j.angularB;
+  return j;
+}
+
+// 1 / (J M^-1 J^T) of a row (the effective mass), kg; 0 when nothing can move.
+double RowMass(const RowJacobian& j, const PairRows& pair) {
+  const double k = pair.invMassA + pair.invMassB + j.angularA.dot(j.imageA) + j.angularB.dot(j.imageB);
+  return k > 0.0 ? 1.0 / k : 0.0;
+}
+
+// Friction basis: t1 along the pair's mean sliding velocity when there is
+// one, else a fixed perpendicular of n; t2 = n x t1.
+void ChooseTangents(const BodySim& a, const BodySim& b, const ContactManifold& manifold, PairRows& pair) {
+  const Vec3& n = pair.normal;
+  Vec3 slide = Vec3::Zero();
+  for (int i = 0; i < pair.pointCount; ++i) {
+    const Vec3& p = manifold.points[static_cast<std::size_t>(i)].position;
+    slide += RelativeVelocity(a.linearVelocity, a.angularVelocity, p - a.center, b.linearVelocity,
+                              b.angularVelocity, p - b.center);
+  }
+  slide -= n * n.dot(slide);
+  const double speed = slide.norm() / pair.pointCount;
+  pair.tangent[0] = speed > kSlidingSpeed ? Vec3(slide.normalized()) : AnyPerpendicular(n);
+  pair.tangent[1] = n.cross(pair.tangent[0]);
+}
+
+// Restitution's part of a point's targets (header: the bounce at the step
+// boundary, the timed bounce with its position row, the speculative
+// approach that lands later), on top of the resting target in `row`.
+// Returns whether the point bounces inside the step.
+bool ApplyRestitution(const BodySim& a, const BodySim& b, const Vec3& n, const Vec3& rA, const Vec3& rB,
+                      const ContactPoint& cp, double restitution, const WorldSettings& settings, double h,
+                      NormalRow& row, PointCold& cold) {
+  const double invH = 1.0 / h;
+  const double vn = n.dot(
+      RelativeVelocity(a.linearVelocity, a.angularVelocity, rA, b.linearVelocity, b.angularVelocity, rB));
+  TimedBounce bounce;
+  double acceleration = 0.0;
+  if (settings.methods.bounceTiming == BounceTiming::TimeOfImpact) {
+    const double u0 = n.dot(
+        RelativeVelocity(StartVelocity(a), a.angularVelocity, rA, StartVelocity(b), b.angularVelocity, rB));
+    acceleration = (vn - u0) * invH;
+    bounce = TimeBounce(-cp.depth, u0, acceleration, h, restitution, settings.restitutionThreshold);
+  }
+  if (bounce.hits) {
+    row.target = bounce.endSpeed;
+    cold.positionTarget = (bounce.endGap + cp.depth) * invH - bounce.endSpeed;
+    cold.timedBounce = true;
+    return true;
+  }
+  if (settings.methods.bounceTiming == BounceTiming::StepBoundary || bounce.tooDeep) {
+    // Bounce when closing fast enough and the point touches by the end
+    // of the step (a speculative point that stays apart must not bounce).
+    if (vn < -settings.restitutionThreshold && cp.depth - vn * h > 0.0) {
+      row.target = std::max(row.target, -restitution * vn);
+    }
+  } else if (cp.depth < 0.0 && vn < 0.0 &&
+             settings.methods.translation == TranslationIntegrator::ExactConstantAcceleration &&
+             bounce.speed > settings.restitutionThreshold) {
+    // An approach that misses the surface this step and will bounce
+    // when it lands (its impact speed, which TimeBounce gives for a
+    // later landing too, not its speed now, clears the threshold): an
+    // untouched body closes the gap by h (vn - a h / 2), not h vn, so
+    // the row asks no more of it. With h vn the row would stop the
+    // point on the surface a step early, short of its impact speed: a
+    // ball 14.6 mm up, falling at 0.15 m/s, stopped at 0.44 m/s at
+    // 1/30 s instead of landing at 0.55 m/s next step and bouncing (the
+    // fourth bounce of sphere_bounce_series, e = 0.5, was lost).
+    row.target = cp.depth * invH + 0.5 * acceleration * h;
+  }
+  return false;
+}
+
+// Whether a pair is solved as a normal block: 2 to 4 points with the block
+// solver selected.
+bool UsesNormalBlock(const WorldSettings& settings, int pointCount) {
+  return settings.methods.blockSolver && pointCount >= 2 && pointCount <= 4;
+}
+
+}  // namespace
+
+// Two passes. The serial one decides which contacts get rows, numbers their
+// solver bodies in contact order (SolverBodies::Add: the numbering every
+// step's bits follow) and gives each pair its rows' places; the second
+// builds each pair's rows in its own places, on `runner`'s threads. At one
+// thread the rows are the same bits in the same places as one pass built.
+void ContactRowSet::Prepare(std::span<const BodySim> bodies, std::span<const Contact> contacts,
+                            const WorldSettings& settings, double h, const PhaseRunner& runner,
+                            StepStatistics& stats) {
+  m_bodies.Reset(bodies.size());
+  m_pairs.clear();
+  m_newPairs = 0;
+  m_timedBounces = 0;
+  const RowTotals totals = AddPairHeaders(bodies, contacts, settings, stats);
+  // Every slot below is written by its pair before anything reads it.
+  m_normals.resize(static_cast<std::size_t>(totals.points));
+  m_frictions.resize(static_cast<std::size_t>(totals.frictions));
+  m_cold.resize(static_cast<std::size_t>(totals.points));
+  m_blockInverses.resize(static_cast<std::size_t>(totals.blocks));
+  BuildPairsOnThreads(bodies, contacts, settings, h, runner, stats);
+}
+
+ContactRowSet::RowTotals ContactRowSet::AddPairHeaders(std::span<const BodySim> bodies,
+                                                       std::span<const Contact> contacts,
+                                                       const WorldSettings& settings, StepStatistics& stats) {
+  RowTotals totals;
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    const Contact& contact = contacts[c];
+    const BodySim& a = bodies[static_cast<std::size_t>(contact.bodyA)];
+    const BodySim& b = bodies[static_cast<std::size_t>(contact.bodyB)];
+    // A pair that contact cannot move (both immovable this step) needs no rows.
+    if ((!a.IsSolverDynamic() && !b.IsSolverDynamic()) || contact.manifold.pointCount == 0) continue;
+    const PairRows pair = MakePairHeader(bodies, contact, static_cast<int>(c), settings, totals);
+    stats.contactPoints += pair.pointCount;
+    if (pair.hasFriction) {
+      stats.frictionRows += 2 * pair.pointCount;
+    } else {
+      stats.frictionRowsSkipped += 2 * pair.pointCount;
+    }
+    if (!pair.persisted) ++m_newPairs;
+    m_pairs.push_back(pair);
+  }
+  return totals;
+}
+
+PairRows ContactRowSet::MakePairHeader(std::span<const BodySim> bodies, const Contact& contact, int c,
+                                       const WorldSettings& settings, RowTotals& totals) {
+  PairRows pair;
+  pair.contact = c;
+  pair.bodyA = m_bodies.Add(bodies, contact.bodyA);
+  pair.bodyB = m_bodies.Add(bodies, contact.bodyB);
+  pair.firstPoint = totals.points;
+  pair.firstFriction = totals.frictions;
+  pair.pointCount = contact.manifold.pointCount;
+  pair.normal = contact.manifold.normal;
+  pair.friction = contact.friction;
+  pair.hasFriction = contact.friction > 0.0;
+  pair.persisted = contact.persisted && settings.methods.warmStarting;
+  pair.invMassA = m_bodies.InvMass(pair.bodyA);
+  pair.invMassB = m_bodies.InvMass(pair.bodyB);
+  if (UsesNormalBlock(settings, pair.pointCount)) pair.block = totals.blocks++;
+  totals.points += pair.pointCount;
+  if (pair.hasFriction) totals.frictions += 2 * pair.pointCount;
+  return pair;
+}
+
+void ContactRowSet::BuildPairsOnThreads(std::span<const BodySim> bodies, std::span<const Contact> contacts,
+                                        const WorldSettings& settings, double h, const PhaseRunner& runner,
+                                        StepStatistics& stats) {
+  std::atomic<int> timedBounces{0};
+  std::atomic<int> restitutionSkipped{0};
+  const JobPhase phase{.count = static_cast<int>(m_pairs.size()), .grain = kPairGrain};
+  RunPhasesWith(runner, std::span<const JobPhase>(&phase, 1), [&](int, int begin, int end) {
+    PrepareCounts counts;
+    for (int p = begin; p < end; ++p) {
+      PairRows& pair = m_pairs[static_cast<std::size_t>(p)];
+      PreparePair(bodies, contacts[static_cast<std::size_t>(pair.contact)], settings, h, pair, counts);
+    }
+    timedBounces.fetch_add(counts.timedBounces, std::memory_order_relaxed);
+    restitutionSkipped.fetch_add(counts.restitutionSkipped, std::memory_order_relaxed);
+  });
+  m_timedBounces = timedBounces.load();
+  stats.timedBounces += m_timedBounces;
+  stats.restitutionSkipped += restitutionSkipped.load();
+}
+
+void ContactRowSet::PreparePair(std::span<const BodySim> bodies, const Contact& contact,
+                                const WorldSettings& settings, double h, PairRows& pair,
+                                PrepareCounts& counts) {
+  const BodySim& a = bodies[static_cast<std::size_t>(contact.bodyA)];
+  const BodySim& b = bodies[static_cast<std::size_t>(contact.bodyB)];
+  if (pair.hasFriction) ChooseTangents(a, b, contact.manifold, pair);
+  for (int i = 0; i < pair.pointCount; ++i) PreparePoint(a, b, contact, i, settings, h, pair, counts);
+  if (pair.block >= 0) PrepareBlock(pair);
+}
+
+void ContactRowSet::PreparePoint(const BodySim& a, const BodySim& b, const Contact& contact, int i,
+                                 const WorldSettings& settings, double h, const PairRows& pair,
+                                 PrepareCounts& counts) {
+  const double invH = 1.0 / h;
+  const std::size_t pi = static_cast<std::size_t>(i);
+  const ContactPoint& cp = contact.manifold.points[pi];
+  const Vec3& n = pair.normal;
+  const Vec3 rA = cp.position - a.center;
+  const Vec3 rB = cp.position - b.center;
+  NormalRow row;
+  row.j = MakeJacobian(n, rA, rB, m_bodies.InvInertia(pair.bodyA), m_bodies.InvInertia(pair.bodyB));
+  row.mass = RowMass(row.j, pair);
+  const double correction = settings.baumgarte * invH * std::max(cp.depth - settings.slop, 0.0);
+  if (cp.depth < 0.0) {
+    // Not touching yet: the gap may close this step, no further.
+    row.target = cp.depth * invH;
+  } else if (settings.methods.positionCorrection == PositionCorrection::Baumgarte) {
+    row.target = correction;
+  }
+  PointCold cold;
+  cold.armA = rA;
+  cold.armB = rB;
+  const bool split = settings.methods.positionCorrection == PositionCorrection::SplitImpulses;
+  cold.positionTarget = split && cp.depth > 0.0 ? correction : 0.0;
+  if (contact.restitution > 0.0) {
+    if (ApplyRestitution(a, b, n, rA, rB, cp, contact.restitution, settings, h, row, cold))
+      ++counts.timedBounces;
+  } else {
+    ++counts.restitutionSkipped;
+  }
+  if (settings.methods.warmStarting) row.impulse = contact.normalImpulse[pi];
+  if (pair.hasFriction) PrepareFrictionRows(contact, i, rA, rB, settings, pair);
+  m_normals[static_cast<std::size_t>(pair.firstPoint + i)] = row;
+  m_cold[static_cast<std::size_t>(pair.firstPoint + i)] = cold;
+}
+
+void ContactRowSet::PrepareFrictionRows(const Contact& contact, int i, const Vec3& rA, const Vec3& rB,
+                                        const WorldSettings& settings, const PairRows& pair) {
+  for (int k = 0; k < 2; ++k) {
+    FrictionRow friction;
+    friction.j = MakeJacobian(pair.tangent[k], rA, rB, m_bodies.InvInertia(pair.bodyA),
+                              m_bodies.InvInertia(pair.bodyB));
+    friction.mass = RowMass(friction.j, pair);
+    if (settings.methods.warmStarting) {
+      friction.impulse = contact.frictionImpulse[static_cast<std::size_t>(i)].dot(pair.tangent[k]);
+    }
+    m_frictions[static_cast<std::size_t>(pair.firstFriction + 2 * i + k)] = friction;
+  }
+}
+
+// K = J M^-1 J^T of the pair's normal rows, from the rows' precomputed
+// angular terms and images, and its pseudo-inverse from an eigen
+// decomposition: eigenvalues below 1e-9 of the largest count as zero (four
+// coplanar points give rank 3; K is padded with the identity below four
+// points), so a symmetric load gets the least-norm, equal split.
+//
+// A closed form (deflating the null vector of the four points' affine
+// dependency, then a 4x4 inverse; 1.7x faster Prepare) agreed with this to
+// 1e-8 but is not used: pyramid 15's drift is a lottery at round-off level
+// (this same matrix scaled by 1 +- 1e-14 gives 1.5 mm or 1.2 cm; the closed
+// form drew 11 cm, past the 5 cm gate). See docs/dynamics.md.
+void ContactRowSet::PrepareBlock(const PairRows& pair) {
+  const int count = pair.pointCount;
+  const NormalRow* rows = &m_normals[static_cast<std::size_t>(pair.firstPoint)];
+  Eigen::Matrix4d k = Eigen::Matrix4d::Identity();
+  for (int i = 0; i < count; ++i) {
+    for (int j = 0; j < count; ++j) {
+      k(i, j) = pair.invMassA + pair.invMassB + rows[i].j.angularA.dot(rows[j].j.imageA) +
+                rows[i].j.angularB.dot(rows[j].j.imageB);
+    }
+  }
+  m_blockInverses[static_cast<std::size_t>(pair.block)] = BlockPseudoInverse(k, count);
+}
+
+Eigen::Matrix4d BlockPseudoInverse(const Eigen::Matrix4d& k, int count) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(k);
+  const Eigen::Vector4d values = eigen.eigenvalues();
+  const double largest = values.cwiseAbs().maxCoeff();
+  Eigen::Vector4d inverse = Eigen::Vector4d::Zero();
+  for (int i = 0; i < 4; ++i) {
+    if (values[i] > 1e-9 * largest) inverse[i] = 1.0 / values[i];
+  }
+  Eigen::Matrix4d blockInverse =
+      eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
+  for (int i = count; i < 4; ++i) {
+    blockInverse.row(i).setZero();
+    blockInverse.col(i).setZero();
+  }
+  return blockInverse;
+}
+
+void ContactRowSet::StoreImpulses(std::span<Contact> contacts) const {
+  for (const PairRows& pair : m_pairs) {
+    Contact& contact = contacts[static_cast<std::size_t>(pair.contact)];
+    for (int i = 0; i < pair.pointCount; ++i) {
+      const std::size_t pi = static_cast<std::size_t>(i);
+      // A timed bounce's impulse is the impact's, not a load the next step
+      // should start from: warm starting it would kick the rising body.
+      if (m_cold[static_cast<std::size_t>(pair.firstPoint + i)].timedBounce) {
+        contact.normalImpulse[pi] = 0.0;
+        contact.frictionImpulse[pi] = Vec3::Zero();
+        continue;
+      }
+      contact.normalImpulse[pi] = m_normals[static_cast<std::size_t>(pair.firstPoint + i)].impulse;
+      if (pair.hasFriction) {
+        const std::size_t f = static_cast<std::size_t>(pair.firstFriction + 2 * i);
+        contact.frictionImpulse[pi] =
+            m_frictions[f].impulse * pair.tangent[0] + m_frictions[f + 1].impulse * pair.tangent[1];
+      } else {
+        contact.frictionImpulse[pi] = Vec3::Zero();
+      }
+    }
+  }
+}
+
+}  // namespace talus

@@ -1,0 +1,66 @@
+// SequentialImpulseSweeps: projected Gauss-Seidel over the rows of a
+// ContactRowSet, row by row or a pair's normal rows as one block, and the
+// warm start that applies the loaded impulses (Sequential Impulses, section
+// 3 of the write-up after Catto, GDC 2005-2009).
+//
+// Normal rows. Impulse dlambda = -m_n (n . dv - target) (the row's terms
+//   in dynamics/contact_row_set.h); accumulated lambda clamped to [0, inf)
+//   (contacts push, never pull), the body velocities changed by the
+//   clamped difference along +n for A and -n for B.
+//
+// Block solve (option, default on). A pair's 2-4 normal rows are solved
+//   together: dlambda = K+ (target - J v), K = J M^-1 J^T (its
+//   pseudo-inverse from ContactRowSet), accepted when every accumulated
+//   impulse stays >= 0, else row by row. Box2D v2.4's two-point block
+//   solver extended to four points. With FrictionSolve::CoupledBlock a face
+//   pair's normals and friction are tried as one block first
+//   (dynamics/joint_block_solver.h).
+//
+// Friction. Accumulated impulse clamped to [-mu lambda_n, mu lambda_n]
+//   with the point's current lambda_n, re-read every time after the normal
+//   row moved.
+//
+// Order. Each sweep visits all normal rows, then all friction rows.
+#pragma once
+
+#include <span>
+
+#include "dynamics/contact_row_set.h"
+#include "dynamics/contact_rows.h"
+#include "dynamics/joint_block_solver.h"
+
+namespace talus {
+
+class SequentialImpulseSweeps {
+ public:
+  /// Applies the loaded impulses of every pair to the gathered velocities.
+  static void WarmStart(ContactRowSet& rows);
+  /// The loaded impulses of one pair: lambda_n n + lambda_1 t1 + lambda_2
+  /// t2 per point, through the rows' precomputed images.
+  static void WarmStartPair(ContactRowSet& rows, const PairRows& pair);
+  /// One sweep over every pair: normals, then friction. With `track`,
+  /// returns the largest velocity change of a row of a new pair (m/s),
+  /// else 0.
+  double Sweep(ContactRowSet& rows, JointBlockSolver& joint, bool track);
+  /// The normal rows (or, with `friction`, the friction rows) of the pairs
+  /// `pairs` (indices into the rows' pairs), one by one in order; returns
+  /// as Sweep does.
+  double SolvePairs(ContactRowSet& rows, JointBlockSolver& joint, std::span<const int> pairs, bool friction,
+                    bool track);
+
+ private:
+  template <bool kTrack>
+  void SweepAll(ContactRowSet& rows, JointBlockSolver& joint);
+  template <bool kTrack>
+  void SolvePairList(ContactRowSet& rows, JointBlockSolver& joint, std::span<const int> pairs, bool friction);
+  template <bool kTrack>
+  void SolveNormals(ContactRowSet& rows, JointBlockSolver& joint, const PairRows& pair);
+  template <bool kTrack>
+  bool SolveNormalBlock(ContactRowSet& rows, const PairRows& pair);
+  template <bool kTrack>
+  void SolveFriction(ContactRowSet& rows, const JointBlockSolver& joint, const PairRows& pair);
+
+  double m_largestChange = 0.0;  ///< m/s, the largest row velocity change of this sweep
+};
+
+}  // namespace talus
