@@ -24,7 +24,7 @@ World MakePyramid(int h, ContactOrder kind, int settle) {
   settings.sleeping = false;
   settings.methods.contactOrder = kind;
   // The per-point friction rows both orders have (the coloured solver has
-  // no joint block), so the two differ by their order alone.
+  // no coupled block), so the two differ by their order alone.
   settings.methods.frictionSolve = FrictionSolve::PerPoint;
   settings.timeStages = true;  // the per-stage counters below read StepStatistics::seconds
   World world = World::Create(settings).Value();

@@ -117,7 +117,7 @@ WorldSettings SettingsFor(ContactOrder kind) {
   WorldSettings settings;
   settings.methods.contactOrder = kind;
   // The per-point friction rows both solvers have (the coloured one has no
-  // joint block; World::Create refuses it there).
+  // coupled block; World::Create refuses it there).
   settings.methods.frictionSolve = FrictionSolve::PerPoint;
   return settings;
 }

@@ -272,7 +272,7 @@ TEST(WorldThreads, ColouredSolverSpreadsColoursWithoutChangingABit) {
   };
   WorldSettings coloured;
   coloured.methods.contactOrder = ContactOrder::ByColour;
-  coloured.methods.frictionSolve = FrictionSolve::PerPoint;  // the coloured solver has no joint block
+  coloured.methods.frictionSolve = FrictionSolve::PerPoint;  // the coloured solver has no coupled block
   const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, coloured, 12);
   EXPECT_GT(one.manifolds, 2 * 8 * 8);  // several chunks of 8 bundles of 4 pairs
 }
@@ -319,7 +319,7 @@ TEST(WorldThreads, ColouredSolverWithOverflowBouncesAndSplitImpulsesIsBitIdentic
   };
   WorldSettings settings;
   settings.methods.contactOrder = ContactOrder::ByColour;
-  settings.methods.frictionSolve = FrictionSolve::PerPoint;  // the coloured solver has no joint block
+  settings.methods.frictionSolve = FrictionSolve::PerPoint;  // the coloured solver has no coupled block
   settings.methods.positionCorrection = PositionCorrection::SplitImpulses;
   const Fingerprint one = ExpectSameBitsForEveryThreadCount(build, settings, 30);
   // The scene reaches what it is here for.

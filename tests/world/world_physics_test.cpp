@@ -105,7 +105,7 @@ TEST(WorldPhysics, ColumnOfTenBoxesStandsWithTheWriteUpSolver) {
   settings.methods.maxVelocityIterations = settings.velocityIterations;
   settings.methods.blockSolver = false;
   settings.methods.frictionSolve =
-      FrictionSolve::PerPoint;                 // the write-up's rows (the joint block needs the block)
+      FrictionSolve::PerPoint;                 // the write-up's rows (the coupled block needs the block)
   settings.methods.speculativeMotion = false;  // and its fixed speculative margin
   settings.methods.positionCorrection = PositionCorrection::Baumgarte;
   // ... and its narrow phase every step, as in the talus-writeup backend.

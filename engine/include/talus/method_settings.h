@@ -264,7 +264,7 @@ struct MethodSettings {
   /// a sticking face contact stops in one sweep instead of keeping about 0.6
   /// of its slip per sweep; over the testbed's time-step sweep it was more
   /// accurate at 440 of 1,056 points and less at none, for about 1.2 times
-  /// the step of a large pyramid (docs/dynamics.md, "Joint block").
+  /// the step of a large pyramid (docs/dynamics.md, "Coupled block").
   /// PerPoint is the write-up's, and the only one the coloured solver and
   /// the row-by-row normals (blockSolver off) have.
   FrictionSolve frictionSolve = FrictionSolve::CoupledBlock;

@@ -52,7 +52,7 @@ void ColouredContactDispatch::WarmStart(ContactRowSet& rows, const PhaseRunner& 
 // chunks of kSweepBundleGrain; the phases of all `sweeps` sweeps are one
 // chain, so the threads meet once per phase on finished chunks instead of
 // being handed a new job per colour.
-double ColouredContactDispatch::Sweeps(ContactRowSet& rows, JointBlockSolver& joint,
+double ColouredContactDispatch::Sweeps(ContactRowSet& rows, CoupledBlockSolver& coupled,
                                        SequentialImpulseSweeps& overflow, int sweeps, bool track,
                                        const PhaseRunner& runner) {
   const int colours = m_wide.ColourCount();
@@ -80,7 +80,7 @@ double ColouredContactDispatch::Sweeps(ContactRowSet& rows, JointBlockSolver& jo
       // The overflow pairs one by one with the scalar passes (the phases
       // before and after this one's single chunk order every other access
       // to `overflow`).
-      mine = overflow.SolvePairs(rows, joint, m_wide.OverflowPairs(), friction, track);
+      mine = overflow.SolvePairs(rows, coupled, m_wide.OverflowPairs(), friction, track);
     }
     double seen = largest.load(std::memory_order_relaxed);
     while (mine > seen && !largest.compare_exchange_weak(seen, mine, std::memory_order_relaxed)) {

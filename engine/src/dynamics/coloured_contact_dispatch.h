@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "dynamics/contact_row_set.h"
-#include "dynamics/joint_block_solver.h"
+#include "dynamics/coupled_block_solver.h"
 #include "dynamics/sequential_impulse_sweeps.h"
 #include "dynamics/wide_contact_solver.h"
 #include "jobs/job_pool.h"
@@ -30,8 +30,8 @@ class ColouredContactDispatch {
   /// colour's normal rows, the overflow pairs' through `overflow`; then the
   /// friction rows likewise). With `track`, returns the largest tracked
   /// change (max is exact in any order, so the cut does not matter).
-  double Sweeps(ContactRowSet& rows, JointBlockSolver& joint, SequentialImpulseSweeps& overflow, int sweeps,
-                bool track, const PhaseRunner& runner);
+  double Sweeps(ContactRowSet& rows, CoupledBlockSolver& coupled, SequentialImpulseSweeps& overflow,
+                int sweeps, bool track, const PhaseRunner& runner);
   /// Writes the bundles' impulses back into the scalar rows.
   void Unpack(ContactRowSet& rows, const PhaseRunner& runner) const;
   /// The packed rows of the last Build.

@@ -2,7 +2,7 @@
 // derivations are in dynamics/contact_row_set.h): one header per touching
 // pair, one normal row and two friction rows per point, cold per-point data
 // apart. Shared by the scalar Sequential Impulses
-// (sequential_impulse_sweeps.cpp, joint_block_solver.cpp,
+// (sequential_impulse_sweeps.cpp, coupled_block_solver.cpp,
 // shock_propagation.cpp, split_impulses.cpp) and the coloured wide
 // solver (wide_contact_solver.{h,cpp}), which packs them into lanes.
 #pragma once
@@ -67,12 +67,12 @@ struct PatternRow {
 };
 
 /// FrictionSolve::CoupledBlock's per-step data of a pair with a normal block
-/// (dynamics/joint_block_solver.h): three friction impulse patterns as
+/// (dynamics/coupled_block_solver.h): three friction impulse patterns as
 /// generalised rows (slip along t1, along t2, spin about n), the pieces of
 /// the block's solve operator, and the points' places in the contact plane.
 /// 384 bytes, six cache lines (the sweep that tries every face pair is
 /// bound by memory, not arithmetic), the flags in the padding at the end.
-struct JointBlockRows {
+struct CoupledBlockRows {
   PatternRow pattern[3];
   /// B Knp: the normal block's pseudo-inverse times the normal-pattern coupling.
   Eigen::Matrix<double, 4, 3, Eigen::DontAlign> blockTimesCoupling = Eigen::Matrix<double, 4, 3>::Zero();
@@ -83,7 +83,7 @@ struct JointBlockRows {
   bool spin = false;    ///< the spin pattern is used (some lever, some body can turn)
   bool usable = false;  ///< the Schur complement was positive definite
 };
-static_assert(sizeof(JointBlockRows) <= 384, "JointBlockRows: six cache lines, the sweep's budget");
+static_assert(sizeof(CoupledBlockRows) <= 384, "CoupledBlockRows: six cache lines, the sweep's budget");
 
 struct PairRows {
   int bodyA = -1, bodyB = -1;  ///< solver-body indices

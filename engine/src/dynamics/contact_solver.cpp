@@ -12,7 +12,7 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
   m_shockOn = settings.methods.shockPropagation;
   m_useWide = settings.methods.contactOrder == ContactOrder::ByColour;
   m_rows.Prepare(bodies, contacts, settings, h, m_runner, stats);
-  m_joint.Reset(settings.methods.frictionSolve == FrictionSolve::CoupledBlock, m_rows.BlockCount());
+  m_coupled.Reset(settings.methods.frictionSolve == FrictionSolve::CoupledBlock, m_rows.BlockCount());
   if (m_shockOn) m_shock.Prepare(bodies, contacts, m_rows, settings.slop);
   if (m_useWide) m_coloured.Build(m_rows, m_runner, stats);
 }
@@ -29,8 +29,8 @@ void ContactSolver::WarmStart() {
 }
 
 double ContactSolver::SweepOnce(bool track) {
-  if (m_useWide) return m_coloured.Sweeps(m_rows, m_joint, m_sweeps, 1, track, m_runner);
-  return m_sweeps.Sweep(m_rows, m_joint, track);
+  if (m_useWide) return m_coloured.Sweeps(m_rows, m_coupled, m_sweeps, 1, track, m_runner);
+  return m_sweeps.Sweep(m_rows, m_coupled, track);
 }
 
 // Each iteration sweeps every normal row, then every friction row (the
@@ -63,7 +63,7 @@ int ContactSolver::SolveVelocities(int minIterations, int maxIterations, double 
   int sweeps = 0;
   if (m_useWide && minIterations > 0) {
     // The untracked sweeps need no result between them: one chain.
-    m_coloured.Sweeps(m_rows, m_joint, m_sweeps, minIterations, false, m_runner);
+    m_coloured.Sweeps(m_rows, m_coupled, m_sweeps, minIterations, false, m_runner);
     sweeps = minIterations;
   }
   for (; sweeps < minIterations; ++sweeps) SweepOnce(false);

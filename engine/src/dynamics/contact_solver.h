@@ -8,8 +8,8 @@
 //     and friction rows, normal block pseudo-inverses; the data layout);
 //   * SequentialImpulseSweeps (dynamics/sequential_impulse_sweeps.h): the
 //     scalar Gauss-Seidel sweeps and warm start;
-//   * JointBlockSolver (dynamics/joint_block_solver.h): FrictionSolve::
-//     JointBlock, a face pair's normals and friction as one block;
+//   * CoupledBlockSolver (dynamics/coupled_block_solver.h): FrictionSolve::
+//     CoupledBlock, a face pair's normals and friction as one block;
 //   * ColouredContactDispatch (dynamics/coloured_contact_dispatch.h):
 //     ContactOrder::ByColour's packed bundles and threads;
 //   * ShockPropagation (dynamics/shock_propagation.h);
@@ -31,7 +31,7 @@
 #include "dynamics/coloured_contact_dispatch.h"
 #include "dynamics/contact.h"
 #include "dynamics/contact_row_set.h"
-#include "dynamics/joint_block_solver.h"
+#include "dynamics/coupled_block_solver.h"
 #include "dynamics/sequential_impulse_sweeps.h"
 #include "dynamics/shock_propagation.h"
 #include "dynamics/wide_contact_solver.h"
@@ -99,8 +99,8 @@ class ContactSolver {
   [[nodiscard]] const WideContactSolver& Wide() const { return m_coloured.Wide(); }
 
   /// FrictionSolve::CoupledBlock's tries in the last step's sweeps.
-  using JointBlockCounts = JointBlockSolver::Counts;
-  [[nodiscard]] const JointBlockCounts& LastJointBlockCounts() const { return m_joint.LastCounts(); }
+  using CoupledBlockCounts = CoupledBlockSolver::Counts;
+  [[nodiscard]] const CoupledBlockCounts& LastCoupledBlockCounts() const { return m_coupled.LastCounts(); }
 
  private:
   /// One sweep over every row (coloured or scalar); with `track`, returns
@@ -109,7 +109,7 @@ class ContactSolver {
 
   ContactRowSet m_rows;
   SequentialImpulseSweeps m_sweeps;
-  JointBlockSolver m_joint;
+  CoupledBlockSolver m_coupled;
   ColouredContactDispatch m_coloured;
   ShockPropagation m_shock;
   PhaseRunner m_runner;

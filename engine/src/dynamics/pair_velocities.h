@@ -1,6 +1,6 @@
 // The per-pass helpers the scalar contact sweeps share
-// (sequential_impulse_sweeps.cpp, the joint block of normals and friction
-// in joint_block_solver.cpp, shock_propagation.cpp): a pair's two body
+// (sequential_impulse_sweeps.cpp, the coupled block of normals and friction
+// in coupled_block_solver.cpp, shock_propagation.cpp): a pair's two body
 // velocities held in locals for one pass over its rows, and the change
 // tracking of the extra sweeps.
 #pragma once

@@ -84,13 +84,13 @@ bool SequentialImpulseSweeps::SolveNormalBlock(ContactRowSet& rows, const PairRo
   return true;
 }
 
-// The normal rows of one pair: the joint block or the normal block when
+// The normal rows of one pair: the coupled block or the normal block when
 // they apply and accept, else row by row, accumulated impulse clamped to
 // [0, inf).
 template <bool kTrack>
-void SequentialImpulseSweeps::SolveNormals(ContactRowSet& rows, JointBlockSolver& joint,
+void SequentialImpulseSweeps::SolveNormals(ContactRowSet& rows, CoupledBlockSolver& coupled,
                                            const PairRows& pair) {
-  if (joint.Applies(pair) && joint.Solve<kTrack>(rows, pair, m_largestChange)) return;
+  if (coupled.Applies(pair) && coupled.Solve<kTrack>(rows, pair, m_largestChange)) return;
   if (pair.block >= 0 && SolveNormalBlock<kTrack>(rows, pair)) return;
   SolverVelocity& a = rows.Bodies().Velocity(pair.bodyA);
   SolverVelocity& b = rows.Bodies().Velocity(pair.bodyB);
@@ -114,9 +114,9 @@ void SequentialImpulseSweeps::SolveNormals(ContactRowSet& rows, JointBlockSolver
 // The friction rows of one pair, each bounded by mu times its point's
 // current normal impulse.
 template <bool kTrack>
-void SequentialImpulseSweeps::SolveFriction(ContactRowSet& rows, const JointBlockSolver& joint,
+void SequentialImpulseSweeps::SolveFriction(ContactRowSet& rows, const CoupledBlockSolver& coupled,
                                             const PairRows& pair) {
-  if (joint.SolvedFriction(pair)) return;  // the joint block solved this pair's friction in this sweep
+  if (coupled.SolvedFriction(pair)) return;  // the coupled block solved this pair's friction in this sweep
   SolverVelocity& a = rows.Bodies().Velocity(pair.bodyA);
   SolverVelocity& b = rows.Bodies().Velocity(pair.bodyB);
   PairVelocities v = PairVelocities::Load(a, b);
@@ -141,43 +141,43 @@ void SequentialImpulseSweeps::SolveFriction(ContactRowSet& rows, const JointBloc
 }
 
 template <bool kTrack>
-void SequentialImpulseSweeps::SweepAll(ContactRowSet& rows, JointBlockSolver& joint) {
-  for (const PairRows& pair : rows.Pairs()) SolveNormals<kTrack>(rows, joint, pair);
+void SequentialImpulseSweeps::SweepAll(ContactRowSet& rows, CoupledBlockSolver& coupled) {
+  for (const PairRows& pair : rows.Pairs()) SolveNormals<kTrack>(rows, coupled, pair);
   for (const PairRows& pair : rows.Pairs()) {
-    if (pair.hasFriction) SolveFriction<kTrack>(rows, joint, pair);
+    if (pair.hasFriction) SolveFriction<kTrack>(rows, coupled, pair);
   }
 }
 
-double SequentialImpulseSweeps::Sweep(ContactRowSet& rows, JointBlockSolver& joint, bool track) {
+double SequentialImpulseSweeps::Sweep(ContactRowSet& rows, CoupledBlockSolver& coupled, bool track) {
   m_largestChange = 0.0;
   if (track) {
-    SweepAll<true>(rows, joint);
+    SweepAll<true>(rows, coupled);
   } else {
-    SweepAll<false>(rows, joint);
+    SweepAll<false>(rows, coupled);
   }
   return m_largestChange;
 }
 
 template <bool kTrack>
-void SequentialImpulseSweeps::SolvePairList(ContactRowSet& rows, JointBlockSolver& joint,
+void SequentialImpulseSweeps::SolvePairList(ContactRowSet& rows, CoupledBlockSolver& coupled,
                                             std::span<const int> pairs, bool friction) {
   for (const int p : pairs) {
     const PairRows& pair = rows.Pairs()[static_cast<std::size_t>(p)];
     if (!friction) {
-      SolveNormals<kTrack>(rows, joint, pair);
+      SolveNormals<kTrack>(rows, coupled, pair);
     } else if (pair.hasFriction) {
-      SolveFriction<kTrack>(rows, joint, pair);
+      SolveFriction<kTrack>(rows, coupled, pair);
     }
   }
 }
 
-double SequentialImpulseSweeps::SolvePairs(ContactRowSet& rows, JointBlockSolver& joint,
+double SequentialImpulseSweeps::SolvePairs(ContactRowSet& rows, CoupledBlockSolver& coupled,
                                            std::span<const int> pairs, bool friction, bool track) {
   m_largestChange = 0.0;
   if (track) {
-    SolvePairList<true>(rows, joint, pairs, friction);
+    SolvePairList<true>(rows, coupled, pairs, friction);
   } else {
-    SolvePairList<false>(rows, joint, pairs, friction);
+    SolvePairList<false>(rows, coupled, pairs, friction);
   }
   return m_largestChange;
 }

@@ -14,7 +14,7 @@
 //   impulse stays >= 0, else row by row. Box2D v2.4's two-point block
 //   solver extended to four points. With FrictionSolve::CoupledBlock a face
 //   pair's normals and friction are tried as one block first
-//   (dynamics/joint_block_solver.h).
+//   (dynamics/coupled_block_solver.h).
 //
 // Friction. Accumulated impulse clamped to [-mu lambda_n, mu lambda_n]
 //   with the point's current lambda_n, re-read every time after the normal
@@ -27,7 +27,7 @@
 
 #include "dynamics/contact_row_set.h"
 #include "dynamics/contact_rows.h"
-#include "dynamics/joint_block_solver.h"
+#include "dynamics/coupled_block_solver.h"
 
 namespace talus {
 
@@ -41,24 +41,25 @@ class SequentialImpulseSweeps {
   /// One sweep over every pair: normals, then friction. With `track`,
   /// returns the largest velocity change of a row of a new pair (m/s),
   /// else 0.
-  double Sweep(ContactRowSet& rows, JointBlockSolver& joint, bool track);
+  double Sweep(ContactRowSet& rows, CoupledBlockSolver& coupled, bool track);
   /// The normal rows (or, with `friction`, the friction rows) of the pairs
   /// `pairs` (indices into the rows' pairs), one by one in order; returns
   /// as Sweep does.
-  double SolvePairs(ContactRowSet& rows, JointBlockSolver& joint, std::span<const int> pairs, bool friction,
-                    bool track);
+  double SolvePairs(ContactRowSet& rows, CoupledBlockSolver& coupled, std::span<const int> pairs,
+                    bool friction, bool track);
 
  private:
   template <bool kTrack>
-  void SweepAll(ContactRowSet& rows, JointBlockSolver& joint);
+  void SweepAll(ContactRowSet& rows, CoupledBlockSolver& coupled);
   template <bool kTrack>
-  void SolvePairList(ContactRowSet& rows, JointBlockSolver& joint, std::span<const int> pairs, bool friction);
+  void SolvePairList(ContactRowSet& rows, CoupledBlockSolver& coupled, std::span<const int> pairs,
+                     bool friction);
   template <bool kTrack>
-  void SolveNormals(ContactRowSet& rows, JointBlockSolver& joint, const PairRows& pair);
+  void SolveNormals(ContactRowSet& rows, CoupledBlockSolver& coupled, const PairRows& pair);
   template <bool kTrack>
   bool SolveNormalBlock(ContactRowSet& rows, const PairRows& pair);
   template <bool kTrack>
-  void SolveFriction(ContactRowSet& rows, const JointBlockSolver& joint, const PairRows& pair);
+  void SolveFriction(ContactRowSet& rows, const CoupledBlockSolver& coupled, const PairRows& pair);
 
   double m_largestChange = 0.0;  ///< m/s, the largest row velocity change of this sweep
 };

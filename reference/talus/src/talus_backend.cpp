@@ -189,7 +189,7 @@ std::string SolverText(const WorldSettings& s) {
 std::string FrictionSolveText(FrictionSolve friction) {
   return friction == FrictionSolve::PerPoint
              ? "per point (two rows a point, one after another)"
-             : "joint block: a sticking pair's normals and friction (slip and spin patterns) solved "
+             : "coupled block: a sticking pair's normals and friction (slip and spin patterns) solved "
                "together, else per point";
 }
 
@@ -334,7 +334,7 @@ WorldSettings MakeSettings(const WorldSettings& base, const Run& run, Variant va
       settings.methods.positionCorrection = PositionCorrection::SplitImpulses;
       break;
     case Variant::Coloured:
-      // The coloured order, with the friction rows it has (no joint block).
+      // The coloured order, with the friction rows it has (no coupled block).
       settings.methods.contactOrder = ContactOrder::ByColour;
       settings.methods.frictionSolve = FrictionSolve::PerPoint;
       break;
@@ -342,7 +342,7 @@ WorldSettings MakeSettings(const WorldSettings& base, const Run& run, Variant va
       // The soft step (docs/dynamics.md, "The soft step") at the engine's
       // 4 sub-steps; the run's iterations are a sweep count, which this
       // solver does not have. Its friction rows are per point (it has no
-      // joint block).
+      // coupled block).
       settings.methods.stepSolver = StepSolver::SoftStep;
       settings.methods.frictionSolve = FrictionSolve::PerPoint;
       break;
@@ -584,7 +584,7 @@ void TalusBackend::AddSettings(const Run& run, const WorldSettings& base) {
           FrictionSolveText(base.methods.frictionSolve),
           "the per-point rows (the write-up's; the only ones the coloured solver and the row-by-row "
           "normals have): a stopping box keeps about 0.6 of its slip a sweep instead of stopping in one "
-          "(box_slide at 1/30 s, 5 sweeps: 2.6e-5 m short and rocking; docs/dynamics.md, \"Joint block\")"),
+          "(box_slide at 1/30 s, 5 sweeps: 2.6e-5 m short and rocking; docs/dynamics.md, \"Coupled block\")"),
       Choice("shock propagation", OnOff(s.methods.shockPropagation), OnOff(base.methods.shockPropagation),
              "the sweeps alone: a load on supports of a tenth of its mass or less is carried only after "
              "many steps, and meanwhile drives them into the ground and is thrown back (a 1000 kg slab on "

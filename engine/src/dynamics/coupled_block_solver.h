@@ -1,5 +1,5 @@
-// JointBlockSolver: FrictionSolve::CoupledBlock, a face contact's normal rows
-// and its friction solved as one block (joint_block_solver.cpp says why),
+// CoupledBlockSolver: FrictionSolve::CoupledBlock, a face contact's normal rows
+// and its friction solved as one block (coupled_block_solver.cpp says why),
 // with its per-block state of the step and its counts.
 //
 // Derivation (face contacts of 3-4 points with a normal block). With
@@ -35,7 +35,7 @@ namespace talus {
 
 struct PairVelocities;
 
-class JointBlockSolver {
+class CoupledBlockSolver {
  public:
   /// Tries of the block in the last step's sweeps.
   struct Counts {
@@ -88,18 +88,19 @@ class JointBlockSolver {
   /// The patterns and solve operator of `pair` from its rows and
   /// warm-started impulses (built at the pair's first try of the step,
   /// before they change).
-  [[nodiscard]] static JointBlockRows Build(const ContactRowSet& rows, const PairRows& pair);
-  /// One try of the block with the operator `joint`; records the outcome in `state`.
+  [[nodiscard]] static CoupledBlockRows Build(const ContactRowSet& rows, const PairRows& pair);
+  /// One try of the block with the operator `coupled`; records the outcome in `state`.
   template <bool kTrack>
-  bool Try(ContactRowSet& rows, const PairRows& pair, const JointBlockRows& joint, State& state,
+  bool Try(ContactRowSet& rows, const PairRows& pair, const CoupledBlockRows& coupled, State& state,
            double& largest);
   /// The block's solve: the new normal impulses in `normal`, the
   /// friction's share per point in `friction`, or why not.
-  static Outcome SolveBlock(const ContactRowSet& rows, const PairRows& pair, const JointBlockRows& joint,
+  static Outcome SolveBlock(const ContactRowSet& rows, const PairRows& pair, const CoupledBlockRows& coupled,
                             const PairVelocities& v, std::array<double, 4>& normal, PointFriction& friction);
 
-  std::vector<JointBlockRows> m_blocks;  ///< per block: the operator, stored at the first try unless refused
-  std::vector<State> m_state;            ///< per block
+  std::vector<CoupledBlockRows>
+      m_blocks;                ///< per block: the operator, stored at the first try unless refused
+  std::vector<State> m_state;  ///< per block
   Counts m_counts;
   bool m_enabled = false;
 };

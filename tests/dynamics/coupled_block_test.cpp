@@ -88,16 +88,16 @@ double DiscreteStopDistance(double v0, double mu, double h) {
   return x;
 }
 
-TEST(JointBlock, BoxStoppingAtThirtyHertzWithFiveSweepsStopsAtTheDiscreteCoulombDistance) {
+TEST(CoupledBlock, BoxStoppingAtThirtyHertzWithFiveSweepsStopsAtTheDiscreteCoulombDistance) {
   const double h = 1.0 / 30.0;
   const double expected = DiscreteStopDistance(3.0, 0.5, h);
-  const Stop joint = SlideAndStop(Settings(FrictionSolve::CoupledBlock, 5), 3.0, 0.5, h);
+  const Stop coupled = SlideAndStop(Settings(FrictionSolve::CoupledBlock, 5), 3.0, 0.5, h);
   // 1e-9 m: the scale of the testbed's input perturbation; the round-off of
   // eighteen steps' sums is 1e-15 m. At rest means no velocity above
   // round-off: the block leaves a sticking pair exactly solved.
-  EXPECT_NEAR(joint.distance, expected, 1e-9);
-  EXPECT_LT(joint.lateral, 1e-9);
-  EXPECT_LT(joint.restSpeed, 1e-9);
+  EXPECT_NEAR(coupled.distance, expected, 1e-9);
+  EXPECT_LT(coupled.lateral, 1e-9);
+  EXPECT_LT(coupled.restSpeed, 1e-9);
   // The scene tells the two apart: row by row, each friction impulse tilts
   // the cube and the normals undo it, so five sweeps leave the stopping
   // step unconverged (measured 2.6e-5 m off, then rocking at 1e-3 m/s).
@@ -113,7 +113,7 @@ TEST(JointBlock, BoxStoppingAtThirtyHertzWithFiveSweepsStopsAtTheDiscreteCoulomb
 // (measured mu 0.3, v0 1: 3.2e-6 m off; exact with reuse off). Refusing
 // reuse to sliding pairs fixes it but cost the 1000-hull pile 65% more
 // narrow phase, so it is left for the reuse rebuild (docs/dynamics.md).
-TEST(JointBlock, StopDistanceIsExactOverFrictionSpeedAndStep) {
+TEST(CoupledBlock, StopDistanceIsExactOverFrictionSpeedAndStep) {
   for (const double mu : {0.3, 0.5, 0.8}) {
     for (const double v0 : {1.0, 3.0}) {
       for (const double h : {1.0 / 30.0, 1.0 / 60.0}) {
@@ -151,7 +151,7 @@ double SlopeDisplacement(const WorldSettings& settings, double angle, double mu,
   return moved.dot(tilt * Vec3(-1, 0, 0));  // down the slope (it rises along +x)
 }
 
-TEST(JointBlock, BoxOnASlopeBelowTheFrictionAngleStaysPut) {
+TEST(CoupledBlock, BoxOnASlopeBelowTheFrictionAngleStaysPut) {
   // tan(20 deg) = 0.36 < mu = 0.5: static friction holds. 1e-9 m in 2 s:
   // the block is accepted every sweep, so nothing creeps beyond round-off.
   const double angle = 20.0 * std::numbers::pi / 180.0;
@@ -160,7 +160,7 @@ TEST(JointBlock, BoxOnASlopeBelowTheFrictionAngleStaysPut) {
       1e-9);
 }
 
-TEST(JointBlock, BoxOnASlopeAboveTheFrictionAngleSlidesAtGTimesSinMinusMuCos) {
+TEST(CoupledBlock, BoxOnASlopeAboveTheFrictionAngleSlidesAtGTimesSinMinusMuCos) {
   // tan(30 deg) = 0.58 > mu = 0.3: the block must be refused every step
   // (the friction it asks for exceeds mu N) and the box slides with
   // a = g (sin - mu cos); moving by h v(n+1), it covers a h^2 n (n + 1) / 2
@@ -174,12 +174,12 @@ TEST(JointBlock, BoxOnASlopeAboveTheFrictionAngleSlidesAtGTimesSinMinusMuCos) {
   EXPECT_NEAR(moved, expected, 1e-9 * expected);
 }
 
-// Converged, the joint block and the per-point rows must agree on how the
+// Converged, the coupled block and the per-point rows must agree on how the
 // bodies move (they may share friction among the points differently; that
 // moves nothing). Cubes launched with random slide and spin, on the ground
 // and on a wide dynamic slab on the ground (so that both bodies of a pair
 // turn), 200 sweeps each way, final poses compared.
-TEST(JointBlock, ConvergesToWhereThePerPointRowsConverge) {
+TEST(CoupledBlock, ConvergesToWhereThePerPointRowsConverge) {
   unsigned state = 12345u;
   const auto uniform = [&state](double lo, double hi) {
     state = state * 1664525u + 1013904223u;
@@ -227,7 +227,7 @@ TEST(JointBlock, ConvergesToWhereThePerPointRowsConverge) {
 // A cube leaving the ground: the block would hold it down with a pulling
 // normal impulse, so it must be refused, and the cube flies the parabola
 // (no impulse touches it, so it moves exactly under gravity).
-TEST(JointBlock, ACubeLeavingTheGroundIsNotHeldDown) {
+TEST(CoupledBlock, ACubeLeavingTheGroundIsNotHeldDown) {
   const double h = 1.0 / 60.0;
   World world = World::Create(Settings(FrictionSolve::CoupledBlock, 10)).Value();
   AddGround(world, 0.8);
@@ -248,7 +248,7 @@ TEST(JointBlock, ACubeLeavingTheGroundIsNotHeldDown) {
 // sweep must stop it to round-off, spin pattern and all. Both creation
 // orders, so the cube is body A of its pair in one and body B in the other.
 // Row by row, one sweep leaves it turning.
-TEST(JointBlock, ASlowSpinStopsInOneSweep) {
+TEST(CoupledBlock, ASlowSpinStopsInOneSweep) {
   for (const bool cubeFirst : {false, true}) {
     for (const FrictionSolve friction : {FrictionSolve::CoupledBlock, FrictionSolve::PerPoint}) {
       WorldSettings settings = Settings(friction, 1);
@@ -277,7 +277,7 @@ TEST(JointBlock, ASlowSpinStopsInOneSweep) {
 // faster it could not stick: the friction's pitch loads one corner with
 // 1.5 N s of the 10, which cannot carry its share, and the block is
 // rightly refused.)
-TEST(JointBlock, StoredImpulsesAreTheOnesThatMovedTheBody) {
+TEST(CoupledBlock, StoredImpulsesAreTheOnesThatMovedTheBody) {
   for (const bool planeFirst : {true, false}) {
     WorldSettings settings = Settings(FrictionSolve::CoupledBlock, 1);
     settings.methods.maxVelocityIterations = 1;
@@ -324,11 +324,11 @@ TEST(JointBlock, StoredImpulsesAreTheOnesThatMovedTheBody) {
   }
 }
 
-// Where the joint block would do nothing (the coloured solver has none; it
+// Where the coupled block would do nothing (the coloured solver has none; it
 // extends the normal block, which blockSolver = false turns off), the
 // settings are refused, naming both settings, instead of silently running
 // the per-point rows; with PerPoint the same settings are accepted.
-TEST(JointBlock, IsRefusedWhereItWouldDoNothingAndOutOfRange) {
+TEST(CoupledBlock, IsRefusedWhereItWouldDoNothingAndOutOfRange) {
   WorldSettings coloured = Settings(FrictionSolve::CoupledBlock, 10);
   coloured.methods.contactOrder = ContactOrder::ByColour;
   const auto refused = World::Create(coloured);
@@ -367,7 +367,7 @@ TEST(JointBlock, IsRefusedWhereItWouldDoNothingAndOutOfRange) {
 
 // Sixteen cubes sliding and spinning into each other and to rest: the same
 // bits at 1, 2 and 3 threads (Prepare builds the rows on the pool).
-TEST(JointBlock, BitIdenticalForAnyThreadCount) {
+TEST(CoupledBlock, BitIdenticalForAnyThreadCount) {
   std::vector<std::vector<double>> runs;
   for (const int threads : {1, 2, 3}) {
     WorldSettings settings = Settings(FrictionSolve::CoupledBlock, 10);

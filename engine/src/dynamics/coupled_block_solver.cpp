@@ -1,5 +1,5 @@
 // FrictionSolve::CoupledBlock: a face contact's normal rows and its friction
-// solved as one block (the derivation is in dynamics/joint_block_solver.h).
+// solved as one block (the derivation is in dynamics/coupled_block_solver.h).
 //
 // Why. Row by row, a friction impulse at a box's base turns the box (the
 // base is below its centre of mass), the normal rows then undo the turn,
@@ -9,7 +9,7 @@
 // sweep when it sticks. When it slides (or a point lifts) the block is
 // refused and the rows run one by one as before; a slide is already near
 // exact row by row (every point sits on its bound).
-#include "dynamics/joint_block_solver.h"
+#include "dynamics/coupled_block_solver.h"
 
 #include <algorithm>
 #include <array>
@@ -74,9 +74,10 @@ Vec3 SlipPatterns(const std::array<double, 4>& weight, const PointCold* cold, co
 // Spin pattern w_i (n x (p_i - c)) / S, S = sum w_i |n x (p_i - c)|^2: no
 // net force, a unit torque about n through c (exactly so when the points
 // lie in the contact plane). Also the points' places in the contact plane
-// (joint.plane) and whether the pattern is used (joint.spin).
+// (coupled.plane) and whether the pattern is used (coupled.spin).
 void SpinPattern(const SolverBodies& bodies, const PairRows& pair, const std::array<double, 4>& weight,
-                 const PointCold* cold, const Vec3& centreA, RowJacobian& pattern, JointBlockRows& joint) {
+                 const PointCold* cold, const Vec3& centreA, RowJacobian& pattern,
+                 CoupledBlockRows& coupled) {
   const int count = pair.pointCount;
   const Vec3& n = pair.normal;
   std::array<Vec3, 4> lever{};
@@ -86,10 +87,10 @@ void SpinPattern(const SolverBodies& bodies, const PairRows& pair, const std::ar
     const Vec3 offset = cold[i].armA - centreA;
     lever[si] = n.cross(offset);
     leverSum += weight[si] * lever[si].squaredNorm();
-    for (int k = 0; k < 2; ++k) joint.plane(i, k) = offset.dot(pair.tangent[k]);
+    for (int k = 0; k < 2; ++k) coupled.plane(i, k) = offset.dot(pair.tangent[k]);
   }
-  joint.spin = leverSum > kLeastLever * kLeastLever;
-  if (joint.spin) {
+  coupled.spin = leverSum > kLeastLever * kLeastLever;
+  if (coupled.spin) {
     for (int i = 0; i < count; ++i) {
       const std::size_t si = static_cast<std::size_t>(i);
       const double share = weight[si] / leverSum;
@@ -98,9 +99,9 @@ void SpinPattern(const SolverBodies& bodies, const PairRows& pair, const std::ar
     }
     pattern.imageA = bodies.InvInertia(pair.bodyA) * pattern.angularA;
     pattern.imageB = bodies.InvInertia(pair.bodyB) * pattern.angularB;
-    joint.spin = AngularCoupling(pattern, pattern) > 0.0;  // neither body can turn
+    coupled.spin = AngularCoupling(pattern, pattern) > 0.0;  // neither body can turn
   }
-  if (!joint.spin) pattern = RowJacobian{};
+  if (!coupled.spin) pattern = RowJacobian{};
 }
 
 // K = [Knn Knp; Kpn Kpp], normals n (padded to four), patterns p. Knn's
@@ -111,9 +112,9 @@ void SpinPattern(const SolverBodies& bodies, const PairRows& pair, const std::ar
 // x_n = B r_n - (B Knp) x_p: the velocity change of the full system's
 // pseudo-inverse, from a 3x3 factorisation.
 void FactorOperator(const PairRows& pair, const NormalRow* normals, const RowJacobian (&pattern)[3],
-                    const Eigen::Matrix4d& blockInverse, JointBlockRows& joint) {
+                    const Eigen::Matrix4d& blockInverse, CoupledBlockRows& coupled) {
   const double linear = pair.invMassA + pair.invMassB;
-  const int patterns = joint.spin ? 3 : 2;
+  const int patterns = coupled.spin ? 3 : 2;
   Eigen::Matrix<double, 4, 3> knp = Eigen::Matrix<double, 4, 3>::Zero();
   for (int i = 0; i < pair.pointCount; ++i) {
     for (int p = 0; p < patterns; ++p) knp(i, p) = AngularCoupling(normals[i].j, pattern[p]);
@@ -124,29 +125,29 @@ void FactorOperator(const PairRows& pair, const NormalRow* normals, const RowJac
       kpp(p, q) = (p == q && p < 2 ? linear : 0.0) + AngularCoupling(pattern[p], pattern[q]);
     }
   }
-  joint.blockTimesCoupling = blockInverse * knp;
-  const Eigen::Matrix3d schur = kpp - knp.transpose() * joint.blockTimesCoupling;
+  coupled.blockTimesCoupling = blockInverse * knp;
+  const Eigen::Matrix3d schur = kpp - knp.transpose() * coupled.blockTimesCoupling;
   const Eigen::LDLT<Eigen::Matrix3d> factor(schur);
-  joint.usable = factor.info() == Eigen::Success && factor.isPositive() && schur.allFinite();
-  if (joint.usable) {
-    joint.schurInverse = factor.solve(Eigen::Matrix3d::Identity());
-    joint.usable = joint.schurInverse.allFinite();
+  coupled.usable = factor.info() == Eigen::Success && factor.isPositive() && schur.allFinite();
+  if (coupled.usable) {
+    coupled.schurInverse = factor.solve(Eigen::Matrix3d::Identity());
+    coupled.usable = coupled.schurInverse.allFinite();
   }
 }
 
 // The block's velocity step: residuals r_n (normal targets) and r_p (zero
 // slip and spin) at the current velocities, and x_p, x_n through the Schur
 // complement. False when a result is not finite.
-bool BlockStep(const NormalRow* normals, const PairRows& pair, const JointBlockRows& joint,
+bool BlockStep(const NormalRow* normals, const PairRows& pair, const CoupledBlockRows& coupled,
                const Eigen::Matrix4d& blockInverse, const PairVelocities& v, Eigen::Vector4d& xn,
                Eigen::Vector3d& xp) {
   Eigen::Vector4d rn = Eigen::Vector4d::Zero();
   for (int i = 0; i < pair.pointCount; ++i) rn[i] = normals[i].target - v.Along(pair.normal, normals[i].j);
   Eigen::Vector3d rp = Eigen::Vector3d::Zero();
-  for (int p = 0; p < 2; ++p) rp[p] = -v.Along(pair.tangent[p], joint.pattern[p]);
-  if (joint.spin) rp[2] = -(joint.pattern[2].angularA.dot(v.wA) - joint.pattern[2].angularB.dot(v.wB));
-  xp = joint.schurInverse * (rp - joint.blockTimesCoupling.transpose() * rn);
-  xn = blockInverse * rn - joint.blockTimesCoupling * xp;
+  for (int p = 0; p < 2; ++p) rp[p] = -v.Along(pair.tangent[p], coupled.pattern[p]);
+  if (coupled.spin) rp[2] = -(coupled.pattern[2].angularA.dot(v.wA) - coupled.pattern[2].angularB.dot(v.wB));
+  xp = coupled.schurInverse * (rp - coupled.blockTimesCoupling.transpose() * rn);
+  xn = blockInverse * rn - coupled.blockTimesCoupling * xp;
   return xp.allFinite() && xn.allFinite();
 }
 
@@ -156,7 +157,7 @@ bool BlockStep(const NormalRow* normals, const PairRows& pair, const JointBlockR
 // c')) (the share that lets the pair stick longest). False when the load
 // sits at one place with a moment to carry, or a point's friction leaves
 // its bound.
-bool ShareFriction(const FrictionRow* rows, const PairRows& pair, const JointBlockRows& joint,
+bool ShareFriction(const FrictionRow* rows, const PairRows& pair, const CoupledBlockRows& coupled,
                    const Eigen::Vector3d& xp, const std::array<double, 4>& normal, double load,
                    std::array<double, 8>& friction) {
   const int count = pair.pointCount;
@@ -164,28 +165,28 @@ bool ShareFriction(const FrictionRow* rows, const PairRows& pair, const JointBlo
   for (int i = 0; i < count; ++i)
     share[static_cast<std::size_t>(i)] = normal[static_cast<std::size_t>(i)] / load;
   double force[2] = {xp[0], xp[1]};
-  double moment = joint.spin ? xp[2] : 0.0;
+  double moment = coupled.spin ? xp[2] : 0.0;
   double centre[2] = {0.0, 0.0};
   for (int i = 0; i < count; ++i) {
     const double f1 = rows[2 * i].impulse;
     const double f2 = rows[2 * i + 1].impulse;
     force[0] += f1;
     force[1] += f2;
-    moment += joint.plane(i, 0) * f2 - joint.plane(i, 1) * f1;  // (rho x f) . n, t1 x t2 = n
+    moment += coupled.plane(i, 0) * f2 - coupled.plane(i, 1) * f1;  // (rho x f) . n, t1 x t2 = n
     const double u = share[static_cast<std::size_t>(i)];
-    centre[0] += u * joint.plane(i, 0);
-    centre[1] += u * joint.plane(i, 1);
+    centre[0] += u * coupled.plane(i, 0);
+    centre[1] += u * coupled.plane(i, 1);
   }
   double spread = 0.0;
   for (int i = 0; i < count; ++i) {
     const double u = share[static_cast<std::size_t>(i)];
-    const double d0 = joint.plane(i, 0) - centre[0];
-    const double d1 = joint.plane(i, 1) - centre[1];
+    const double d0 = coupled.plane(i, 0) - centre[0];
+    const double d1 = coupled.plane(i, 1) - centre[1];
     spread += u * (d0 * d0 + d1 * d1);
   }
   // The moment about n through c' that the shared torque must carry.
   double twist = 0.0;
-  if (joint.spin) {
+  if (coupled.spin) {
     if (!(spread > kLeastLever * kLeastLever)) return false;  // the load cannot carry a torque
     twist = (moment - (centre[0] * force[1] - centre[1] * force[0])) / spread;
   }
@@ -193,8 +194,8 @@ bool ShareFriction(const FrictionRow* rows, const PairRows& pair, const JointBlo
     const std::size_t si = static_cast<std::size_t>(i);
     const double u = share[si];
     // n x (rho - c') in the tangent basis is (-(rho2 - c2), rho1 - c1).
-    const double part[2] = {u * (force[0] - twist * (joint.plane(i, 1) - centre[1])),
-                            u * (force[1] + twist * (joint.plane(i, 0) - centre[0]))};
+    const double part[2] = {u * (force[0] - twist * (coupled.plane(i, 1) - centre[1])),
+                            u * (force[1] + twist * (coupled.plane(i, 0) - centre[0]))};
     const double bound = pair.friction * normal[si];
     for (int k = 0; k < 2; ++k) {
       if (std::abs(part[k]) > bound) return false;
@@ -206,7 +207,7 @@ bool ShareFriction(const FrictionRow* rows, const PairRows& pair, const JointBlo
 
 }  // namespace
 
-void JointBlockSolver::Reset(bool enabled, int blocks) {
+void CoupledBlockSolver::Reset(bool enabled, int blocks) {
   m_enabled = enabled;
   m_state.assign(enabled ? static_cast<std::size_t>(blocks) : 0, kUnbuilt);
   m_blocks.resize(enabled ? static_cast<std::size_t>(blocks) : 0);
@@ -218,8 +219,8 @@ void JointBlockSolver::Reset(bool enabled, int blocks) {
 // built at Prepare): the patterns from the warm-started normal impulses and
 // the solve operator, so that a sweep costs seven dot products, two small
 // products and the updates.
-JointBlockRows JointBlockSolver::Build(const ContactRowSet& rows, const PairRows& pair) {
-  JointBlockRows joint;
+CoupledBlockRows CoupledBlockSolver::Build(const ContactRowSet& rows, const PairRows& pair) {
+  CoupledBlockRows coupled;
   // The patterns with their images under the inverse inertia (the images
   // only build K; the sweep keeps the angular parts).
   RowJacobian pattern[3];
@@ -229,10 +230,10 @@ JointBlockRows JointBlockSolver::Build(const ContactRowSet& rows, const PairRows
   const FrictionRow* frictions = &rows.Frictions()[static_cast<std::size_t>(pair.firstFriction)];
   const std::array<double, 4> weight = PatternWeights(normals, pair.pointCount);
   const Vec3 centreA = SlipPatterns(weight, cold, frictions, pair.pointCount, pattern);
-  SpinPattern(rows.Bodies(), pair, weight, cold, centreA, pattern[2], joint);
-  for (int p = 0; p < 3; ++p) joint.pattern[p] = {pattern[p].angularA, pattern[p].angularB};
-  FactorOperator(pair, normals, pattern, rows.BlockInverses()[static_cast<std::size_t>(pair.block)], joint);
-  return joint;
+  SpinPattern(rows.Bodies(), pair, weight, cold, centreA, pattern[2], coupled);
+  for (int p = 0; p < 3; ++p) coupled.pattern[p] = {pattern[p].angularA, pattern[p].angularB};
+  FactorOperator(pair, normals, pattern, rows.BlockInverses()[static_cast<std::size_t>(pair.block)], coupled);
+  return coupled;
 }
 
 // The first try of a step builds the operator (in place of Prepare, into a
@@ -242,18 +243,18 @@ JointBlockRows JointBlockSolver::Build(const ContactRowSet& rows, const PairRows
 // pair keeps it for the step's later sweeps. An operator that is not usable
 // counts as refused (it would be refused at every try).
 template <bool kTrack>
-bool JointBlockSolver::Solve(ContactRowSet& rows, const PairRows& pair, double& largest) {
+bool CoupledBlockSolver::Solve(ContactRowSet& rows, const PairRows& pair, double& largest) {
   const std::size_t slot = static_cast<std::size_t>(pair.block);
   State& state = m_state[slot];
   if (state == kRefused) return false;
   if (state != kUnbuilt) return Try<kTrack>(rows, pair, m_blocks[slot], state, largest);
-  const JointBlockRows joint = Build(rows, pair);
-  if (!joint.usable) {
+  const CoupledBlockRows coupled = Build(rows, pair);
+  if (!coupled.usable) {
     state = kRefused;
     return false;
   }
-  const bool accepted = Try<kTrack>(rows, pair, joint, state, largest);
-  if (state != kRefused) m_blocks[slot] = joint;
+  const bool accepted = Try<kTrack>(rows, pair, coupled, state, largest);
+  if (state != kRefused) m_blocks[slot] = coupled;
   return accepted;
 }
 
@@ -264,15 +265,16 @@ bool JointBlockSolver::Solve(ContactRowSet& rows, const PairRows& pair, double& 
 // and every point's friction then stays inside its bound (the pair
 // sticks). With mu > 0 a pulling normal also fails the bound (it is
 // negative); the normal test says why first.
-JointBlockSolver::Outcome JointBlockSolver::SolveBlock(const ContactRowSet& rows, const PairRows& pair,
-                                                       const JointBlockRows& joint, const PairVelocities& v,
-                                                       std::array<double, 4>& normal,
-                                                       PointFriction& friction) {
+CoupledBlockSolver::Outcome CoupledBlockSolver::SolveBlock(const ContactRowSet& rows, const PairRows& pair,
+                                                           const CoupledBlockRows& coupled,
+                                                           const PairVelocities& v,
+                                                           std::array<double, 4>& normal,
+                                                           PointFriction& friction) {
   const NormalRow* normals = &rows.Normals()[static_cast<std::size_t>(pair.firstPoint)];
   Eigen::Vector4d xn;
   Eigen::Vector3d xp;
   const Eigen::Matrix4d& blockInverse = rows.BlockInverses()[static_cast<std::size_t>(pair.block)];
-  if (!BlockStep(normals, pair, joint, blockInverse, v, xn, xp)) return Outcome::kNotSolved;
+  if (!BlockStep(normals, pair, coupled, blockInverse, v, xn, xp)) return Outcome::kNotSolved;
   double load = 0.0;
   for (int i = 0; i < pair.pointCount; ++i) {
     const std::size_t si = static_cast<std::size_t>(i);
@@ -282,20 +284,20 @@ JointBlockSolver::Outcome JointBlockSolver::SolveBlock(const ContactRowSet& rows
   }
   if (!(load > 0.0)) return Outcome::kNotSolved;
   const FrictionRow* frictions = &rows.Frictions()[static_cast<std::size_t>(pair.firstFriction)];
-  return ShareFriction(frictions, pair, joint, xp, normal, load, friction) ? Outcome::kAccepted
-                                                                           : Outcome::kRefused;
+  return ShareFriction(frictions, pair, coupled, xp, normal, load, friction) ? Outcome::kAccepted
+                                                                             : Outcome::kRefused;
 }
 
 template <bool kTrack>
-bool JointBlockSolver::Try(ContactRowSet& rows, const PairRows& pair, const JointBlockRows& joint,
-                           State& state, double& largest) {
+bool CoupledBlockSolver::Try(ContactRowSet& rows, const PairRows& pair, const CoupledBlockRows& coupled,
+                             State& state, double& largest) {
   state = kUntried;
   SolverVelocity& a = rows.Bodies().Velocity(pair.bodyA);
   SolverVelocity& b = rows.Bodies().Velocity(pair.bodyB);
   PairVelocities v = PairVelocities::Load(a, b);
   std::array<double, 4> normal{};
   PointFriction friction{};
-  const Outcome outcome = SolveBlock(rows, pair, joint, v, normal, friction);
+  const Outcome outcome = SolveBlock(rows, pair, coupled, v, normal, friction);
   if (outcome == Outcome::kNotSolved) return false;
   if (outcome == Outcome::kRefused) {
     state = kRefused;
@@ -328,7 +330,7 @@ bool JointBlockSolver::Try(ContactRowSet& rows, const PairRows& pair, const Join
   return true;
 }
 
-template bool JointBlockSolver::Solve<true>(ContactRowSet& rows, const PairRows& pair, double& largest);
-template bool JointBlockSolver::Solve<false>(ContactRowSet& rows, const PairRows& pair, double& largest);
+template bool CoupledBlockSolver::Solve<true>(ContactRowSet& rows, const PairRows& pair, double& largest);
+template bool CoupledBlockSolver::Solve<false>(ContactRowSet& rows, const PairRows& pair, double& largest);
 
 }  // namespace talus
