@@ -1,12 +1,14 @@
 // `talus-testbed sweep`: every scenario with a truth at every (time step,
 // iterations) pair through every backend, then the run-time-against-error
-// analysis (harness sweep.h); `--shard i/n` runs one part of the job list
+// analysis (harness sweep_analysis.h); `--shard i/n` runs one part of the job list
 // into a shard file that `merge` combines.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <thread>
+#include <variant>
 
 #include "sweep_commands.h"
 #include "talus/harness/run/results_file.h"
@@ -39,42 +41,41 @@ struct SweepOptions {
   bool quiet = false;
 };
 
-int Sweep(const SweepOptions& options) {
-  // Checked before anything runs; the amount only matters with copies.
+// The noise floor's settings, checked before anything runs (the amount
+// only matters with copies); false after saying what is wrong.
+bool PerturbationAccepted(const SweepOptions& options) {
   std::optional<std::string> problem = harness::PerturbCopiesProblem(options.perturbCopies);
   if (!problem && options.perturbCopies > 0)
     problem = harness::SweepPerturbationProblem(options.perturbation);
-  if (problem) {
-    std::cerr << "talus-testbed: sweep: " << *problem << "\n";
-    return kExitBadInput;
-  }
-  harness::Shard shard;
-  if (!options.shard.empty()) {
-    auto parsed = harness::ParseShard(options.shard);
-    if (!parsed) {
-      std::cerr << "talus-testbed: " << parsed.GetError().message << "\n";
-      return kExitBadInput;
-    }
-    shard = parsed.Value();
-  }
+  if (problem) std::cerr << "talus-testbed: sweep: " << *problem << "\n";
+  return !problem;
+}
+
+// The shard asked for: the whole list (shard 0 of 1) without --shard.
+Result<harness::Shard> ChosenShard(const SweepOptions& options) {
+  if (options.shard.empty()) return harness::Shard{};
+  return harness::ParseShard(options.shard);
+}
+
+// Every scenario with a truth (the folder scenarios/ by default) at every
+// (time step, iterations) pair: the unsharded run list.
+Result<std::vector<harness::Run>> SteppedRuns(const SweepOptions& options) {
   std::vector<fs::path> paths(options.scenarios.begin(), options.scenarios.end());
   if (paths.empty())
     paths.push_back(fs::exists("scenarios") ? fs::path("scenarios") : fs::path(TALUS_DEFAULT_SCENARIOS));
   auto loaded = harness::LoadScenarios(paths);
-  if (!loaded) {
-    std::cerr << "talus-testbed: " << loaded.GetError().message << "\n";
-    return kExitBadInput;
-  }
+  if (!loaded) return loaded.GetError();
   std::vector<harness::Run> withTruth;
   for (const harness::Run& run : loaded.Value()) {
     if (!run.scenario.truths.empty()) withTruth.push_back(run);
   }
-  auto expanded = harness::ExpandStepping(withTruth, options.timeSteps, options.iterations);
-  if (!expanded) {
-    std::cerr << "talus-testbed: " << expanded.GetError().message << "\n";
-    return kExitBadInput;
-  }
-  const std::vector<harness::Run>& all = expanded.Value();
+  return harness::ExpandStepping(withTruth, options.timeSteps, options.iterations);
+}
+
+// The shard's place in the partition and the identity every shard of it
+// shares; its results come later.
+harness::ShardFile PlanShard(const std::vector<harness::Run>& all, harness::Shard shard,
+                             const SweepOptions& options) {
   harness::ShardFile part;
   part.shard = shard;
   part.runCount = static_cast<int>(all.size());
@@ -82,14 +83,10 @@ int Sweep(const SweepOptions& options) {
   part.identity = harness::MakeShardIdentity(all, options.timeSteps, options.iterations);
   part.identity.perturbCopies = options.perturbCopies;
   part.identity.perturbation = options.perturbCopies > 0 ? options.perturbation : 0.0;
-  std::vector<harness::Run> runs;
-  for (int r : part.runIndices) runs.push_back(all[static_cast<std::size_t>(r)]);
-  auto withCopies = harness::WithPerturbedCopies(runs, options.perturbCopies, options.perturbation);
-  if (!withCopies) {
-    std::cerr << "talus-testbed: " << withCopies.GetError().message << "\n";
-    return kExitBadInput;
-  }
+  return part;
+}
 
+harness::RunnerOptions SweepRunnerOptions(const SweepOptions& options) {
   harness::RunnerOptions runner;
   runner.backends = options.backends.empty() ? DefaultBackends() : options.backends;
   runner.jobs =
@@ -98,11 +95,19 @@ int Sweep(const SweepOptions& options) {
   runner.plotPoints = 2;  // a sweep's report shows costs and errors, not time series
   if (!options.quiet) runner.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   runner.notice = [](const std::string& line) { std::cout << "talus-testbed: " << line << "\n"; };
+  return runner;
+}
+
+// Runs the shard's runs with their perturbed copies through the backends
+// and folds the copies back into one result per point, into `part`.
+Result<std::monostate> RunShard(const std::vector<harness::Run>& all, const SweepOptions& options,
+                                const harness::RunnerOptions& runner, harness::ShardFile& part) {
+  std::vector<harness::Run> runs;
+  for (int r : part.runIndices) runs.push_back(all[static_cast<std::size_t>(r)]);
+  auto withCopies = harness::WithPerturbedCopies(runs, options.perturbCopies, options.perturbation);
+  if (!withCopies) return withCopies.GetError();
   auto results = harness::RunAll(reference::AllBackends(), withCopies.Value(), runner);
-  if (!results) {
-    std::cerr << "talus-testbed: " << results.GetError().message << "\n";
-    return kExitBadInput;
-  }
+  if (!results) return results.GetError();
   for (const harness::Run& run : runs) {
     // RunAll accepted every list, so this cannot fail here.
     auto chosen = harness::BackendsForRun(reference::AllBackends(), run, runner.backends);
@@ -112,24 +117,29 @@ int Sweep(const SweepOptions& options) {
   part.results.deterministic = options.deterministic;
   auto folded = harness::FoldPerturbedCopies(std::move(results).Value(), part.resultCounts,
                                              options.perturbCopies, options.perturbation);
-  if (!folded) {
-    std::cerr << "talus-testbed: " << folded.GetError().message << "\n";
-    return kExitBadInput;
-  }
+  if (!folded) return folded.GetError();
   part.results.results = std::move(folded).Value();
-  const fs::path out(options.out);
-  if (!options.shard.empty()) {
-    const fs::path path =
-        out / ("shard-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".json");
-    if (!WriteText(path, harness::ShardToJson(part))) return kExitBadInput;
-    std::cout << "shard " << options.shard << ": " << part.runIndices.size() << " of " << part.runCount
-              << " runs x " << runner.backends.size() << " backends\nshard file: " << path.string() << "\n";
-    return kExitOk;
-  }
+  return std::monostate{};
+}
+
+// One shard of a sharded sweep: its file, for `merge`.
+int WriteShardFile(const harness::ShardFile& part, const SweepOptions& options) {
+  const fs::path path = fs::path(options.out) / ("shard-" + std::to_string(part.shard.index) + "-of-" +
+                                                 std::to_string(part.shard.count) + ".json");
+  if (!WriteText(path, harness::ShardToJson(part))) return kExitBadInput;
+  std::cout << "shard " << options.shard << ": " << part.runIndices.size() << " of " << part.runCount
+            << " runs x " << part.results.backends.size() << " backends\nshard file: " << path.string()
+            << "\n";
+  return kExitOk;
+}
+
+// The whole sweep: its results, the analysis as sweep.json and sweep.md,
+// the Markdown also on stdout.
+int WriteSweepFiles(const harness::ResultsFile& results, const fs::path& out) {
   const std::vector<harness::SweepGroup> groups =
-      harness::AnalyseSweep(part.results, harness::kSweepSingleSetting);
+      harness::AnalyseSweep(results, harness::kSweepSingleSetting);
   const std::string markdown = harness::SweepMarkdown(groups);
-  std::vector<harness::FileText> files = harness::ResultsFileTexts(out / "results.json", part.results);
+  std::vector<harness::FileText> files = harness::ResultsFileTexts(out / "results.json", results);
   files.push_back({out / "sweep.json", harness::SweepToJson(groups)});
   files.push_back({out / "sweep.md", markdown});
   if (!WriteTexts(files)) return kExitBadInput;
@@ -137,6 +147,23 @@ int Sweep(const SweepOptions& options) {
             << " (talus-testbed report draws the charts)\nsweep: " << (out / "sweep.json").string() << ", "
             << (out / "sweep.md").string() << "\n";
   return kExitOk;
+}
+
+int Sweep(const SweepOptions& options) {
+  if (!PerturbationAccepted(options)) return kExitBadInput;
+  const auto failed = [](const Error& error) {
+    std::cerr << "talus-testbed: " << error.message << "\n";
+    return kExitBadInput;
+  };
+  auto shard = ChosenShard(options);
+  if (!shard) return failed(shard.GetError());
+  auto all = SteppedRuns(options);
+  if (!all) return failed(all.GetError());
+  harness::ShardFile part = PlanShard(all.Value(), shard.Value(), options);
+  const harness::RunnerOptions runner = SweepRunnerOptions(options);
+  if (auto ran = RunShard(all.Value(), options, runner, part); !ran) return failed(ran.GetError());
+  if (!options.shard.empty()) return WriteShardFile(part, options);
+  return WriteSweepFiles(part.results, fs::path(options.out));
 }
 
 }  // namespace

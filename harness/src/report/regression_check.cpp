@@ -88,129 +88,190 @@ bool RecomputedPass(const MetricResult& metric, const Tolerance& tolerance) {
          tolerance.absolute + tolerance.relative * std::abs(metric.truth);
 }
 
-Result<std::vector<CheckOutcome>> RecheckResults(const ResultsFile& file, const std::vector<Run>& runs,
-                                                 const std::vector<std::string>& backends,
-                                                 const BackendRegistry& registry) {
-  std::vector<std::string> refusals;
-  std::size_t refused = 0;
-  const auto refuse = [&](std::string line) {
-    if (refused++ < kMostRefusalsListed) refusals.push_back(std::move(line));
-  };
-  std::map<std::string, const Run*> byId;
+namespace {
+
+// What makes a results file not the checkout's, in the order found: the
+// first kMostRefusalsListed listed, the rest counted.
+class Refusals {
+ public:
+  void Add(std::string line) {
+    if (m_count++ < kMostRefusalsListed) m_lines.push_back(std::move(line));
+  }
+  [[nodiscard]] bool Any() const { return m_count > 0; }
+  [[nodiscard]] Error ToError() const {
+    std::string message = "the results file does not match this checkout's scenarios:";
+    for (const std::string& line : m_lines) message.append("\n  ").append(line);
+    if (m_count > m_lines.size()) {
+      message.append("\n  (and ").append(std::to_string(m_count - m_lines.size())).append(" more)");
+    }
+    return Error{message};
+  }
+
+ private:
+  std::vector<std::string> m_lines;
+  std::size_t m_count = 0;
+};
+
+using RunsById = std::map<std::string, const Run*>;
+
+// The checkout's runs by id; a run without a truth is refused, since the
+// gate would pass it on 0 metrics.
+RunsById IndexRunsWithTruth(const std::vector<Run>& runs, Refusals& refusals) {
+  RunsById byId;
   for (const Run& run : runs) {
     byId.try_emplace(run.id, &run);
     if (run.scenario.truths.empty()) {
-      refuse(Concat({run.id, " (", run.scenario.file,
-                     "): the scenario has no truth, so the gate would pass it on 0 metrics"}));
+      refusals.Add(Concat({run.id, " (", run.scenario.file,
+                           "): the scenario has no truth, so the gate would pass it on 0 metrics"}));
     }
   }
+  return byId;
+}
+
+// Refuses results of runs the checkout does not have and runs given twice
+// on one backend; returns the (run, backend) pairs the file holds.
+std::set<std::pair<std::string, std::string>> RefuseForeignOrRepeatedResults(const ResultsFile& file,
+                                                                             const RunsById& byId,
+                                                                             Refusals& refusals) {
   std::set<std::pair<std::string, std::string>> present;
   for (const RunResult& result : file.results) {
     if (!byId.contains(result.runId)) {
-      refuse(Concat({"the file has run ", result.runId, " (", result.file, ") on ", result.backend,
-                     ", which the checkout's scenarios do not have"}));
+      refusals.Add(Concat({"the file has run ", result.runId, " (", result.file, ") on ", result.backend,
+                           ", which the checkout's scenarios do not have"}));
     }
     if (!present.insert({result.runId, result.backend}).second) {
-      refuse(Concat({"the file has run ", result.runId, " on ", result.backend, " twice"}));
+      refusals.Add(Concat({"the file has run ", result.runId, " on ", result.backend, " twice"}));
     }
   }
+  return present;
+}
+
+// Refuses every run a checked backend runs in the checkout but the file
+// lacks.
+void RefuseMissingRuns(const std::vector<Run>& runs, const std::vector<std::string>& backends,
+                       const BackendRegistry& registry,
+                       const std::set<std::pair<std::string, std::string>>& present, Refusals& refusals) {
   for (const std::string& backend : backends) {
     for (const Run& run : runs) {
       auto ranOn = BackendsForRun(registry, run, {backend});
       if (!ranOn) {
-        refuse(ranOn.GetError().message);
+        refusals.Add(ranOn.GetError().message);
         continue;
       }
       if (!ranOn.Value().empty() && !present.contains({run.id, backend})) {
-        refuse(
+        refusals.Add(
             Concat({"run ", run.id, " (", run.scenario.file, ") on ", backend, " is missing from the file"}));
       }
     }
   }
+}
 
+// The verdict of one gated or ungated metric whose name and tolerance are
+// the checkout's: counted, and a failure worded with the numbers a reader
+// needs to judge it.
+void JudgeMetric(const RunResult& result, const MetricResult& m, const ExpectedMetric& e,
+                 CheckOutcome& outcome) {
+  const bool pass = RecomputedPass(m, e.tolerance);
+  if (!e.ungated.empty()) {
+    outcome.ungated.push_back(
+        Concat({result.runId, " ", m.name, ": ", pass ? "ok" : "FAIL", " (ungated: ", e.ungated, ")"}));
+    return;
+  }
+  if (!e.checked) return;
+  ++outcome.checkedMetrics;
+  if (pass) return;
+  ++outcome.failedMetrics;
+  const double allowed = e.tolerance.absolute + e.tolerance.relative * std::abs(m.truth);
+  const double error = m.measured - Reference(m);
+  const std::string unit = m.unit.empty() ? "" : Concat({" ", m.unit});
+  if (std::isnan(m.measured)) {
+    outcome.problems.push_back(Concat(
+        {result.runId, " ", m.name, ": not measured (expected ", FormatNumber(Reference(m)), unit, ")"}));
+    return;
+  }
+  outcome.problems.push_back(Concat(
+      {result.runId, " ", m.name, ": measured ", FormatNumber(m.measured), unit, ", expected ",
+       FormatNumber(Reference(m)), unit, " (+- ", FormatNumber(allowed), "), off by ", FormatNumber(error),
+       unit, ", ", FormatNumber(std::abs(error) - allowed), unit, " beyond the tolerance"}));
+}
+
+// One result's metrics against what the checkout's scenario expects of
+// the run: a name, tolerance or count that differs is refused, the rest
+// judged.
+void CheckResultMetrics(const RunResult& result, const Run& run, const std::string& backend,
+                        CheckOutcome& outcome, Refusals& refusals) {
+  const std::vector<ExpectedMetric> expected = ExpectedMetrics(run, backend);
+  for (std::size_t i = 0; i < result.metrics.size(); ++i) {
+    const MetricResult& m = result.metrics[i];
+    if (i >= expected.size()) {
+      // The runner's reported-only quantities (drift, penetration,
+      // contacts) follow the truths and have no tolerance.
+      if (m.tolerance.absolute != 0.0 || m.tolerance.relative != 0.0) {
+        refusals.Add(Concat({result.runId, " on ", backend, ": metric ", m.name,
+                             " has a tolerance that no truth of the checkout's scenario gives"}));
+      }
+      continue;
+    }
+    const ExpectedMetric& e = expected[i];
+    if (m.name != e.name) {
+      refusals.Add(Concat({result.runId, " on ", backend, ": metric ", std::to_string(i), " is ", m.name,
+                           " in the file, ", e.name, " in the checkout's scenario"}));
+      continue;
+    }
+    if (!(m.tolerance == e.tolerance)) {
+      refusals.Add(
+          Concat({result.runId, " on ", backend, " ", m.name, ": tolerance ", ToleranceText(m.tolerance),
+                  " in the file, ", ToleranceText(e.tolerance), " in the checkout's scenario"}));
+      continue;
+    }
+    JudgeMetric(result, m, e, outcome);
+  }
+  if (result.metrics.size() < expected.size()) {
+    refusals.Add(
+        Concat({result.runId, " on ", backend, ": ", std::to_string(result.metrics.size()),
+                " metrics in the file, but the checkout's truths give ", std::to_string(expected.size())}));
+  }
+}
+
+// Every result of one backend: a run stepped otherwise than the checkout
+// says is refused, a failed run is a problem, the rest have their metrics
+// checked.
+CheckOutcome CheckBackend(const ResultsFile& file, const RunsById& byId, const std::string& backend,
+                          Refusals& refusals) {
+  CheckOutcome outcome;
+  for (const RunResult& result : file.results) {
+    if (result.backend != backend) continue;
+    ++outcome.runs;
+    const auto found = byId.find(result.runId);
+    if (found == byId.end()) continue;  // refused by RefuseForeignOrRepeatedResults
+    const Run& run = *found->second;
+    if (run.steps != result.steps || run.timeStep != result.timeStep) {
+      refusals.Add(Concat({result.runId, " on ", backend, ": ", std::to_string(result.steps), " steps of ",
+                           FormatNumber(result.timeStep), " s in the file, ", std::to_string(run.steps),
+                           " of ", FormatNumber(run.timeStep), " s in the checkout's scenario"}));
+      continue;
+    }
+    if (!result.error.empty()) {
+      outcome.problems.push_back(Concat({result.runId, ": the run failed: ", result.error}));
+      continue;
+    }
+    CheckResultMetrics(result, run, backend, outcome, refusals);
+  }
+  return outcome;
+}
+
+}  // namespace
+
+Result<std::vector<CheckOutcome>> RecheckResults(const ResultsFile& file, const std::vector<Run>& runs,
+                                                 const std::vector<std::string>& backends,
+                                                 const BackendRegistry& registry) {
+  Refusals refusals;
+  const RunsById byId = IndexRunsWithTruth(runs, refusals);
+  const auto present = RefuseForeignOrRepeatedResults(file, byId, refusals);
+  RefuseMissingRuns(runs, backends, registry, present, refusals);
   std::vector<CheckOutcome> outcomes;
-  for (const std::string& backend : backends) {
-    CheckOutcome outcome;
-    for (const RunResult& result : file.results) {
-      if (result.backend != backend) continue;
-      ++outcome.runs;
-      const auto found = byId.find(result.runId);
-      if (found == byId.end()) continue;  // refused above
-      const Run& run = *found->second;
-      if (run.steps != result.steps || run.timeStep != result.timeStep) {
-        refuse(Concat({result.runId, " on ", backend, ": ", std::to_string(result.steps), " steps of ",
-                       FormatNumber(result.timeStep), " s in the file, ", std::to_string(run.steps), " of ",
-                       FormatNumber(run.timeStep), " s in the checkout's scenario"}));
-        continue;
-      }
-      if (!result.error.empty()) {
-        outcome.problems.push_back(Concat({result.runId, ": the run failed: ", result.error}));
-        continue;
-      }
-      const std::vector<ExpectedMetric> expected = ExpectedMetrics(run, backend);
-      for (std::size_t i = 0; i < result.metrics.size(); ++i) {
-        const MetricResult& m = result.metrics[i];
-        if (i >= expected.size()) {
-          // The runner's reported-only quantities (drift, penetration,
-          // contacts) follow the truths and have no tolerance.
-          if (m.tolerance.absolute != 0.0 || m.tolerance.relative != 0.0) {
-            refuse(Concat({result.runId, " on ", backend, ": metric ", m.name,
-                           " has a tolerance that no truth of the checkout's scenario gives"}));
-          }
-          continue;
-        }
-        const ExpectedMetric& e = expected[i];
-        if (m.name != e.name) {
-          refuse(Concat({result.runId, " on ", backend, ": metric ", std::to_string(i), " is ", m.name,
-                         " in the file, ", e.name, " in the checkout's scenario"}));
-          continue;
-        }
-        if (!(m.tolerance == e.tolerance)) {
-          refuse(
-              Concat({result.runId, " on ", backend, " ", m.name, ": tolerance ", ToleranceText(m.tolerance),
-                      " in the file, ", ToleranceText(e.tolerance), " in the checkout's scenario"}));
-          continue;
-        }
-        const bool pass = RecomputedPass(m, e.tolerance);
-        if (!e.ungated.empty()) {
-          outcome.ungated.push_back(
-              Concat({result.runId, " ", m.name, ": ", pass ? "ok" : "FAIL", " (ungated: ", e.ungated, ")"}));
-          continue;
-        }
-        if (!e.checked) continue;
-        ++outcome.checkedMetrics;
-        if (pass) continue;
-        ++outcome.failedMetrics;
-        const double allowed = e.tolerance.absolute + e.tolerance.relative * std::abs(m.truth);
-        const double error = m.measured - Reference(m);
-        const std::string unit = m.unit.empty() ? "" : Concat({" ", m.unit});
-        if (std::isnan(m.measured)) {
-          outcome.problems.push_back(Concat({result.runId, " ", m.name, ": not measured (expected ",
-                                             FormatNumber(Reference(m)), unit, ")"}));
-          continue;
-        }
-        outcome.problems.push_back(
-            Concat({result.runId, " ", m.name, ": measured ", FormatNumber(m.measured), unit, ", expected ",
-                    FormatNumber(Reference(m)), unit, " (+- ", FormatNumber(allowed), "), off by ",
-                    FormatNumber(error), unit, ", ", FormatNumber(std::abs(error) - allowed), unit,
-                    " beyond the tolerance"}));
-      }
-      if (result.metrics.size() < expected.size()) {
-        refuse(Concat({result.runId, " on ", backend, ": ", std::to_string(result.metrics.size()),
-                       " metrics in the file, but the checkout's truths give ",
-                       std::to_string(expected.size())}));
-      }
-    }
-    outcomes.push_back(std::move(outcome));
-  }
-  if (refused > 0) {
-    std::string message = "the results file does not match this checkout's scenarios:";
-    for (const std::string& line : refusals) message.append("\n  ").append(line);
-    if (refused > refusals.size()) {
-      message.append("\n  (and ").append(std::to_string(refused - refusals.size())).append(" more)");
-    }
-    return Error{message};
-  }
+  for (const std::string& backend : backends) outcomes.push_back(CheckBackend(file, byId, backend, refusals));
+  if (refusals.Any()) return refusals.ToError();
   return outcomes;
 }
 

@@ -186,85 +186,105 @@ std::string SummaryTitle(const ResultsFile& file) {
   return out.str();
 }
 
-std::string SummaryRuns(const ResultsFile& file) {
-  std::ostringstream out;
-  out << "## Overview\n\n" << OverviewTable(file, true) << "\n";
-  for (const RunGroup& group : GroupByRun(file)) {
-    out << "## " << group.runId << "\n\n";
-    const RunResult& first = *group.byBackend.begin()->second;
-    out << "Scenario `" << first.scenario << "` (" << first.file << "), time step "
-        << FormatNumber(first.timeStep) << " s, " << first.steps << " steps, iterations "
-        << (first.iterations > 0 ? std::to_string(first.iterations) : std::string("engine default"))
-        << ".\n\n";
-    std::vector<std::string> header = {"metric", "truth", "tolerance"};
-    for (const std::string& b : file.backends) header.push_back(b);
-    Header(out, header);
-    std::vector<const MetricResult*> metrics;
-    std::set<std::string> seen;
-    for (const auto& [backend, result] : group.byBackend) {
-      for (const MetricResult& m : result->metrics) {
-        if (seen.insert(m.name).second) metrics.push_back(&m);
-      }
+namespace {
+
+// A run's heading and the line that says what it ran.
+void RunHeading(std::ostringstream& out, const RunGroup& group) {
+  out << "## " << group.runId << "\n\n";
+  const RunResult& first = *group.byBackend.begin()->second;
+  out << "Scenario `" << first.scenario << "` (" << first.file << "), time step "
+      << FormatNumber(first.timeStep) << " s, " << first.steps << " steps, iterations "
+      << (first.iterations > 0 ? std::to_string(first.iterations) : std::string("engine default")) << ".\n\n";
+}
+
+// Every metric any backend reported for the run, each once, in the order
+// first met.
+std::vector<const MetricResult*> RunMetrics(const RunGroup& group) {
+  std::vector<const MetricResult*> metrics;
+  std::set<std::string> seen;
+  for (const auto& [backend, result] : group.byBackend) {
+    for (const MetricResult& m : result->metrics) {
+      if (seen.insert(m.name).second) metrics.push_back(&m);
     }
-    for (const MetricResult* m : metrics) {
-      std::vector<std::string> row = {
-          Concat({m->name, m->unit.empty() ? "" : " (", m->unit, m->unit.empty() ? "" : ")"}), Expected(*m),
-          ToleranceText(*m)};
-      for (const std::string& b : file.backends) {
-        const auto it = group.byBackend.find(b);
-        const RunResult* r = it == group.byBackend.end() ? nullptr : it->second;
-        const MetricResult* own = r == nullptr ? nullptr : FindMetric(*r, m->name);
-        // Measured values for unchecked metrics (drift, penetration); errors for truths.
-        if (own != nullptr && !own->checked && own->ungated.empty() && r->error.empty()) {
-          row.push_back(FormatNumber(own->measured, 3));
-        } else {
-          row.push_back(Cell(r, m->name));
-        }
-      }
-      Row(out, row);
-    }
-    std::vector<std::string> time = {"wall time, total (ms) / longest step (us)", "-", "-"};
-    for (const std::string& b : file.backends) {
-      const auto it = group.byBackend.find(b);
-      if (it == group.byBackend.end() || !it->second->error.empty()) {
-        time.push_back(it == group.byBackend.end() ? "-" : "error");
-        continue;
-      }
-      time.push_back(Concat({FormatNumber(it->second->wallSeconds * 1e3, 3), " / ",
-                             Microseconds(it->second->wallSecondsLongestStep)}));
-    }
-    Row(out, time);
-    for (const auto& [backend, result] : group.byBackend) {
-      if (!result->error.empty()) out << "\n" << backend << " stopped the run: " << result->error << "\n";
-    }
-    // The broad-phase structure that met the pairs (figure 2), where the
-    // run was replayed with the engine's step counters.
-    for (const auto& [backend, result] : group.byBackend) {
-      const std::string ran = StructureThatRan(result->replay);
-      if (!ran.empty()) out << "\n" << backend << " broad phase: " << ran << "\n";
-    }
-    // Why each tolerance has its size, and why a backend is outside the gate.
-    std::set<std::string> notes;
-    for (const MetricResult* m : metrics) {
-      if (!m->reason.empty() && notes.insert(m->reason).second) out << "\nTolerance: " << m->reason << "\n";
-    }
-    for (const auto& [backend, result] : group.byBackend) {
-      // One line per reason: FAILS when any of its metrics fails.
-      std::map<std::string, bool> failsByReason;
-      for (const MetricResult& m : result->metrics) {
-        if (!m.ungated.empty()) failsByReason[m.ungated] = failsByReason[m.ungated] || !m.pass;
-      }
-      for (const auto& [reason, fails] : failsByReason) {
-        out << "\n"
-            << backend << " is not gated on this truth (" << (fails ? "FAILS" : "passes") << "): " << reason
-            << "\n";
-      }
-    }
-    // Each FAIL's cause: a setting when the "-tuned" configuration removes it.
-    const std::string causes = FailCauseLines(file.backends, group.byBackend);
-    if (!causes.empty()) out << "\nFAILs and their cause:\n\n" << causes;
-    out << "\n";
   }
+  return metrics;
+}
+
+// The run's table: a row per metric, a column per backend, then the wall
+// times.
+void RunTable(std::ostringstream& out, const std::vector<std::string>& backends, const RunGroup& group,
+              const std::vector<const MetricResult*>& metrics) {
+  std::vector<std::string> header = {"metric", "truth", "tolerance"};
+  for (const std::string& b : backends) header.push_back(b);
+  Header(out, header);
+  for (const MetricResult* m : metrics) {
+    std::vector<std::string> row = {
+        Concat({m->name, m->unit.empty() ? "" : " (", m->unit, m->unit.empty() ? "" : ")"}), Expected(*m),
+        ToleranceText(*m)};
+    for (const std::string& b : backends) {
+      const auto it = group.byBackend.find(b);
+      const RunResult* r = it == group.byBackend.end() ? nullptr : it->second;
+      const MetricResult* own = r == nullptr ? nullptr : FindMetric(*r, m->name);
+      // Measured values for unchecked metrics (drift, penetration); errors for truths.
+      if (own != nullptr && !own->checked && own->ungated.empty() && r->error.empty()) {
+        row.push_back(FormatNumber(own->measured, 3));
+      } else {
+        row.push_back(Cell(r, m->name));
+      }
+    }
+    Row(out, row);
+  }
+  std::vector<std::string> time = {"wall time, total (ms) / longest step (us)", "-", "-"};
+  for (const std::string& b : backends) {
+    const auto it = group.byBackend.find(b);
+    if (it == group.byBackend.end() || !it->second->error.empty()) {
+      time.push_back(it == group.byBackend.end() ? "-" : "error");
+      continue;
+    }
+    time.push_back(Concat({FormatNumber(it->second->wallSeconds * 1e3, 3), " / ",
+                           Microseconds(it->second->wallSecondsLongestStep)}));
+  }
+  Row(out, time);
+}
+
+// The lines under a run's table: who stopped it, the broad phase that ran,
+// why each tolerance has its size, why a backend is outside the gate, and
+// each FAIL's cause.
+void RunNotes(std::ostringstream& out, const std::vector<std::string>& backends, const RunGroup& group,
+              const std::vector<const MetricResult*>& metrics) {
+  for (const auto& [backend, result] : group.byBackend) {
+    if (!result->error.empty()) out << "\n" << backend << " stopped the run: " << result->error << "\n";
+  }
+  // The broad-phase structure that met the pairs (figure 2), where the
+  // run was replayed with the engine's step counters.
+  for (const auto& [backend, result] : group.byBackend) {
+    const std::string ran = StructureThatRan(result->replay);
+    if (!ran.empty()) out << "\n" << backend << " broad phase: " << ran << "\n";
+  }
+  std::set<std::string> notes;
+  for (const MetricResult* m : metrics) {
+    if (!m->reason.empty() && notes.insert(m->reason).second) out << "\nTolerance: " << m->reason << "\n";
+  }
+  for (const auto& [backend, result] : group.byBackend) {
+    // One line per reason: FAILS when any of its metrics fails.
+    std::map<std::string, bool> failsByReason;
+    for (const MetricResult& m : result->metrics) {
+      if (!m.ungated.empty()) failsByReason[m.ungated] = failsByReason[m.ungated] || !m.pass;
+    }
+    for (const auto& [reason, fails] : failsByReason) {
+      out << "\n"
+          << backend << " is not gated on this truth (" << (fails ? "FAILS" : "passes") << "): " << reason
+          << "\n";
+    }
+  }
+  // Each FAIL's cause: a setting when the "-tuned" configuration removes it.
+  const std::string causes = FailCauseLines(backends, group.byBackend);
+  if (!causes.empty()) out << "\nFAILs and their cause:\n\n" << causes;
+}
+
+// Each backend's settings as recorded for the first run it built, its
+// departures from the engine's defaults first.
+void EngineSettings(std::ostringstream& out, const ResultsFile& file) {
   out << "## Engine settings\n\nAs recorded by each backend for the first run it built. For a peer, the "
          "settings that depart from what the engine gives a new user come first, each with why and its "
          "measured effect (`defaults` configurations change only what the scenario needs to be posed; "
@@ -284,6 +304,21 @@ std::string SummaryRuns(const ResultsFile& file) {
     for (const Setting& s : it->settings) Row(out, {s.key, s.value});
     out << "\n";
   }
+}
+
+}  // namespace
+
+std::string SummaryRuns(const ResultsFile& file) {
+  std::ostringstream out;
+  out << "## Overview\n\n" << OverviewTable(file, true) << "\n";
+  for (const RunGroup& group : GroupByRun(file)) {
+    RunHeading(out, group);
+    const std::vector<const MetricResult*> metrics = RunMetrics(group);
+    RunTable(out, file.backends, group, metrics);
+    RunNotes(out, file.backends, group, metrics);
+    out << "\n";
+  }
+  EngineSettings(out, file);
   return out.str();
 }
 

@@ -9,7 +9,7 @@
 #include "support/text_util.h"
 #include "talus/harness/scenario/position_perturbation.h"
 #include "talus/harness/support/number_text.h"
-#include "talus/harness/sweep/sweep.h"
+#include "talus/harness/sweep/cost_error_front.h"
 #include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {

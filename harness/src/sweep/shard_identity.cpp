@@ -1,4 +1,4 @@
-// MakeShardIdentity (sweep.h): what shards must share to be merged. The
+// MakeShardIdentity (shards.h): what shards must share to be merged. The
 // digest covers each run's scenario as the scenario writer prints it, so
 // it changes with any field of any scenario, not only with the file names.
 #include <cstdint>
@@ -8,7 +8,7 @@
 
 #include "talus/harness/scenario/scenario_writer.h"
 #include "talus/harness/support/build_id.h"
-#include "talus/harness/sweep/sweep.h"
+#include "talus/harness/sweep/shards.h"
 
 namespace talus::harness {
 namespace {

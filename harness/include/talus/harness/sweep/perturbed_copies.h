@@ -3,7 +3,7 @@
 // whose dynamic bodies start moved by round-off (scenario/position_perturbation.h,
 // PerturbDynamicPositions). A point then records how far its error moves
 // under that perturbation (its error spread) and the median of its wall
-// times, so that the comparison of fronts (sweep.h) can tell a difference
+// times, so that the comparison of fronts (cost_error_front.h) can tell a difference
 // from the round-off lottery and from one noisy timing.
 #pragma once
 
