@@ -7,6 +7,7 @@
 #include <numbers>
 #include <random>
 #include <sstream>
+#include <utility>
 
 #include "talus/harness/support/random_draw.h"
 #include "talus/hull_builder.h"
@@ -98,118 +99,161 @@ const char* ToString(Family family) {
   return "unknown";
 }
 
+namespace {
+
+// The steps of one pair, each drawing from `draw` in the order the
+// generator always has (the same seed gives the same pairs).
+
+// The two shapes of a pair of `family`.
+std::pair<Shape, Shape> DrawShapes(Draw& draw, Family family) {
+  double lo = family == Family::Scaled ? 5e-4 : 0.1;  // half extents, metres
+  double hi = family == Family::Scaled ? 5.0 : 2.0;
+  if (family == Family::LargeParallel) {
+    lo = 2.0;
+    hi = 3.0;
+  }
+  Shape a = MakeShape(draw, lo, hi);
+  Shape b = MakeShape(draw, lo, hi);
+  if (family == Family::Identical) {
+    b = a;
+  } else if (family == Family::Slab) {
+    const double scale = 0.25 * std::pow(8.0, draw.Uniform(0.0, 1.0));
+    a = Shape::CreateBox(scale * Vec3(1.7, 0.002, 1.4)).Value();
+    b = HullOnEllipsoid(draw, 36, Extents(draw, 0.1 * scale, 0.5 * scale));
+  }
+  return {std::move(a), std::move(b)};
+}
+
+// How the shapes are turned, and the direction n from B towards A along
+// which the pair is placed.
+struct Orientation {
+  Quat rotationA;
+  Quat rotationB;
+  Vec3 n;
+  double twist = 0.0;  // B's turn off A's face, rad (the parallel families)
+};
+
+// Face alignment: B against a face of A, turned like A (or, for the
+// parallel families, nearly so).
+void AlignFaces(Draw& draw, Family family, const Shape& a, const Shape& b, Orientation& o) {
+  o.rotationB = o.rotationA;
+  // A face normal of A (for a box one of its axes), reversed: B sits
+  // against that face.
+  const auto faces = a.GetHull().Faces();
+  const Vec3 localNormal =
+      faces[static_cast<std::size_t>(draw.Integer(0, static_cast<int>(faces.size()) - 1))].plane.normal;
+  o.n = -(o.rotationA * localNormal);
+  // Nearly parallel faces: B turned by 1e-6 rad.
+  if (family == Family::Parallel) {
+    o.twist = 1e-6;
+    o.rotationB = Quat(Eigen::AngleAxisd(o.twist, draw.UnitVector())) * o.rotationA;
+  }
+  // Large shapes: a face of B turned to point along n (towards A.s
+  // face), spun about n, then twisted 1e-8 to 1e-6 rad.
+  if (family == Family::LargeParallel) {
+    const auto facesB = b.GetHull().Faces();
+    const Vec3 normalB =
+        facesB[static_cast<std::size_t>(draw.Integer(0, static_cast<int>(facesB.size()) - 1))].plane.normal;
+    const Quat spin(Eigen::AngleAxisd(draw.Uniform(0.0, 2.0 * std::numbers::pi), o.n));
+    o.twist = kLargeParallelTwistMin *
+              std::pow(kLargeParallelTwistMax / kLargeParallelTwistMin, draw.Uniform(0.0, 1.0));
+    o.rotationB =
+        (Quat(Eigen::AngleAxisd(o.twist, draw.UnitVector())) * spin * Quat::FromTwoVectors(normalB, o.n))
+            .normalized();
+  }
+}
+
+Orientation DrawOrientation(Draw& draw, Family family, Alignment alignment, const Shape& a, const Shape& b) {
+  Orientation o;
+  o.rotationA = draw.Rotation();
+  o.rotationB = draw.Rotation();
+  o.n = draw.UnitVector();
+  if (alignment == Alignment::Face) {
+    AlignFaces(draw, family, a, b, o);
+  } else if (alignment == Alignment::Edge) {
+    const int first = draw.Integer(0, 2);
+    const int second = (first + 1 + draw.Integer(0, 1)) % 3;
+    o.rotationB = o.rotationA * Quat(Eigen::AngleAxisd(0.25 * std::numbers::pi, Vec3::Unit(first))) *
+                  Quat(Eigen::AngleAxisd(0.25 * std::numbers::pi, Vec3::Unit(second)));
+  }
+  return o;
+}
+
+// The gap the placement asks for (m; negative: overlap), scaled by `size`.
+double DrawGap(Draw& draw, Placement placement, Family family, double size) {
+  double gap = 0.0;
+  switch (placement) {
+    case Placement::Separated:
+      gap = size * draw.Uniform(0.01, 0.5);
+      break;
+    case Placement::Touching:
+      gap = size * draw.Uniform(-1e-9, 1e-9);
+      break;
+    case Placement::Shallow:
+      gap = family == Family::Identical ? -size * std::pow(10.0, draw.Uniform(-5.0, -2.0))
+                                        : -size * draw.Uniform(1e-3, 0.05);
+      break;
+    case Placement::Deep:
+      gap = -size * draw.Uniform(0.1, 0.8);
+      break;
+  }
+  return gap;
+}
+
+// A's position, and B's: `gap` apart along n, with a small offset across it.
+std::pair<Vec3, Vec3> DrawPositions(Draw& draw, Family family, const Shape& a, const Shape& b,
+                                    const Orientation& o, double size, double gap) {
+  const Vec3& n = o.n;
+  Vec3 positionA(draw.Uniform(-1.0, 1.0), draw.Uniform(-1.0, 1.0), draw.Uniform(-1.0, 1.0));
+  if (family == Family::Far) positionA = draw.UnitVector() * std::pow(10.0, draw.Uniform(4.0, 5.0));
+  if (family == Family::Scaled) positionA *= size;  // near the origin at the shapes' own scale
+  // A small offset across n, so face-aligned pairs are not centred.
+  Vec3 lateral = draw.UnitVector();
+  lateral -= n * n.dot(lateral);
+  lateral *= draw.Uniform(0.0, 0.3) * size;
+  // Identical shapes go straight along the face normal: a copy moved
+  // sideways off a curved face need not touch at all.
+  if (family == Family::Identical) lateral = Vec3::Zero();
+  // Along n, B's extent (towards A) and A's (towards B) meet at gap 0.
+  const double reach = SupportDistance(b, o.rotationB, n) + SupportDistance(a, o.rotationA, -n);
+  const double along = reach + gap;
+  return {positionA, positionA - n * along + lateral};
+}
+
+ShapePair DrawPair(Draw& draw, int index) {
+  const auto family = static_cast<Family>(index % kFamilyCount);
+  auto [a, b] = DrawShapes(draw, family);
+  auto placement = static_cast<Placement>(draw.Integer(0, 3));
+  auto alignment = static_cast<Alignment>(draw.Integer(0, 2));
+  if (family == Family::Parallel || family == Family::LargeParallel) alignment = Alignment::Face;
+  if (family == Family::Identical) {
+    alignment = Alignment::Face;
+    placement = Placement::Shallow;
+  }
+  const double size = std::min(LargestExtent(a), LargestExtent(b));
+  const Orientation o = DrawOrientation(draw, family, alignment, a, b);
+  const double gap = DrawGap(draw, placement, family, size);
+  const auto [positionA, positionB] = DrawPositions(draw, family, a, b, o, size, gap);
+  return {.index = index,
+          .a = std::move(a),
+          .b = std::move(b),
+          .xfA = {.position = positionA, .rotation = o.rotationA},
+          .xfB = {.position = positionB, .rotation = o.rotationB},
+          .placement = placement,
+          .alignment = alignment,
+          .family = family,
+          .targetGap = gap,
+          .size = size,
+          .twist = o.twist};
+}
+
+}  // namespace
+
 std::vector<ShapePair> GeneratePairs(int count, std::uint64_t seed) {
   Draw draw{std::mt19937_64(seed)};
   std::vector<ShapePair> pairs;
   pairs.reserve(static_cast<std::size_t>(std::max(count, 0)));
-  for (int i = 0; i < count; ++i) {
-    const auto family = static_cast<Family>(i % kFamilyCount);
-    double lo = family == Family::Scaled ? 5e-4 : 0.1;  // half extents, metres
-    double hi = family == Family::Scaled ? 5.0 : 2.0;
-    if (family == Family::LargeParallel) {
-      lo = 2.0;
-      hi = 3.0;
-    }
-    Shape a = MakeShape(draw, lo, hi);
-    Shape b = MakeShape(draw, lo, hi);
-    if (family == Family::Identical) {
-      b = a;
-    } else if (family == Family::Slab) {
-      const double scale = 0.25 * std::pow(8.0, draw.Uniform(0.0, 1.0));
-      a = Shape::CreateBox(scale * Vec3(1.7, 0.002, 1.4)).Value();
-      b = HullOnEllipsoid(draw, 36, Extents(draw, 0.1 * scale, 0.5 * scale));
-    }
-    auto placement = static_cast<Placement>(draw.Integer(0, 3));
-    auto alignment = static_cast<Alignment>(draw.Integer(0, 2));
-    if (family == Family::Parallel || family == Family::LargeParallel) alignment = Alignment::Face;
-    if (family == Family::Identical) {
-      alignment = Alignment::Face;
-      placement = Placement::Shallow;
-    }
-    const double size = std::min(LargestExtent(a), LargestExtent(b));
-
-    const Quat rotationA = draw.Rotation();
-    Quat rotationB = draw.Rotation();
-    // n: the direction from B towards A along which the pair is placed.
-    Vec3 n = draw.UnitVector();
-    double twist = 0.0;
-    if (alignment == Alignment::Face) {
-      rotationB = rotationA;
-      // A face normal of A (for a box one of its axes), reversed: B sits
-      // against that face.
-      const auto faces = a.GetHull().Faces();
-      const Vec3 localNormal =
-          faces[static_cast<std::size_t>(draw.Integer(0, static_cast<int>(faces.size()) - 1))].plane.normal;
-      n = -(rotationA * localNormal);
-      // Nearly parallel faces: B turned by 1e-6 rad.
-      if (family == Family::Parallel) {
-        twist = 1e-6;
-        rotationB = Quat(Eigen::AngleAxisd(twist, draw.UnitVector())) * rotationA;
-      }
-      // Large shapes: a face of B turned to point along n (towards A.s
-      // face), spun about n, then twisted 1e-8 to 1e-6 rad.
-      if (family == Family::LargeParallel) {
-        const auto facesB = b.GetHull().Faces();
-        const Vec3 normalB =
-            facesB[static_cast<std::size_t>(draw.Integer(0, static_cast<int>(facesB.size()) - 1))]
-                .plane.normal;
-        const Quat spin(Eigen::AngleAxisd(draw.Uniform(0.0, 2.0 * std::numbers::pi), n));
-        twist = kLargeParallelTwistMin *
-                std::pow(kLargeParallelTwistMax / kLargeParallelTwistMin, draw.Uniform(0.0, 1.0));
-        rotationB =
-            (Quat(Eigen::AngleAxisd(twist, draw.UnitVector())) * spin * Quat::FromTwoVectors(normalB, n))
-                .normalized();
-      }
-    } else if (alignment == Alignment::Edge) {
-      const int first = draw.Integer(0, 2);
-      const int second = (first + 1 + draw.Integer(0, 1)) % 3;
-      rotationB = rotationA * Quat(Eigen::AngleAxisd(0.25 * std::numbers::pi, Vec3::Unit(first))) *
-                  Quat(Eigen::AngleAxisd(0.25 * std::numbers::pi, Vec3::Unit(second)));
-    }
-
-    double gap = 0.0;
-    switch (placement) {
-      case Placement::Separated:
-        gap = size * draw.Uniform(0.01, 0.5);
-        break;
-      case Placement::Touching:
-        gap = size * draw.Uniform(-1e-9, 1e-9);
-        break;
-      case Placement::Shallow:
-        gap = family == Family::Identical ? -size * std::pow(10.0, draw.Uniform(-5.0, -2.0))
-                                          : -size * draw.Uniform(1e-3, 0.05);
-        break;
-      case Placement::Deep:
-        gap = -size * draw.Uniform(0.1, 0.8);
-        break;
-    }
-    Vec3 positionA(draw.Uniform(-1.0, 1.0), draw.Uniform(-1.0, 1.0), draw.Uniform(-1.0, 1.0));
-    if (family == Family::Far) positionA = draw.UnitVector() * std::pow(10.0, draw.Uniform(4.0, 5.0));
-    if (family == Family::Scaled) positionA *= size;  // near the origin at the shapes' own scale
-    // A small offset across n, so face-aligned pairs are not centred.
-    Vec3 lateral = draw.UnitVector();
-    lateral -= n * n.dot(lateral);
-    lateral *= draw.Uniform(0.0, 0.3) * size;
-    // Identical shapes go straight along the face normal: a copy moved
-    // sideways off a curved face need not touch at all.
-    if (family == Family::Identical) lateral = Vec3::Zero();
-    // Along n, B's extent (towards A) and A's (towards B) meet at gap 0.
-    const double reach = SupportDistance(b, rotationB, n) + SupportDistance(a, rotationA, -n);
-    const double along = reach + gap;
-    const Vec3 positionB = positionA - n * along + lateral;
-
-    pairs.push_back({.index = i,
-                     .a = std::move(a),
-                     .b = std::move(b),
-                     .xfA = {.position = positionA, .rotation = rotationA},
-                     .xfB = {.position = positionB, .rotation = rotationB},
-                     .placement = placement,
-                     .alignment = alignment,
-                     .family = family,
-                     .targetGap = gap,
-                     .size = size,
-                     .twist = twist});
-  }
+  for (int i = 0; i < count; ++i) pairs.push_back(DrawPair(draw, i));
   return pairs;
 }
 

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <optional>
 
 #include "collision/collide.h"
 #include "collision/polyhedron_manifold.h"
@@ -275,22 +276,26 @@ Result<std::uint64_t> ParseSeed(std::string_view text) {
   return seed;
 }
 
-Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {
-  if (settings.pairs < 1 || settings.pairs > kMaxPairs)
-    return Error{"pairs: must be between 1 and " + std::to_string(kMaxPairs) + ", got " +
-                 std::to_string(settings.pairs)};
-  if (!(settings.touchingBand >= 0.0)) return Error{"touchingBand: must be >= 0"};
-  if (!(settings.pointTolerance >= 0.0)) return Error{"pointTolerance: must be >= 0"};
-  if (settings.timingRepeats < 0) return Error{"timingRepeats: must be >= 0"};
-  if (settings.worstCases < 0) return Error{"worstCases: must be >= 0"};
+namespace {
 
+// Why the settings cannot run, naming the field; "" when they can.
+std::string SettingsProblem(const SatCheckSettings& settings) {
+  if (settings.pairs < 1 || settings.pairs > kMaxPairs)
+    return "pairs: must be between 1 and " + std::to_string(kMaxPairs) + ", got " +
+           std::to_string(settings.pairs);
+  if (!(settings.touchingBand >= 0.0)) return "touchingBand: must be >= 0";
+  if (!(settings.pointTolerance >= 0.0)) return "pointTolerance: must be >= 0";
+  if (settings.timingRepeats < 0) return "timingRepeats: must be >= 0";
+  if (settings.worstCases < 0) return "worstCases: must be >= 0";
+  return {};
+}
+
+// An empty report: the settings, the counters, one MethodReport per method.
+SatCheckReport StartReport(const SatCheckSettings& settings, const std::vector<Method>& methods) {
   SatCheckReport report;
   report.settings = settings;
   report.placementCounts.assign(4, 0);
   report.alignmentCounts.assign(3, 0);
-  const std::vector<ShapePair> pairs = GeneratePairs(settings.pairs, settings.seed);
-  report.pairCount = static_cast<int>(pairs.size());
-  const std::vector<Method> methods = AllMethods();
   for (const Method& m : methods) {
     MethodReport out;
     out.name = m.name;
@@ -299,209 +304,298 @@ Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {
     out.givesPoints = m.givesPoints;
     report.methods.push_back(std::move(out));
   }
-  std::vector<Samples> samples(methods.size());
+  return report;
+}
 
-  for (const ShapePair& pair : pairs) {
-    ++report.placementCounts[static_cast<std::size_t>(pair.placement)];
-    ++report.alignmentCounts[static_cast<std::size_t>(pair.alignment)];
-    const Hull& hullA = pair.a.GetHull();
-    const Hull& hullB = pair.b.GetHull();
-    Result<reference::PenetrationTruth> truthResult =
-        reference::ComputePenetrationTruth(hullA, pair.xfA, hullB, pair.xfB);
-    if (!truthResult)
-      return Error{"pair " + std::to_string(pair.index) + ": " + truthResult.GetError().message};
-    const reference::PenetrationTruth& truth = truthResult.Value();
-    const std::string configuration = Describe(pair);
-    if (settings.checkWithQhull) {
-      ++report.truth.qhullChecks;
-      Result<bool> check = reference::CheckMinkowskiWithQhull(hullA, pair.xfA, hullB, pair.xfB);
-      if (!check) {
-        ++report.truth.qhullMismatches;
-        const std::string message = "pair " + std::to_string(pair.index) + ": " + check.GetError().message;
-        report.truth.qhullMessages.push_back(message);
-        report.truthBroken.push_back("Minkowski hull (qhull) vs BuildHull, " + message);
-      }
-    }
-    const std::vector<Vec3> verticesA = WorldVertices(pair.a, pair.xfA);
-    const std::vector<Vec3> verticesB = WorldVertices(pair.b, pair.xfB);
-    // The pair's bounds (sat_check.h): round-off of its world coordinates,
-    // the exactness asked, and the SAT's stated preference band.
-    const double roundOff =
-        kRoundOffUlps * std::numeric_limits<double>::epsilon() * LargestCoordinate(verticesA, verticesB);
-    // The closed form needs the same rotation (not the parallel families'
-    // twists); far pairs are left out, their truth carries the round-off
-    // of 1e5 m coordinates.
-    if (pair.alignment == Alignment::Face && pair.a.Type() == ShapeType::Box &&
-        pair.b.Type() == ShapeType::Box && pair.xfA.rotation.coeffs() == pair.xfB.rotation.coeffs() &&
-        pair.family != Family::Far) {
-      const Vec3 offset = pair.xfA.RotateInverse(pair.xfB.position - pair.xfA.position);
-      const double closed = BoxPairSignedDistance(pair.a.HalfExtents(), pair.b.HalfExtents(), offset);
-      ++report.truth.boxClosedFormChecks;
-      report.truth.boxClosedFormMaxError =
-          std::max(report.truth.boxClosedFormMaxError, std::abs(closed - truth.signedDistance));
-      if ((closed <= 0.0) != truth.intersecting && std::abs(closed) > settings.touchingBand) {
-        ++report.truth.boxClosedFormVerdictMismatches;
-        report.truthBroken.push_back("box closed form " + Sci(closed) + " m vs truth " +
-                                     Sci(truth.signedDistance) + " m, verdicts differ, on pair " +
-                                     std::to_string(pair.index));
-      } else if (std::abs(closed - truth.signedDistance) > roundOff) {
-        // Beyond the round-off of the pair's coordinates (kRoundOffUlps).
-        report.truthBroken.push_back("box closed form " + Sci(closed) + " m vs truth " +
-                                     Sci(truth.signedDistance) + " m on pair " + std::to_string(pair.index));
-      }
-    }
-    const double exact = kExactRelative * pair.size + roundOff;
-    const double depthBound = AxisPreferenceBand(hullA, hullB) + exact;
-    const double pointBound = settings.pointTolerance * pair.size + roundOff;
-    const bool inBand = std::abs(truth.signedDistance) < settings.touchingBand * pair.size + roundOff;
-    const auto familyIndex = static_cast<std::size_t>(pair.family);
-    if (truth.intersecting) ++report.truth.intersecting;
-    if (inBand) ++report.truth.touchingBand;
-    if (truth.intersecting && truth.minimumFaces > 1) ++report.truth.tiedMinimum;
+// One pair as every method is judged on it: the truth, the world vertices
+// and the pair's bounds (sat_check.h).
+struct PairFacts {
+  const ShapePair& pair;
+  const Hull& hullA;
+  const Hull& hullB;
+  const reference::PenetrationTruth& truth;
+  std::string configuration;
+  std::vector<Vec3> verticesA;
+  std::vector<Vec3> verticesB;
+  double roundOff = 0.0;    // round-off of the pair's world coordinates
+  double depthBound = 0.0;  // the SAT's preference band + exactness + round-off
+  double pointBound = 0.0;  // the point tolerance + round-off
+  bool inBand = false;      // inside the touching band: either verdict is acceptable
+};
 
-    const BulletHullShape bulletA(hullA);
-    const BulletHullShape bulletB(hullB);
-    const PairContext context{.pair = &pair,
-                              .ccdA = {.hull = &hullA, .transform = pair.xfA},
-                              .ccdB = {.hull = &hullB, .transform = pair.xfB},
-                              .bulletA = &bulletA,
-                              .bulletB = &bulletB};
-    PairRecord record{.index = pair.index,
-                      .configuration = configuration,
-                      .trueSignedDistance = truth.signedDistance,
-                      .trueNormal = truth.normal,
-                      .results = {}};
+PairFacts MakePairFacts(const ShapePair& pair, const reference::PenetrationTruth& truth,
+                        const SatCheckSettings& settings) {
+  PairFacts facts{.pair = pair,
+                  .hullA = pair.a.GetHull(),
+                  .hullB = pair.b.GetHull(),
+                  .truth = truth,
+                  .configuration = Describe(pair),
+                  .verticesA = WorldVertices(pair.a, pair.xfA),
+                  .verticesB = WorldVertices(pair.b, pair.xfB)};
+  // The pair's bounds (sat_check.h): round-off of its world coordinates,
+  // the exactness asked, and the SAT's stated preference band.
+  facts.roundOff = kRoundOffUlps * std::numeric_limits<double>::epsilon() *
+                   LargestCoordinate(facts.verticesA, facts.verticesB);
+  const double exact = kExactRelative * pair.size + facts.roundOff;
+  facts.depthBound = AxisPreferenceBand(facts.hullA, facts.hullB) + exact;
+  facts.pointBound = settings.pointTolerance * pair.size + facts.roundOff;
+  facts.inBand = std::abs(truth.signedDistance) < settings.touchingBand * pair.size + facts.roundOff;
+  return facts;
+}
 
-    for (std::size_t m = 0; m < methods.size(); ++m) {
-      MethodReport& out = report.methods[m];
-      Samples& sample = samples[m];
-      const std::function<Answer()> query = methods[m].prepare(context);
-      const Answer answer = query();
-      PairMethodResult result{.ok = answer.ok,
-                              .intersecting = answer.intersecting,
-                              .depth = answer.depth,
-                              .normalExcess = 0.0,
-                              .points = static_cast<int>(answer.points.size()),
-                              .timeNs = 0.0};
-      if (settings.timingRepeats > 0) {
-        const auto start = std::chrono::steady_clock::now();
-        int sink = 0;  // keeps the repeated queries from being optimised away
-        for (int r = 0; r < settings.timingRepeats; ++r) sink += query().intersecting ? 1 : 0;
-        volatile int keep = sink;
-        static_cast<void>(keep);
-        const auto elapsed = std::chrono::steady_clock::now() - start;
-        result.timeNs =
-            static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count()) /
-            settings.timingRepeats;
-        sample.timeNs.push_back(result.timeNs);
-      }
-      const CaseRecord base{.pair = pair.index,
-                            .configuration = configuration,
-                            .trueSignedDistance = truth.signedDistance,
-                            .methodIntersecting = answer.intersecting,
-                            .value = 0.0};
-      if (!answer.ok) {
-        // A Talus mode that returns an error on a valid pair fails the gate.
-        if (out.family == "talus" && out.oracleFailures == 0)
-          report.failures.push_back(out.name + ": error on pair " + std::to_string(pair.index) + " (" +
-                                    configuration + "): " + answer.error);
-        ++out.oracleFailures;
-        record.results.push_back(result);
-        continue;
-      }
-      if (answer.intersecting == truth.intersecting) {
-        ++out.agree;
-      } else if (inBand) {
-        ++out.touchingBandDisagree;
-      } else if (out.family == "talus") {
-        if (out.disagree++ == 0)
-          report.failures.push_back(out.name + ": wrong verdict on pair " + std::to_string(pair.index) +
-                                    " (" + configuration + ", true distance " + Sci(truth.signedDistance) +
-                                    " m)");
-        out.disagreements.push_back(base);
-      } else {
-        // A peer's wrong verdict is an oracle failure, listed all the same.
-        ++out.oracleFailures;
-        out.disagreements.push_back(base);
-      }
-      const bool talus = out.family == "talus";
-      FamilySamples& familySample = sample.families[familyIndex];
-      if (methods[m].givesDepth && answer.intersecting && truth.intersecting && !inBand) {
-        const double depthError = std::abs(answer.depth - truth.Depth());
-        sample.depthError.push_back(depthError);
-        familySample.depthError.push_back(depthError);
-        if (talus && depthError > depthBound && out.depthOverBound++ == 0)
-          report.failures.push_back(out.name + ": depth error " + Sci(depthError) + " m > bound " +
-                                    Sci(depthBound) + " m on pair " + std::to_string(pair.index) + " (" +
-                                    configuration + ")");
-        CaseRecord worst = base;
-        worst.value = depthError;
-        KeepWorst(out.worstDepth, worst, settings.worstCases);
-        const Vec3 n = answer.normal.normalized();
-        const double overlap = MaxAlong(verticesB, n) + MaxAlong(verticesA, -n);
-        result.normalExcess = overlap - truth.Depth();
-        sample.normalExcess.push_back(std::max(result.normalExcess, 0.0));
-        familySample.normalExcess.push_back(std::max(result.normalExcess, 0.0));
-        if (talus && result.normalExcess > depthBound && out.normalOverBound++ == 0)
-          report.failures.push_back(out.name + ": normal excess " + Sci(result.normalExcess) + " m > bound " +
-                                    Sci(depthBound) + " m on pair " + std::to_string(pair.index) + " (" +
-                                    configuration + ")");
-        worst.value = result.normalExcess;
-        KeepWorst(out.worstNormal, worst, settings.worstCases);
-        if (truth.minimumFaces == 1) {
-          const double angle = std::acos(std::clamp(n.dot(truth.normal), -1.0, 1.0));
-          sample.normalAngle.push_back(angle);
-          familySample.normalAngle.push_back(angle);
-        }
-      }
-      if (talus && answer.intersecting && !answer.pointDepths.empty()) {
-        // No point is deeper than the manifold's depth (the projections'
-        // overlap). The deepest point carries it unless the SAT's deepest
-        // vertex lies outside the other shape; shallower is counted, not
-        // gated (sat_check.h).
-        const double deepest = *std::max_element(answer.pointDepths.begin(), answer.pointDepths.end());
-        const double bound = roundOff + kExactRelative * pair.size;
-        if (deepest < answer.depth - bound) ++out.deepestPointShallower;
-        if (deepest > answer.depth + bound && out.deepestPointDeeper++ == 0)
-          report.failures.push_back(out.name + ": deepest point " + Sci(deepest) + " m, manifold depth " +
-                                    Sci(answer.depth) + " m on pair " + std::to_string(pair.index) + " (" +
-                                    configuration + ")");
-      }
-      if (methods[m].givesPoints && !inBand) {
-        for (const Vec3& p : answer.points) {
-          const double outsideA = Outside(pair.a, pair.xfA, p);
-          const double outsideB = Outside(pair.b, pair.xfB, p);
-          const double outside = std::max(outsideA, outsideB);
-          sample.pointOutside.push_back(outside);
-          familySample.pointOutside.push_back(outside);
-          // Misplaced: farther out of either shape than the true depth
-          // (a point midway between the surfaces of a contact patch is
-          // within that of both) plus the tolerance.
-          if (outside > pointBound + truth.Depth()) ++out.pointsOverTolerance;
-          if (!talus) continue;
-          // Outside either shape beyond round-off: gated for the Clipped
-          // modes (issue 26: every point inside both shapes), measured for
-          // WriteUp, whose rule takes vertices near the other shape.
-          if (outside > roundOff && out.pointsOutsideEither++ == 0 && !methods[m].writeUpPoints)
-            report.failures.push_back(out.name + ": a point " + Sci(outside) + " m outside a shape (bound " +
-                                      Sci(roundOff) + " m) on pair " + std::to_string(pair.index) + " (" +
-                                      configuration + ")");
-          // Outside both: gated. The write-up's rule takes vertices up to
-          // its tolerance (WriteUpTolerance) outside the other shape by design.
-          const double bothBound =
-              pointBound + (methods[m].writeUpPoints ? WriteUpTolerance(hullA, hullB) : 0.0);
-          if (std::min(outsideA, outsideB) > bothBound && out.pointsOutsideBoth++ == 0)
-            report.failures.push_back(out.name + ": a point " + Sci(std::min(outsideA, outsideB)) +
-                                      " m outside both shapes on pair " + std::to_string(pair.index) + " (" +
-                                      configuration + ")");
-        }
-      }
-      record.results.push_back(result);
-    }
-    report.pairs.push_back(std::move(record));
+// The truth's Minkowski difference against qhull's.
+void CheckTruthWithQhull(const ShapePair& pair, SatCheckReport& report) {
+  ++report.truth.qhullChecks;
+  Result<bool> check =
+      reference::CheckMinkowskiWithQhull(pair.a.GetHull(), pair.xfA, pair.b.GetHull(), pair.xfB);
+  if (!check) {
+    ++report.truth.qhullMismatches;
+    const std::string message = "pair " + std::to_string(pair.index) + ": " + check.GetError().message;
+    report.truth.qhullMessages.push_back(message);
+    report.truthBroken.push_back("Minkowski hull (qhull) vs BuildHull, " + message);
   }
+}
 
+// The truth against the closed form of two face-aligned boxes.
+void CheckTruthWithBoxClosedForm(const PairFacts& facts, const SatCheckSettings& settings,
+                                 SatCheckReport& report) {
+  const ShapePair& pair = facts.pair;
+  const reference::PenetrationTruth& truth = facts.truth;
+  // The closed form needs the same rotation (not the parallel families'
+  // twists); far pairs are left out, their truth carries the round-off
+  // of 1e5 m coordinates.
+  if (!(pair.alignment == Alignment::Face && pair.a.Type() == ShapeType::Box &&
+        pair.b.Type() == ShapeType::Box && pair.xfA.rotation.coeffs() == pair.xfB.rotation.coeffs() &&
+        pair.family != Family::Far))
+    return;
+  const Vec3 offset = pair.xfA.RotateInverse(pair.xfB.position - pair.xfA.position);
+  const double closed = BoxPairSignedDistance(pair.a.HalfExtents(), pair.b.HalfExtents(), offset);
+  ++report.truth.boxClosedFormChecks;
+  report.truth.boxClosedFormMaxError =
+      std::max(report.truth.boxClosedFormMaxError, std::abs(closed - truth.signedDistance));
+  if ((closed <= 0.0) != truth.intersecting && std::abs(closed) > settings.touchingBand) {
+    ++report.truth.boxClosedFormVerdictMismatches;
+    report.truthBroken.push_back("box closed form " + Sci(closed) + " m vs truth " +
+                                 Sci(truth.signedDistance) + " m, verdicts differ, on pair " +
+                                 std::to_string(pair.index));
+  } else if (std::abs(closed - truth.signedDistance) > facts.roundOff) {
+    // Beyond the round-off of the pair's coordinates (kRoundOffUlps).
+    report.truthBroken.push_back("box closed form " + Sci(closed) + " m vs truth " +
+                                 Sci(truth.signedDistance) + " m on pair " + std::to_string(pair.index));
+  }
+}
+
+// Mean time of one query over `repeats` runs (ns).
+double TimeQuery(const std::function<Answer()>& query, int repeats) {
+  const auto start = std::chrono::steady_clock::now();
+  int sink = 0;  // keeps the repeated queries from being optimised away
+  for (int r = 0; r < repeats; ++r) sink += query().intersecting ? 1 : 0;
+  volatile int keep = sink;
+  static_cast<void>(keep);
+  const auto elapsed = std::chrono::steady_clock::now() - start;
+  return static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count()) / repeats;
+}
+
+// What judging one method's answer on one pair writes to: its report, its
+// samples (all pairs and the pair's family) and the run's failures.
+struct MethodSink {
+  const Method& method;
+  MethodReport& out;
+  Samples& sample;
+  FamilySamples& familySample;
+  std::vector<std::string>& failures;
+  int worstCases = 0;
+  bool Talus() const { return out.family == "talus"; }
+  // "<method>: <what> on pair N (configuration)", the form of every gate failure.
+  void Fail(const std::string& what, const PairFacts& facts) const {
+    failures.push_back(out.name + ": " + what + " on pair " + std::to_string(facts.pair.index) + " (" +
+                       facts.configuration + ")");
+  }
+};
+
+// Counts the verdict against the truth's. A Talus mode that returns an
+// error or a wrong verdict outside the band fails the gate; a peer's wrong
+// verdict is an oracle failure, listed all the same. False when the
+// method failed to answer (nothing more to judge).
+bool JudgeVerdict(const Answer& answer, const PairFacts& facts, const CaseRecord& base,
+                  const MethodSink& sink) {
+  MethodReport& out = sink.out;
+  if (!answer.ok) {
+    if (sink.Talus() && out.oracleFailures == 0)
+      sink.failures.push_back(out.name + ": error on pair " + std::to_string(facts.pair.index) + " (" +
+                              facts.configuration + "): " + answer.error);
+    ++out.oracleFailures;
+    return false;
+  }
+  if (answer.intersecting == facts.truth.intersecting) {
+    ++out.agree;
+  } else if (facts.inBand) {
+    ++out.touchingBandDisagree;
+  } else if (sink.Talus()) {
+    if (out.disagree++ == 0)
+      sink.failures.push_back(out.name + ": wrong verdict on pair " + std::to_string(facts.pair.index) +
+                              " (" + facts.configuration + ", true distance " +
+                              Sci(facts.truth.signedDistance) + " m)");
+    out.disagreements.push_back(base);
+  } else {
+    ++out.oracleFailures;
+    out.disagreements.push_back(base);
+  }
+  return true;
+}
+
+// Depth error, normal excess and normal angle of a method that gives them,
+// on a pair both it and the truth call intersecting, outside the band.
+void JudgeDepthAndNormal(const Answer& answer, const PairFacts& facts, const CaseRecord& base,
+                         PairMethodResult& result, const MethodSink& sink) {
+  const reference::PenetrationTruth& truth = facts.truth;
+  MethodReport& out = sink.out;
+  const double depthError = std::abs(answer.depth - truth.Depth());
+  sink.sample.depthError.push_back(depthError);
+  sink.familySample.depthError.push_back(depthError);
+  if (sink.Talus() && depthError > facts.depthBound && out.depthOverBound++ == 0)
+    sink.Fail("depth error " + Sci(depthError) + " m > bound " + Sci(facts.depthBound) + " m", facts);
+  CaseRecord worst = base;
+  worst.value = depthError;
+  KeepWorst(out.worstDepth, worst, sink.worstCases);
+  const Vec3 n = answer.normal.normalized();
+  const double overlap = MaxAlong(facts.verticesB, n) + MaxAlong(facts.verticesA, -n);
+  result.normalExcess = overlap - truth.Depth();
+  sink.sample.normalExcess.push_back(std::max(result.normalExcess, 0.0));
+  sink.familySample.normalExcess.push_back(std::max(result.normalExcess, 0.0));
+  if (sink.Talus() && result.normalExcess > facts.depthBound && out.normalOverBound++ == 0)
+    sink.Fail("normal excess " + Sci(result.normalExcess) + " m > bound " + Sci(facts.depthBound) + " m",
+              facts);
+  worst.value = result.normalExcess;
+  KeepWorst(out.worstNormal, worst, sink.worstCases);
+  if (truth.minimumFaces == 1) {
+    const double angle = std::acos(std::clamp(n.dot(truth.normal), -1.0, 1.0));
+    sink.sample.normalAngle.push_back(angle);
+    sink.familySample.normalAngle.push_back(angle);
+  }
+}
+
+// No point is deeper than the manifold's depth (the projections'
+// overlap). The deepest point carries it unless the SAT's deepest vertex
+// lies outside the other shape; shallower is counted, not gated
+// (sat_check.h).
+void JudgeDeepestPoint(const Answer& answer, const PairFacts& facts, const MethodSink& sink) {
+  MethodReport& out = sink.out;
+  const double deepest = *std::max_element(answer.pointDepths.begin(), answer.pointDepths.end());
+  const double bound = facts.roundOff + kExactRelative * facts.pair.size;
+  if (deepest < answer.depth - bound) ++out.deepestPointShallower;
+  if (deepest > answer.depth + bound && out.deepestPointDeeper++ == 0)
+    sink.Fail("deepest point " + Sci(deepest) + " m, manifold depth " + Sci(answer.depth) + " m", facts);
+}
+
+// How far each contact point lies outside the shapes.
+void JudgePoints(const Answer& answer, const PairFacts& facts, const MethodSink& sink) {
+  MethodReport& out = sink.out;
+  const ShapePair& pair = facts.pair;
+  for (const Vec3& p : answer.points) {
+    const double outsideA = Outside(pair.a, pair.xfA, p);
+    const double outsideB = Outside(pair.b, pair.xfB, p);
+    const double outside = std::max(outsideA, outsideB);
+    sink.sample.pointOutside.push_back(outside);
+    sink.familySample.pointOutside.push_back(outside);
+    // Misplaced: farther out of either shape than the true depth
+    // (a point midway between the surfaces of a contact patch is
+    // within that of both) plus the tolerance.
+    if (outside > facts.pointBound + facts.truth.Depth()) ++out.pointsOverTolerance;
+    if (!sink.Talus()) continue;
+    // Outside either shape beyond round-off: gated for the Clipped
+    // modes (issue 26: every point inside both shapes), measured for
+    // WriteUp, whose rule takes vertices near the other shape.
+    if (outside > facts.roundOff && out.pointsOutsideEither++ == 0 && !sink.method.writeUpPoints)
+      sink.Fail("a point " + Sci(outside) + " m outside a shape (bound " + Sci(facts.roundOff) + " m)",
+                facts);
+    // Outside both: gated. The write-up's rule takes vertices up to
+    // its tolerance (WriteUpTolerance) outside the other shape by design.
+    const double bothBound =
+        facts.pointBound + (sink.method.writeUpPoints ? WriteUpTolerance(facts.hullA, facts.hullB) : 0.0);
+    if (std::min(outsideA, outsideB) > bothBound && out.pointsOutsideBoth++ == 0)
+      sink.Fail("a point " + Sci(std::min(outsideA, outsideB)) + " m outside both shapes", facts);
+  }
+}
+
+// Runs one method on one pair (timed when asked) and judges its answer.
+PairMethodResult JudgeMethod(const PairContext& context, const PairFacts& facts,
+                             const SatCheckSettings& settings, const MethodSink& sink) {
+  const std::function<Answer()> query = sink.method.prepare(context);
+  const Answer answer = query();
+  PairMethodResult result{.ok = answer.ok,
+                          .intersecting = answer.intersecting,
+                          .depth = answer.depth,
+                          .normalExcess = 0.0,
+                          .points = static_cast<int>(answer.points.size()),
+                          .timeNs = 0.0};
+  if (settings.timingRepeats > 0) {
+    result.timeNs = TimeQuery(query, settings.timingRepeats);
+    sink.sample.timeNs.push_back(result.timeNs);
+  }
+  const CaseRecord base{.pair = facts.pair.index,
+                        .configuration = facts.configuration,
+                        .trueSignedDistance = facts.truth.signedDistance,
+                        .methodIntersecting = answer.intersecting,
+                        .value = 0.0};
+  if (!JudgeVerdict(answer, facts, base, sink)) return result;
+  if (sink.method.givesDepth && answer.intersecting && facts.truth.intersecting && !facts.inBand)
+    JudgeDepthAndNormal(answer, facts, base, result, sink);
+  if (sink.Talus() && answer.intersecting && !answer.pointDepths.empty())
+    JudgeDeepestPoint(answer, facts, sink);
+  if (sink.method.givesPoints && !facts.inBand) JudgePoints(answer, facts, sink);
+  return result;
+}
+
+// One pair: the truth and its checks, then every method. An Error when
+// the truth cannot be computed.
+std::optional<Error> RunPair(const ShapePair& pair, const std::vector<Method>& methods,
+                             const SatCheckSettings& settings, std::vector<Samples>& samples,
+                             SatCheckReport& report) {
+  ++report.placementCounts[static_cast<std::size_t>(pair.placement)];
+  ++report.alignmentCounts[static_cast<std::size_t>(pair.alignment)];
+  const Hull& hullA = pair.a.GetHull();
+  const Hull& hullB = pair.b.GetHull();
+  Result<reference::PenetrationTruth> truthResult =
+      reference::ComputePenetrationTruth(hullA, pair.xfA, hullB, pair.xfB);
+  if (!truthResult)
+    return Error{"pair " + std::to_string(pair.index) + ": " + truthResult.GetError().message};
+  const reference::PenetrationTruth& truth = truthResult.Value();
+  const PairFacts facts = MakePairFacts(pair, truth, settings);
+  if (settings.checkWithQhull) CheckTruthWithQhull(pair, report);
+  CheckTruthWithBoxClosedForm(facts, settings, report);
+  if (truth.intersecting) ++report.truth.intersecting;
+  if (facts.inBand) ++report.truth.touchingBand;
+  if (truth.intersecting && truth.minimumFaces > 1) ++report.truth.tiedMinimum;
+
+  const BulletHullShape bulletA(hullA);
+  const BulletHullShape bulletB(hullB);
+  const PairContext context{.pair = &pair,
+                            .ccdA = {.hull = &hullA, .transform = pair.xfA},
+                            .ccdB = {.hull = &hullB, .transform = pair.xfB},
+                            .bulletA = &bulletA,
+                            .bulletB = &bulletB};
+  PairRecord record{.index = pair.index,
+                    .configuration = facts.configuration,
+                    .trueSignedDistance = truth.signedDistance,
+                    .trueNormal = truth.normal,
+                    .results = {}};
   for (std::size_t m = 0; m < methods.size(); ++m) {
+    const MethodSink sink{.method = methods[m],
+                          .out = report.methods[m],
+                          .sample = samples[m],
+                          .familySample = samples[m].families[static_cast<std::size_t>(pair.family)],
+                          .failures = report.failures,
+                          .worstCases = settings.worstCases};
+    record.results.push_back(JudgeMethod(context, facts, settings, sink));
+  }
+  report.pairs.push_back(std::move(record));
+  return std::nullopt;
+}
+
+// Each method's samples reduced to percentiles, overall and by family.
+void SummariseMethods(const std::vector<Samples>& samples, SatCheckReport& report) {
+  for (std::size_t m = 0; m < samples.size(); ++m) {
     MethodReport& out = report.methods[m];
     out.depthError = Summarise(samples[m].depthError);
     out.normalAngle = Summarise(samples[m].normalAngle);
@@ -517,6 +611,21 @@ Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {
                               .pointOutside = Summarise(fs.pointOutside)});
     }
   }
+}
+
+}  // namespace
+
+Result<SatCheckReport> RunSatCheck(const SatCheckSettings& settings) {
+  if (const std::string problem = SettingsProblem(settings); !problem.empty()) return Error{problem};
+  const std::vector<Method> methods = AllMethods();
+  SatCheckReport report = StartReport(settings, methods);
+  const std::vector<ShapePair> pairs = GeneratePairs(settings.pairs, settings.seed);
+  report.pairCount = static_cast<int>(pairs.size());
+  std::vector<Samples> samples(methods.size());
+  for (const ShapePair& pair : pairs) {
+    if (std::optional<Error> error = RunPair(pair, methods, settings, samples, report)) return *error;
+  }
+  SummariseMethods(samples, report);
   return report;
 }
 

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <ostream>
 #include <sstream>
 
 #include "sat_check.h"
@@ -46,11 +47,9 @@ std::string Percent(int part, int whole) {
   return whole == 0 ? "-" : harness::FormatPrintf("%.2f%%", 100.0 * part / whole);
 }
 
-}  // namespace
-
-std::string ReportToJson(const SatCheckReport& report) {
+// The run's settings, the pair counts and the truth's own checks.
+void AddRunToJson(const SatCheckReport& report, Json& json) {
   const SatCheckSettings& s = report.settings;
-  Json json;
   json["settings"] = {{"pairs", s.pairs},
                       {"seed", s.seed},
                       {"touchingBand", s.touchingBand},
@@ -76,46 +75,47 @@ std::string ReportToJson(const SatCheckReport& report) {
                    {"boxClosedFormChecks", t.boxClosedFormChecks},
                    {"boxClosedFormMaxError", t.boxClosedFormMaxError},
                    {"boxClosedFormVerdictMismatches", t.boxClosedFormVerdictMismatches}};
-  Json methods = Json::array();
-  for (const MethodReport& m : report.methods) {
-    methods.push_back({{"name", m.name},
-                       {"family", m.family},
-                       {"givesDepth", m.givesDepth},
-                       {"givesPoints", m.givesPoints},
-                       {"verdict",
-                        {{"agree", m.agree},
-                         {"disagree", m.disagree},
-                         {"touchingBandDisagree", m.touchingBandDisagree},
-                         {"oracleFailures", m.oracleFailures}}},
-                       {"disagreements", ToJson(m.disagreements)},
-                       {"depthError", ToJson(m.depthError)},
-                       {"normalAngle", ToJson(m.normalAngle)},
-                       {"normalExcess", ToJson(m.normalExcess)},
-                       {"pointOutside", ToJson(m.pointOutside)},
-                       {"pointsOverTolerance", m.pointsOverTolerance},
-                       {"gate",
-                        {{"depthOverBound", m.depthOverBound},
-                         {"normalOverBound", m.normalOverBound},
-                         {"deepestPointDeeper", m.deepestPointDeeper},
-                         {"pointsOutsideEither", m.pointsOutsideEither},
-                         {"pointsOutsideBoth", m.pointsOutsideBoth}}},
-                       {"deepestPointShallower", m.deepestPointShallower},
-                       {"families", FamiliesToJson(m.families)},
-                       {"timeNs", ToJson(m.timeNs)},
-                       {"timeVsAccuracy",
-                        {{"medianTimeNs", m.timeNs.p50},
-                         {"medianDepthError", m.depthError.p50},
-                         {"medianNormalAngle", m.normalAngle.p50},
-                         {"medianNormalExcess", m.normalExcess.p50}}},
-                       {"worstDepth", ToJson(m.worstDepth)},
-                       {"worstNormal", ToJson(m.worstNormal)}});
-  }
-  json["methods"] = methods;
-  json["failures"] = report.failures;
-  json["truthBroken"] = report.truthBroken;
-  json["passed"] = ExitStatus(report) == kExitPassed;
+}
+
+Json MethodToJson(const MethodReport& m) {
+  return {{"name", m.name},
+          {"family", m.family},
+          {"givesDepth", m.givesDepth},
+          {"givesPoints", m.givesPoints},
+          {"verdict",
+           {{"agree", m.agree},
+            {"disagree", m.disagree},
+            {"touchingBandDisagree", m.touchingBandDisagree},
+            {"oracleFailures", m.oracleFailures}}},
+          {"disagreements", ToJson(m.disagreements)},
+          {"depthError", ToJson(m.depthError)},
+          {"normalAngle", ToJson(m.normalAngle)},
+          {"normalExcess", ToJson(m.normalExcess)},
+          {"pointOutside", ToJson(m.pointOutside)},
+          {"pointsOverTolerance", m.pointsOverTolerance},
+          {"gate",
+           {{"depthOverBound", m.depthOverBound},
+            {"normalOverBound", m.normalOverBound},
+            {"deepestPointDeeper", m.deepestPointDeeper},
+            {"pointsOutsideEither", m.pointsOutsideEither},
+            {"pointsOutsideBoth", m.pointsOutsideBoth}}},
+          {"deepestPointShallower", m.deepestPointShallower},
+          {"families", FamiliesToJson(m.families)},
+          {"timeNs", ToJson(m.timeNs)},
+          {"timeVsAccuracy",
+           {{"medianTimeNs", m.timeNs.p50},
+            {"medianDepthError", m.depthError.p50},
+            {"medianNormalAngle", m.normalAngle.p50},
+            {"medianNormalExcess", m.normalExcess.p50}}},
+          {"worstDepth", ToJson(m.worstDepth)},
+          {"worstNormal", ToJson(m.worstNormal)}};
+}
+
+// One row per pair: its truth and each method's answer, in the fields of
+// pairResultFields.
+Json PairsToJson(const std::vector<PairRecord>& records) {
   Json pairs = Json::array();
-  for (const PairRecord& p : report.pairs) {
+  for (const PairRecord& p : records) {
     Json results = Json::array();
     for (const PairMethodResult& r : p.results) {
       results.push_back({r.ok, r.intersecting, r.depth, r.normalExcess, r.points, r.timeNs});
@@ -126,13 +126,11 @@ std::string ReportToJson(const SatCheckReport& report) {
                      {"trueNormal", {p.trueNormal.x(), p.trueNormal.y(), p.trueNormal.z()}},
                      {"results", results}});
   }
-  json["pairResultFields"] = {"ok", "intersecting", "depth", "normalExcess", "points", "timeNs"};
-  json["pairs"] = pairs;
-  return json.dump(2) + "\n";
+  return pairs;
 }
 
-std::string ReportToMarkdown(const SatCheckReport& report) {
-  std::ostringstream out;
+// The heading, the pairs made and the checks of the truth.
+void WriteOverview(const SatCheckReport& report, std::ostream& out) {
   const TruthReport& t = report.truth;
   out << "## SAT validation\n\n";
   out << report.pairCount << " pairs (seed " << report.settings.seed << "): ";
@@ -147,12 +145,18 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
       << t.qhullChecks << "; face-aligned boxes vs closed form: " << t.boxClosedFormChecks
       << " checked, max error " << harness::FormatPrintf("%.2e", t.boxClosedFormMaxError) << " m, "
       << t.boxClosedFormVerdictMismatches << " verdict mismatches.\n\n";
+}
 
+void WriteVerdicts(const SatCheckReport& report, std::ostream& out) {
   out << "### Verdicts\n\n| method | agree | disagree | in band | oracle failures |\n|---|---|---|---|---|\n";
   for (const MethodReport& m : report.methods) {
     out << "| " << m.name << " | " << Percent(m.agree, report.pairCount) << " | " << m.disagree << " | "
         << m.touchingBandDisagree << " | " << m.oracleFailures << " |\n";
   }
+}
+
+// Depth, normal and contact points against the truth, with the time.
+void WriteAccuracy(const SatCheckReport& report, std::ostream& out) {
   out << "\n### Depth, normal and contact points against the truth\n\n"
          "Depth error |d - d*| (m), normal angle (rad, pairs with a unique minimum), normal excess (overlap "
          "along "
@@ -174,6 +178,9 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
         << " | " << (m.timeNs.count ? harness::FormatPrintf("%.0f", m.timeNs.p50) : std::string("-"))
         << " |\n";
   }
+}
+
+void WriteFamilies(const SatCheckReport& report, std::ostream& out) {
   out << "\n### By family (Talus modes)\n\n"
          "Depth error and normal excess (m), p50 / max, per family of pairs (pair_generator.h).\n\n"
          "| method | family | depth error | normal excess | point outside |\n|---|---|---|---|---|\n";
@@ -188,6 +195,9 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
           << pair(f.normalExcess) << " | " << pair(f.pointOutside) << " |\n";
     }
   }
+}
+
+void WriteGate(const SatCheckReport& report, std::ostream& out) {
   out << "\n### Gate\n\n" << SummaryLine(report) << "\n";
   for (const std::string& line : report.truthBroken) out << "- truth broken: " << line << "\n";
   for (const std::string& line : report.failures) out << "- " << line << "\n";
@@ -196,6 +206,9 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
   for (const MethodReport& m : report.methods) {
     if (m.family == "talus") out << " " << m.name << " " << m.deepestPointShallower << ";";
   }
+}
+
+void WriteWorstCases(const SatCheckReport& report, std::ostream& out) {
   out << "\n\n### Worst cases\n\n";
   for (const MethodReport& m : report.methods) {
     if (m.disagreements.empty() && (m.worstDepth.empty() || m.worstDepth.front().value < 1e-6)) continue;
@@ -212,6 +225,32 @@ std::string ReportToMarkdown(const SatCheckReport& report) {
     }
     out << "\n";
   }
+}
+
+}  // namespace
+
+std::string ReportToJson(const SatCheckReport& report) {
+  Json json;
+  AddRunToJson(report, json);
+  Json methods = Json::array();
+  for (const MethodReport& m : report.methods) methods.push_back(MethodToJson(m));
+  json["methods"] = methods;
+  json["failures"] = report.failures;
+  json["truthBroken"] = report.truthBroken;
+  json["passed"] = ExitStatus(report) == kExitPassed;
+  json["pairResultFields"] = {"ok", "intersecting", "depth", "normalExcess", "points", "timeNs"};
+  json["pairs"] = PairsToJson(report.pairs);
+  return json.dump(2) + "\n";
+}
+
+std::string ReportToMarkdown(const SatCheckReport& report) {
+  std::ostringstream out;
+  WriteOverview(report, out);
+  WriteVerdicts(report, out);
+  WriteAccuracy(report, out);
+  WriteFamilies(report, out);
+  WriteGate(report, out);
+  WriteWorstCases(report, out);
   return out.str();
 }
 

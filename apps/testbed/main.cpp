@@ -17,6 +17,8 @@
 
 namespace {
 
+using namespace talus::testbed;
+
 // A number that is 0 (none) or in [low, high]: anything else, NaN
 // included, is refused naming the value and the range (CLI11 adds the flag).
 CLI::Validator ZeroOrWithin(double low, double high, const std::string& unit) {
@@ -39,94 +41,104 @@ CLI::Validator ZeroOrWithin(double low, double high, const std::string& unit) {
       "0|" + talus::harness::FormatNumber(low, 17) + ".." + talus::harness::FormatNumber(high, 17));
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  using namespace talus::testbed;
-  namespace harness = talus::harness;
-  CLI::App app{"Talus testbed: runs scenarios through Talus, Bullet and ODE, reports and checks accuracy"};
-  app.require_subcommand(1);
-
-  RunOptions run;
-  CLI::App* runCommand = app.add_subcommand("run", "run scenarios through backends and write results.json");
-  runCommand->add_option("scenarios", run.scenarios, "scenario files or folders (default: scenarios/)");
-  runCommand->add_option("-b,--backend", run.backends, "backends to run (repeat or comma-separate)")
+// `run`: scenarios through backends into results.json.
+CLI::App* AddRunCommand(CLI::App& app, RunOptions& run) {
+  CLI::App* command = app.add_subcommand("run", "run scenarios through backends and write results.json");
+  command->add_option("scenarios", run.scenarios, "scenario files or folders (default: scenarios/)");
+  command->add_option("-b,--backend", run.backends, "backends to run (repeat or comma-separate)")
       ->delimiter(',');
-  runCommand
+  command
       ->add_option("--time-step", run.timeSteps, "run each scenario at these time steps (s, comma-separated)")
       ->delimiter(',')
       ->check(kTimeStepRange);
-  runCommand
+  command
       ->add_option("--iterations", run.iterations,
                    "run each scenario with these solver iterations (0 = default)")
       ->delimiter(',')
       ->check(kIterationsRange);
-  runCommand->add_option("-o,--out", run.out, "output folder for results.json")->capture_default_str();
-  runCommand->add_option("-j,--jobs", run.jobs, "threads (0 = every core)")->check(kJobsRange);
-  runCommand
+  command->add_option("-o,--out", run.out, "output folder for results.json")->capture_default_str();
+  command->add_option("-j,--jobs", run.jobs, "threads (0 = every core)")->check(kJobsRange);
+  command
       ->add_option("--threads", run.threads,
                    "threads inside each Talus world (WorldSettings::threads; results are bit-identical, "
                    "only wall time changes)")
       ->check(InRange(1, talus::kMaxThreads));
-  runCommand
+  command
       ->add_option("--budget", run.budget,
                    "wall-clock seconds per job; a job past it stops with the reason, one stuck inside a step "
                    "is killed 2 s later (0 = no budget)")
-      ->check(ZeroOrWithin(0.0, harness::kMaxBudgetSeconds, "s"))
+      ->check(ZeroOrWithin(0.0, talus::harness::kMaxBudgetSeconds, "s"))
       ->capture_default_str();
-  runCommand
+  command
       ->add_option("--memory-limit", run.memoryLimitMiB,
                    "address space each job's process may add, MiB; past it the job stops naming the limit "
                    "(0 = none)")
-      ->check(ZeroOrWithin(static_cast<double>(harness::kMinMemoryLimitBytes >> 20),
-                           static_cast<double>(harness::kMaxMemoryLimitBytes >> 20), "MiB"))
+      ->check(ZeroOrWithin(static_cast<double>(talus::harness::kMinMemoryLimitBytes >> 20),
+                           static_cast<double>(talus::harness::kMaxMemoryLimitBytes >> 20), "MiB"))
       ->capture_default_str();
-  runCommand->add_flag("--deterministic", run.deterministic, "zero wall times so reruns are byte-identical");
-  runCommand->add_flag("-q,--quiet", run.quiet, "no progress on stderr");
-  runCommand
+  command->add_flag("--deterministic", run.deterministic, "zero wall times so reruns are byte-identical");
+  command->add_flag("-q,--quiet", run.quiet, "no progress on stderr");
+  command
       ->add_option("--replay", run.replay,
                    "record poses, contacts and step counters of these runs for the 3D replay "
                    "(run ids, scenario names or all; comma-separated)")
       ->delimiter(',');
-  runCommand->add_flag("--full-trajectories", run.fullTrajectories,
-                       "write results.trajectories.json exact, not thinned and rounded for display "
-                       "(metrics are computed from the full trajectories either way)");
+  command->add_flag("--full-trajectories", run.fullTrajectories,
+                    "write results.trajectories.json exact, not thinned and rounded for display "
+                    "(metrics are computed from the full trajectories either way)");
+  return command;
+}
 
-  ReportOptions report;
-  CLI::App* reportCommand = app.add_subcommand("report", "write summary.md, results.csv and report.html");
-  reportCommand->add_option("results", report.results, "results.json of a run")->required();
-  reportCommand->add_option("-o,--out", report.out, "report folder (default: beside the results)");
-  reportCommand->add_option("--chart-js", report.chartJs,
-                            "charting library to inline (default: Chart.js from npm)");
-  reportCommand->add_option("--three-js", report.threeJs,
-                            "3D library to inline (default: three.js from npm)");
-  reportCommand->add_option("--sat-check", report.satCheck,
-                            "talus-sat-check --json results to add as the SAT validation section");
-  reportCommand->add_option(
-      "--sweep", report.sweep,
-      "results.json of `talus-testbed sweep` to add as the run-time-against-error section");
-  reportCommand->add_option("--stress", report.stress,
-                            "stress.json of `talus-testbed stress` to add as the stability envelope section");
-  reportCommand->add_option("--scenes", report.scenes,
-                            "`talus-scenes --format jsonl` output to add as the large-scenes section");
+// `report`: summary.md, results.csv and report.html from a results.json.
+CLI::App* AddReportCommand(CLI::App& app, ReportOptions& report) {
+  CLI::App* command = app.add_subcommand("report", "write summary.md, results.csv and report.html");
+  command->add_option("results", report.results, "results.json of a run")->required();
+  command->add_option("-o,--out", report.out, "report folder (default: beside the results)");
+  command->add_option("--chart-js", report.chartJs,
+                      "charting library to inline (default: Chart.js from npm)");
+  command->add_option("--three-js", report.threeJs, "3D library to inline (default: three.js from npm)");
+  command->add_option("--sat-check", report.satCheck,
+                      "talus-sat-check --json results to add as the SAT validation section");
+  command->add_option("--sweep", report.sweep,
+                      "results.json of `talus-testbed sweep` to add as the run-time-against-error section");
+  command->add_option("--stress", report.stress,
+                      "stress.json of `talus-testbed stress` to add as the stability envelope section");
+  command->add_option("--scenes", report.scenes,
+                      "`talus-scenes --format jsonl` output to add as the large-scenes section");
+  return command;
+}
 
-  CheckOptions check;
-  CLI::App* checkCommand =
+// `check`: every Talus variant's metrics against the scenario tolerances.
+CLI::App* AddCheckCommand(CLI::App& app, CheckOptions& check) {
+  CLI::App* command =
       app.add_subcommand("check", "check every Talus variant's metrics against the scenario tolerances");
-  checkCommand->add_option(
-      "scenarios", check.scenarios,
-      "scenario files or folders the verdicts are re-derived from (default: scenarios/)");
-  checkCommand->add_option(
+  command->add_option("scenarios", check.scenarios,
+                      "scenario files or folders the verdicts are re-derived from (default: scenarios/)");
+  command->add_option(
       "-r,--results", check.results,
       "check this results.json instead of running (it must hold exactly the scenarios' runs)");
-  checkCommand
+  command
       ->add_option(
           "-b,--backend", check.backends,
           "backends whose metrics are checked (repeat or comma-separate; default: every Talus variant)")
       ->delimiter(',');
-  checkCommand->add_option("-j,--jobs", check.jobs, "threads (0 = every core)")->check(kJobsRange);
-  checkCommand->add_flag("-q,--quiet", check.quiet, "no progress on stderr");
+  command->add_option("-j,--jobs", check.jobs, "threads (0 = every core)")->check(kJobsRange);
+  command->add_flag("-q,--quiet", check.quiet, "no progress on stderr");
+  return command;
+}
 
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace talus::testbed;
+  CLI::App app{"Talus testbed: runs scenarios through Talus, Bullet and ODE, reports and checks accuracy"};
+  app.require_subcommand(1);
+  RunOptions run;
+  CLI::App* runCommand = AddRunCommand(app, run);
+  ReportOptions report;
+  CLI::App* reportCommand = AddReportCommand(app, report);
+  CheckOptions check;
+  AddCheckCommand(app, check);
   CommandAction chosen;
   AddSweepCommand(app, chosen);
   AddMergeCommand(app, chosen);

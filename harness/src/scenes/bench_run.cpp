@@ -155,6 +155,88 @@ std::string BenchSolverLabel(const BenchSolver& solver) {
   return label;
 }
 
+namespace {
+
+// The scene at `parameter`, its dynamic bodies moved by the perturbation
+// when there is one.
+Result<Scenario> BuildBenchScenario(const BenchScene& scene, int parameter,
+                                    const std::optional<BenchPerturbation>& perturbation) {
+  auto built = scene.make(parameter);
+  if (!built) return built.GetError();
+  if (perturbation) {
+    built = PerturbDynamicPositions(std::move(built.Value()), perturbation->amount, perturbation->seed);
+    if (!built) return built.GetError();
+  }
+  return built;
+}
+
+// The run a backend is created for: the scenario at h / N for N substeps.
+Run MakeBenchRun(const Scenario& scenario, int steps, const BenchSolver& solver) {
+  Run run;
+  run.id = scenario.name;
+  run.scenario = scenario;
+  // Substeps: every engine steps N times with h / N (none of the backends
+  // exposes a substep setting of its own; Bullet's stepSimulation(h, N,
+  // h / N) would take the same N internal steps).
+  run.timeStep = scenario.world.timeStep / solver.substeps;
+  run.iterations = solver.iterations != 0 ? solver.iterations : scenario.world.iterations;
+  run.steps = steps * solver.substeps;
+  return run;
+}
+
+// Steps the backend `steps` times (each its substeps, timed as one) and
+// records the times, the stages and the contact count in `report`. The
+// pyramid's horizontal centres at the drift's start step are returned
+// (empty for other scenes).
+Result<std::vector<Vec3>> RunTimedSteps(Backend& backend, const BenchScene& scene, int steps,
+                                        const BenchSolver& solver, const BenchProgress& progress,
+                                        BenchReport& report) {
+  const int driftStart = std::min(kPyramidDriftStartStep, steps);
+  std::vector<Vec3> startCenters;
+  StageRecorder stages;
+  double totalMs = 0.0;
+  double longestMs = 0.0;
+  for (int step = 1; step <= steps; ++step) {
+    double stepMs = 0.0;
+    for (int substep = 0; substep < solver.substeps; ++substep) {
+      const auto begin = std::chrono::steady_clock::now();
+      backend.Step();
+      const auto end = std::chrono::steady_clock::now();
+      stepMs += std::chrono::duration<double, std::milli>(end - begin).count();
+      if (auto refused = stages.Add(backend.StageTimings(), step)) return *refused;
+    }
+    stages.EndStep();
+    totalMs += stepMs;
+    longestMs = std::max(longestMs, stepMs);
+    report.maxContacts = std::max(report.maxContacts, static_cast<int>(backend.GetContacts().size()));
+    if (scene.kind == BenchSceneKind::Pyramid && step == driftStart) {
+      startCenters = HorizontalCenters(backend, report.bodies);
+    }
+    if (progress) progress(step, steps);
+  }
+  report.totalMs = totalMs;
+  report.msMean = totalMs / static_cast<double>(steps);
+  report.msMax = longestMs;
+  report.stages = stages.Stages(steps);
+  return startCenters;
+}
+
+// The pyramid's drift: the largest horizontal move of a body's centre
+// since the start step, NaN when a body exploded.
+double PyramidDrift(const Backend& backend, int dynamicBodies, const std::vector<Vec3>& startCenters) {
+  const std::vector<Vec3> endCenters = HorizontalCenters(backend, dynamicBodies);
+  double drift = 0.0;
+  for (size_t index = 0; index < endCenters.size(); ++index) {
+    const double moved = (endCenters[index] - startCenters[index]).norm();
+    // A NaN distance (an exploded body) must not hide behind std::max.
+    drift = std::isnan(moved) ? moved : std::max(drift, moved);
+    if (std::isnan(drift)) break;
+  }
+  return drift;
+}
+
+}  // namespace
+
 Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_view engine,
                                   const BenchScene& scene, int parameter, int steps,
                                   const BenchProgress& progress,
@@ -162,12 +244,8 @@ Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_v
                                   const BenchSolver& solver) {
   if (steps < 1) return Error{"steps = " + std::to_string(steps) + ": must be >= 1"};
   if (auto problem = BenchSolverProblem(engine, solver)) return Error{*problem};
-  auto built = scene.make(parameter);
+  auto built = BuildBenchScenario(scene, parameter, perturbation);
   if (!built) return built.GetError();
-  if (perturbation) {
-    built = PerturbDynamicPositions(std::move(built.Value()), perturbation->amount, perturbation->seed);
-    if (!built) return built.GetError();
-  }
   const Scenario& scenario = built.Value();
   const int dynamicBodies = CountDynamicBodies(scenario);
 
@@ -189,58 +267,15 @@ Result<BenchReport> RunBenchScene(const BackendRegistry& registry, std::string_v
     return report;
   }
 
-  Run run;
-  run.id = scenario.name;
-  run.scenario = scenario;
-  // Substeps: every engine steps N times with h / N (none of the backends
-  // exposes a substep setting of its own; Bullet's stepSimulation(h, N,
-  // h / N) would take the same N internal steps).
-  run.timeStep = scenario.world.timeStep / solver.substeps;
-  run.iterations = solver.iterations != 0 ? solver.iterations : scenario.world.iterations;
-  run.steps = steps * solver.substeps;
+  const Run run = MakeBenchRun(scenario, steps, solver);
   auto created = registry.Create(engine, run);
   if (!created) return created.GetError();
   Backend& backend = *created.Value();
   backend.TimeStages();
-
-  const int driftStart = std::min(kPyramidDriftStartStep, steps);
-  std::vector<Vec3> startCenters;
-  StageRecorder stages;
-  double totalMs = 0.0;
-  double longestMs = 0.0;
-  for (int step = 1; step <= steps; ++step) {
-    double stepMs = 0.0;
-    for (int substep = 0; substep < solver.substeps; ++substep) {
-      const auto begin = std::chrono::steady_clock::now();
-      backend.Step();
-      const auto end = std::chrono::steady_clock::now();
-      stepMs += std::chrono::duration<double, std::milli>(end - begin).count();
-      if (auto refused = stages.Add(backend.StageTimings(), step)) return *refused;
-    }
-    stages.EndStep();
-    totalMs += stepMs;
-    longestMs = std::max(longestMs, stepMs);
-    report.maxContacts = std::max(report.maxContacts, static_cast<int>(backend.GetContacts().size()));
-    if (scene.kind == BenchSceneKind::Pyramid && step == driftStart) {
-      startCenters = HorizontalCenters(backend, dynamicBodies);
-    }
-    if (progress) progress(step, steps);
-  }
-  report.totalMs = totalMs;
-  report.msMean = totalMs / static_cast<double>(steps);
-  report.msMax = longestMs;
-  report.stages = stages.Stages(steps);
-
+  auto startCenters = RunTimedSteps(backend, scene, steps, solver, progress, report);
+  if (!startCenters) return startCenters.GetError();
   if (scene.kind == BenchSceneKind::Pyramid) {
-    const std::vector<Vec3> endCenters = HorizontalCenters(backend, dynamicBodies);
-    double drift = 0.0;
-    for (size_t index = 0; index < endCenters.size(); ++index) {
-      const double moved = (endCenters[index] - startCenters[index]).norm();
-      // A NaN distance (an exploded body) must not hide behind std::max.
-      drift = std::isnan(moved) ? moved : std::max(drift, moved);
-      if (std::isnan(drift)) break;
-    }
-    report.drift = drift;
+    report.drift = PyramidDrift(backend, dynamicBodies, startCenters.Value());
   } else {
     MeasureHullPile(backend, scenario, dynamicBodies, parameter, report);
   }

@@ -18,6 +18,10 @@
 //   "talus-coloured" the defaults with the coloured wide solver
 //                    (ContactOrder::ByColour: pairs coloured, four
 //                    per SIMD bundle) and the per-point friction it has.
+//   "talus-soft"     the defaults with the soft step (MethodSettings::
+//                    stepSolver = SoftStep: sub-stepped soft contacts).
+//
+// Every departure is a method switch (WorldSettings::methods).
 //
 // What a scenario states, common to all: gravity; iterations from the run
 // (0 = the engine's default, 10); the combine rules (restitution "sqrt" has
@@ -49,13 +53,13 @@ struct TalusBackendOptions {
   int threads = 1;
 };
 
-/// Registers "talus", "talus-writeup", "talus-split" and
-/// "talus-coloured". A thread count
+/// Registers "talus", "talus-writeup", "talus-split", "talus-coloured" and
+/// "talus-soft". A thread count
 /// outside [1, kMaxThreads] is refused by every backend's Create, naming it.
 void RegisterTalusBackends(harness::BackendRegistry& registry, TalusBackendOptions options = {});
 
 /// The WorldSettings the Talus row named `row` ("talus", "talus-writeup",
-/// "talus-split", "talus-coloured") runs `run` with, as its backend hands
+/// "talus-split", "talus-coloured", "talus-soft") runs `run` with, as its backend hands
 /// them to World::Create; an Error naming an unknown row, or a scenario the
 /// engine cannot pose (a restitution combine rule it lacks).
 Result<WorldSettings> TalusRowSettings(const harness::Run& run, std::string_view row,
