@@ -36,8 +36,11 @@ namespace talus::harness {
 
 /// The file's "format" value, checked on reading.
 inline constexpr std::string_view kResultsFormat = "talus-testbed-results";
-/// The file's "version" value, checked on reading.
-inline constexpr int kResultsVersion = 1;
+/// The file's "version" value, checked on reading. 2: each backend's
+/// settings and each run's metric definitions in tables at the top, named by
+/// the results (results_tables.h); a file of version 1 repeated them in
+/// every result and is refused with the version this build expects.
+inline constexpr int kResultsVersion = 2;
 
 /// A whole run of the testbed.
 struct ResultsFile {
@@ -56,10 +59,12 @@ struct ResultsFile {
   bool trajectoriesInDisplayForm = false;
 };
 
-/// The trajectory file's "format" value, checked on reading.
+/// The trajectory file's "format" and "version" values, checked on reading.
 inline constexpr std::string_view kTrajectoriesFormat = "talus-testbed-trajectories";
-/// The replay file's "format" value, checked on reading.
+inline constexpr int kTrajectoriesVersion = 1;
+/// The replay file's "format" and "version" values, checked on reading.
 inline constexpr std::string_view kReplaysFormat = "talus-testbed-replays";
+inline constexpr int kReplaysVersion = 1;
 
 /// The results as one JSON text, trajectories inside each result (2-space
 /// indented, ends with a newline).
