@@ -1,5 +1,7 @@
 // The results file of a testbed run (results.json): every RunResult with
-// its metrics, settings, timings and plot series, in the runner's order.
+// its metrics, settings, timings and plot series, in the runner's order;
+// each backend's settings and each run's metric definitions are written
+// once, in tables the results name (results_tables.h in harness/src/run).
 // Schema in docs/testbed-runner.md. NaN numbers (nothing measured, no
 // integrator answer) are written as null and read back as NaN. Writing is
 // deterministic: fixed key order, numbers in shortest round-trip form, so
