@@ -1,7 +1,7 @@
-// Writing and reading results.json and its trajectory file (see
+// Writing and reading results.json and its trajectory and replay files (see
 // results_file.h). Reading walks the document with a path so that a
-// malformed file is reported at the exact place; the walk throws a local
-// exception that never leaves this file.
+// malformed file is reported at the exact place (results_json_walk.h); the
+// walk throws an exception that never leaves the reader.
 #include "talus/harness/run/results_file.h"
 
 #include "talus/harness/support/atomic_file.h"
@@ -18,12 +18,14 @@
 #include <sstream>
 #include <vector>
 
+#include "run/results_json_walk.h"
+#include "run/results_tables.h"
 #include "support/text_util.h"
 
 namespace talus::harness {
 namespace {
 
-using Json = nlohmann::ordered_json;
+using namespace results_json;
 
 // True while RunResultToWire writes: numbers go out exactly as they are
 // (CBOR keeps NaN and infinities), not as JSON's null. Thread-local, so the
@@ -38,24 +40,27 @@ Json NumbersOrNull(const std::vector<double>& values) {
   return array;
 }
 
-Json MetricToJson(const MetricResult& m) {
+// A metric of `run`: in full when `tables` is null (the wire's record);
+// else what was measured, naming its definition (name, unit, tolerance,
+// published figure) in `run`'s list of `tables`.
+Json MetricToJson(const MetricResult& m, ResultsTableWriter* tables, const std::string& run) {
   Json j;
-  j["name"] = m.name;
-  j["unit"] = m.unit;
+  if (tables == nullptr) {
+    j["name"] = m.name;
+    j["unit"] = m.unit;
+  } else {
+    j["definition"] = tables->MetricDefinition(run, m);
+  }
   j["measured"] = Number(m.measured);
   j["truth"] = Number(m.truth);
   j["truthIntegrator"] = Number(m.truthIntegrator);
   j["error"] = Number(m.error);
-  j["tolerance"] = {
-      {"absolute", m.tolerance.absolute}, {"relative", m.tolerance.relative}, {"reason", m.reason}};
+  if (tables == nullptr) j["tolerance"] = ToleranceToJson(m);
   j["checked"] = m.checked;
   j["pass"] = m.pass;
   j["ungated"] = m.ungated;
   // Only metrics of a truth with a published figure carry one.
-  if (!std::isnan(m.publishedValue)) {
-    j["published"] = {
-        {"value", m.publishedValue}, {"upper", Number(m.publishedUpper)}, {"source", m.publishedSource}};
-  }
+  if (tables == nullptr && !std::isnan(m.publishedValue)) j["published"] = PublishedToJson(m, tExactNumbers);
   return j;
 }
 
@@ -77,7 +82,9 @@ void TrajectoryToJson(const RunResult& r, Json& j, bool exact = true, bool withR
 }
 
 // The result; its trajectory too when `withTrajectory` (the one-text form).
-Json ResultToJson(const RunResult& r, bool withTrajectory) {
+// In full when `tables` is null (the wire's record); else its settings and
+// its metrics' definitions go into `tables` and it names them.
+Json ResultToJson(const RunResult& r, bool withTrajectory, ResultsTableWriter* tables) {
   Json j;
   j["scenario"] = r.scenario;
   j["file"] = r.file;
@@ -89,17 +96,15 @@ Json ResultToJson(const RunResult& r, bool withTrajectory) {
   j["iterations"] = r.iterations;
   j["steps"] = r.steps;
   j["bodies"] = r.bodyNames;
-  j["settings"] = Json::array();
-  for (const Setting& s : r.settings) {
-    Json setting = {{"key", s.key}, {"value", s.value}};
-    // Only departures from the engine's defaults carry these two.
-    if (!s.engineDefault.empty()) setting["engineDefault"] = s.engineDefault;
-    if (!s.effect.empty()) setting["effect"] = s.effect;
-    j["settings"].push_back(std::move(setting));
+  if (tables != nullptr) {
+    j["settings"] = tables->SettingsList(r.backend, r.settings);
+  } else {
+    j["settings"] = Json::array();
+    for (const Setting& s : r.settings) j["settings"].push_back(SettingToJson(s));
   }
   j["error"] = r.error;
   j["metrics"] = Json::array();
-  for (const MetricResult& m : r.metrics) j["metrics"].push_back(MetricToJson(m));
+  for (const MetricResult& m : r.metrics) j["metrics"].push_back(MetricToJson(m, tables, r.runId));
   j["wallSecondsPerStep"] = {{"median", r.wallSecondsPerStepMedian}, {"mean", r.wallSecondsPerStepMean}};
   j["wallSeconds"] = {{"total", r.wallSeconds}, {"longestStep", Number(r.wallSecondsLongestStep)}};
   // Only sweep points run with perturbed copies carry this, so files of
@@ -116,88 +121,24 @@ Json ResultToJson(const RunResult& r, bool withTrajectory) {
   return j;
 }
 
-// A malformed document: where and what.
-struct ParseFailure {
-  std::string message;
-};
-
-const Json& Field(const Json& object, const char* key, const std::string& where) {
-  if (!object.is_object()) throw ParseFailure{Concat({where, ": expected an object"})};
-  const auto it = object.find(key);
-  if (it == object.end()) throw ParseFailure{Concat({where, ": missing field \"", key, "\""})};
-  return *it;
-}
-
-std::string Place(const std::string& where, const char* key) { return Concat({where, "/", key}); }
-
-double GetNumber(const Json& object, const char* key, const std::string& where) {
-  const Json& value = Field(object, key, where);
-  if (value.is_null()) return std::numeric_limits<double>::quiet_NaN();
-  if (!value.is_number()) throw ParseFailure{Concat({Place(where, key), ": expected a number"})};
-  return value.get<double>();
-}
-
-int GetInt(const Json& object, const char* key, const std::string& where) {
-  const Json& value = Field(object, key, where);
-  if (!value.is_number_integer()) throw ParseFailure{Concat({Place(where, key), ": expected an integer"})};
-  return value.get<int>();
-}
-
-std::string GetString(const Json& object, const char* key, const std::string& where) {
-  const Json& value = Field(object, key, where);
-  if (!value.is_string()) throw ParseFailure{Concat({Place(where, key), ": expected a string"})};
-  return value.get<std::string>();
-}
-
-bool GetBool(const Json& object, const char* key, const std::string& where) {
-  const Json& value = Field(object, key, where);
-  if (!value.is_boolean()) throw ParseFailure{Concat({Place(where, key), ": expected true or false"})};
-  return value.get<bool>();
-}
-
-const Json& GetArray(const Json& object, const char* key, const std::string& where) {
-  const Json& value = Field(object, key, where);
-  if (!value.is_array()) throw ParseFailure{Concat({Place(where, key), ": expected an array"})};
-  return value;
-}
-
-std::vector<double> GetNumbers(const Json& object, const char* key, const std::string& where) {
-  std::vector<double> numbers;
-  const Json& array = GetArray(object, key, where);
-  for (const Json& value : array) {
-    if (value.is_null()) {
-      numbers.push_back(std::numeric_limits<double>::quiet_NaN());
-    } else if (value.is_number()) {
-      numbers.push_back(value.get<double>());
-    } else {
-      throw ParseFailure{Concat({Place(where, key), ": expected numbers"})};
-    }
+// A metric of `run`: in full when `tables` is null, else with its
+// definition from `run`'s list of `tables`.
+MetricResult MetricFromJson(const Json& j, const std::string& where, const ResultsTables* tables,
+                            const std::string& run) {
+  MetricResult m;
+  if (tables == nullptr) {
+    m = MakeMetric(GetString(j, "name", where), GetString(j, "unit", where));
+    ToleranceAndPublishedFromJson(j, where, m);
+  } else {
+    m = tables->Definition(run, Field(j, "definition", where), Place(where, "definition"));
   }
-  return numbers;
-}
-
-MetricResult MetricFromJson(const Json& j, const std::string& where) {
-  MetricResult m = MakeMetric(GetString(j, "name", where), GetString(j, "unit", where));
   m.measured = GetNumber(j, "measured", where);
   m.truth = GetNumber(j, "truth", where);
   m.truthIntegrator = GetNumber(j, "truthIntegrator", where);
   m.error = GetNumber(j, "error", where);
-  const Json& tolerance = Field(j, "tolerance", where);
-  m.tolerance.absolute = GetNumber(tolerance, "absolute", Place(where, "tolerance"));
-  m.tolerance.relative = GetNumber(tolerance, "relative", Place(where, "tolerance"));
-  // The reason and the ungated note came with the per-backend gate; files
-  // written before them have neither.
-  if (tolerance.contains("reason")) m.reason = GetString(tolerance, "reason", Place(where, "tolerance"));
   m.checked = GetBool(j, "checked", where);
   m.pass = GetBool(j, "pass", where);
-  if (j.contains("ungated")) m.ungated = GetString(j, "ungated", where);
-  if (j.contains("published")) {
-    const Json& published = Field(j, "published", where);
-    const std::string place = Place(where, "published");
-    m.publishedValue = GetNumber(published, "value", place);
-    m.publishedUpper = GetNumber(published, "upper", place);
-    m.publishedSource = GetString(published, "source", place);
-  }
+  m.ungated = GetString(j, "ungated", where);
   return m;
 }
 
@@ -215,13 +156,16 @@ void TrajectoryFromJson(const Json& j, const std::string& where, RunResult& r) {
   }
   if (j.contains("replay")) {
     auto replay = ReplayFromJson(j["replay"], Place(where, "replay"));
-    if (!replay) throw ParseFailure{replay.GetError().message};
+    if (!replay) throw ResultsParseFailure{replay.GetError().message};
     r.replay = std::move(replay).Value();
   }
 }
 
 // The result; its trajectory too when `withTrajectory` (the one-text form).
-RunResult ResultFromJson(const Json& j, const std::string& where, bool withTrajectory) {
+// In full when `tables` is null (the wire's record); else naming its
+// settings and its metrics' definitions in `tables`.
+RunResult ResultFromJson(const Json& j, const std::string& where, bool withTrajectory,
+                         const ResultsTables* tables) {
   RunResult r;
   r.scenario = GetString(j, "scenario", where);
   r.file = GetString(j, "file", where);
@@ -236,22 +180,22 @@ RunResult ResultFromJson(const Json& j, const std::string& where, bool withTraje
   r.iterations = GetInt(j, "iterations", where);
   r.steps = GetInt(j, "steps", where);
   for (const Json& name : GetArray(j, "bodies", where)) {
-    if (!name.is_string()) throw ParseFailure{Concat({where, "/bodies: expected strings"})};
+    if (!name.is_string()) throw ResultsParseFailure{Concat({where, "/bodies: expected strings"})};
     r.bodyNames.push_back(name.get<std::string>());
   }
-  const Json& settings = GetArray(j, "settings", where);
-  for (std::size_t i = 0; i < settings.size(); ++i) {
-    const std::string at = Concat({where, "/settings/", std::to_string(i)});
-    Setting setting{GetString(settings[i], "key", at), GetString(settings[i], "value", at)};
-    if (settings[i].contains("engineDefault"))
-      setting.engineDefault = GetString(settings[i], "engineDefault", at);
-    if (settings[i].contains("effect")) setting.effect = GetString(settings[i], "effect", at);
-    r.settings.push_back(std::move(setting));
+  if (tables != nullptr) {
+    r.settings = tables->Settings(r.backend, Field(j, "settings", where), Place(where, "settings"));
+  } else {
+    const Json& settings = GetArray(j, "settings", where);
+    for (std::size_t i = 0; i < settings.size(); ++i) {
+      r.settings.push_back(SettingFromJson(settings[i], Concat({where, "/settings/", std::to_string(i)})));
+    }
   }
   r.error = GetString(j, "error", where);
   const Json& metrics = GetArray(j, "metrics", where);
   for (std::size_t i = 0; i < metrics.size(); ++i) {
-    r.metrics.push_back(MetricFromJson(metrics[i], Concat({where, "/metrics/", std::to_string(i)})));
+    r.metrics.push_back(
+        MetricFromJson(metrics[i], Concat({where, "/metrics/", std::to_string(i)}), tables, r.runId));
   }
   const Json& wall = Field(j, "wallSecondsPerStep", where);
   r.wallSecondsPerStepMedian = GetNumber(wall, "median", Place(where, "wallSecondsPerStep"));
@@ -282,13 +226,14 @@ RunResult ResultFromJson(const Json& j, const std::string& where, bool withTraje
         if (std::isnan(error)) error = std::numeric_limits<double>::infinity();
       }
       if (r.perturbed.errors.size() != r.perturbed.runSeconds.size()) {
-        throw ParseFailure{Concat({place, ": need one error per run (copies + 1)"})};
+        throw ResultsParseFailure{Concat({place, ": need one error per run (copies + 1)"})};
       }
     }
     if (r.perturbed.copies < 1 ||
         r.perturbed.runSeconds.size() != static_cast<std::size_t>(r.perturbed.copies) + 1 ||
         !(r.perturbed.errorSpread >= 0.0)) {
-      throw ParseFailure{Concat({place, ": need copies >= 1, copies + 1 runSeconds and errorSpread >= 0"})};
+      throw ResultsParseFailure{
+          Concat({place, ": need copies >= 1, copies + 1 runSeconds and errorSpread >= 0"})};
     }
   }
   if (withTrajectory) TrajectoryFromJson(j, where, r);
@@ -304,8 +249,13 @@ Json ResultsJson(const ResultsFile& file, bool withTrajectories) {
   j["backends"] = file.backends;
   // Only the file form says so: its trajectories are in the trajectory file.
   if (!withTrajectories) j["trajectories"] = file.results.size();
-  j["results"] = Json::array();
-  for (const RunResult& r : file.results) j["results"].push_back(ResultToJson(r, withTrajectories));
+  // The tables come before the results that fill them (results_tables.h).
+  ResultsTableWriter tables;
+  Json results = Json::array();
+  for (const RunResult& r : file.results) results.push_back(ResultToJson(r, withTrajectories, &tables));
+  j["settings"] = tables.SettingsJson();
+  j["metricDefinitions"] = tables.MetricDefinitionsJson();
+  j["results"] = std::move(results);
   return j;
 }
 
@@ -325,7 +275,7 @@ bool WrittenExact(const ResultsFile& file) { return file.fullTrajectories || fil
 std::string TrajectoriesToJson(const ResultsFile& file) {
   Json head;
   head["format"] = kTrajectoriesFormat;
-  head["version"] = kResultsVersion;
+  head["version"] = kTrajectoriesVersion;
   head["resolution"] = file.fullTrajectories ? "full" : "display";
   head["replays"] = ReplayCount(file);
   std::string text = head.dump();
@@ -348,7 +298,7 @@ std::string TrajectoriesToJson(const ResultsFile& file) {
 std::string ReplaysToJson(const ResultsFile& file) {
   Json head;
   head["format"] = kReplaysFormat;
-  head["version"] = kResultsVersion;
+  head["version"] = kReplaysVersion;
   std::string text = head.dump();
   text.pop_back();  // the closing brace: the replays follow
   text += ",\"replays\":[";
@@ -371,33 +321,33 @@ std::string ReplaysToJson(const ResultsFile& file) {
 // increasing result order, each naming its result's run and backend.
 void ReadReplays(const Json& j, std::size_t expected, ResultsFile& file) {
   if (GetString(j, "format", "") != kReplaysFormat) {
-    throw ParseFailure{Concat({"/format: not a \"", kReplaysFormat, "\" file"})};
+    throw ResultsParseFailure{Concat({"/format: not a \"", kReplaysFormat, "\" file"})};
   }
-  if (GetInt(j, "version", "") != kResultsVersion) {
-    throw ParseFailure{Concat({"/version: unsupported, expected ", std::to_string(kResultsVersion)})};
+  if (GetInt(j, "version", "") != kReplaysVersion) {
+    throw ResultsParseFailure{Concat({"/version: unsupported, expected ", std::to_string(kReplaysVersion)})};
   }
   const Json& lines = GetArray(j, "replays", "");
   if (lines.size() != expected) {
-    throw ParseFailure{Concat({"/replays: ", std::to_string(lines.size()),
-                               " replays where the trajectory file says ", std::to_string(expected)})};
+    throw ResultsParseFailure{Concat({"/replays: ", std::to_string(lines.size()),
+                                      " replays where the trajectory file says ", std::to_string(expected)})};
   }
   int previous = -1;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const std::string where = Concat({"/replays/", std::to_string(i)});
     const int index = GetInt(lines[i], "result", where);
     if (index <= previous || index >= static_cast<int>(file.results.size())) {
-      throw ParseFailure{Concat({where, ": result ", std::to_string(index), " is not after result ",
-                                 std::to_string(previous), " and within the ",
-                                 std::to_string(file.results.size()), " results"})};
+      throw ResultsParseFailure{Concat({where, ": result ", std::to_string(index), " is not after result ",
+                                        std::to_string(previous), " and within the ",
+                                        std::to_string(file.results.size()), " results"})};
     }
     previous = index;
     RunResult& r = file.results[static_cast<std::size_t>(index)];
     if (GetString(lines[i], "run", where) != r.runId || GetString(lines[i], "backend", where) != r.backend) {
-      throw ParseFailure{Concat({where, ": not the replay of result ", std::to_string(index), " (", r.runId,
-                                 " with ", r.backend, ")"})};
+      throw ResultsParseFailure{Concat({where, ": not the replay of result ", std::to_string(index), " (",
+                                        r.runId, " with ", r.backend, ")"})};
     }
     auto replay = ReplayFromJson(Field(lines[i], "replay", where), Place(where, "replay"));
-    if (!replay) throw ParseFailure{replay.GetError().message};
+    if (!replay) throw ResultsParseFailure{replay.GetError().message};
     r.replay = std::move(replay).Value();
   }
 }
@@ -408,21 +358,23 @@ void ReadReplays(const Json& j, std::size_t expected, ResultsFile& file) {
 // written before the replays had their own (they are inside its lines).
 int ReadTrajectories(const Json& j, ResultsFile& file) {
   if (GetString(j, "format", "") != kTrajectoriesFormat) {
-    throw ParseFailure{Concat({"/format: not a \"", kTrajectoriesFormat, "\" file"})};
+    throw ResultsParseFailure{Concat({"/format: not a \"", kTrajectoriesFormat, "\" file"})};
   }
-  if (GetInt(j, "version", "") != kResultsVersion) {
-    throw ParseFailure{Concat({"/version: unsupported, expected ", std::to_string(kResultsVersion)})};
+  if (GetInt(j, "version", "") != kTrajectoriesVersion) {
+    throw ResultsParseFailure{
+        Concat({"/version: unsupported, expected ", std::to_string(kTrajectoriesVersion)})};
   }
   // Files written before the display form have no "resolution" and are exact.
   const std::string resolution = j.contains("resolution") ? GetString(j, "resolution", "") : "full";
   if (resolution != "full" && resolution != "display") {
-    throw ParseFailure{Concat({"/resolution: \"", resolution, "\", expected \"full\" or \"display\""})};
+    throw ResultsParseFailure{
+        Concat({"/resolution: \"", resolution, "\", expected \"full\" or \"display\""})};
   }
   file.fullTrajectories = resolution == "full";
   file.trajectoriesInDisplayForm = !file.fullTrajectories;
   const Json& lines = GetArray(j, "trajectories", "");
   if (lines.size() != file.results.size()) {
-    throw ParseFailure{
+    throw ResultsParseFailure{
         Concat({"/trajectories: ", std::to_string(lines.size()), " trajectories for a results file of ",
                 std::to_string(file.results.size()), " results"})};
   }
@@ -431,14 +383,14 @@ int ReadTrajectories(const Json& j, ResultsFile& file) {
     RunResult& r = file.results[i];
     if (GetInt(lines[i], "result", where) != static_cast<int>(i) ||
         GetString(lines[i], "run", where) != r.runId || GetString(lines[i], "backend", where) != r.backend) {
-      throw ParseFailure{Concat({where, ": not the trajectory of result ", std::to_string(i), " (", r.runId,
-                                 " with ", r.backend, ")"})};
+      throw ResultsParseFailure{Concat({where, ": not the trajectory of result ", std::to_string(i), " (",
+                                        r.runId, " with ", r.backend, ")"})};
     }
     TrajectoryFromJson(lines[i], where, r);
   }
   if (!j.contains("replays")) return -1;
   const int replays = GetInt(j, "replays", "");
-  if (replays < 0) throw ParseFailure{"/replays: expected a count >= 0"};
+  if (replays < 0) throw ResultsParseFailure{"/replays: expected a count >= 0"};
   return replays;
 }
 
@@ -459,8 +411,11 @@ Result<ResultsFile> ParseResults(std::string_view text, const TrajectorySource& 
     if (GetString(j, "format", "") != kResultsFormat) {
       return Error{Concat({"/format: not a \"", kResultsFormat, "\" file"})};
     }
-    if (GetInt(j, "version", "") != kResultsVersion) {
-      return Error{Concat({"/version: unsupported, expected ", std::to_string(kResultsVersion)})};
+    if (const int version = GetInt(j, "version", ""); version != kResultsVersion) {
+      return Error{
+          Concat({"/version: ", std::to_string(version), ", expected ", std::to_string(kResultsVersion),
+                  version < kResultsVersion ? " (an older build's file: run it again with this build)"
+                                            : " (a newer build's file)"})};
     }
     file.deterministic = GetBool(j, "deterministic", "");
     for (const Json& name : GetArray(j, "backends", "")) {
@@ -472,10 +427,12 @@ Result<ResultsFile> ParseResults(std::string_view text, const TrajectorySource& 
     if (split && GetInt(j, "trajectories", "") != static_cast<int>(results.size())) {
       return Error{"/trajectories: expected the number of results"};
     }
+    const ResultsTables tables = ResultsTables::Read(j);
     for (std::size_t i = 0; i < results.size(); ++i) {
-      file.results.push_back(ResultFromJson(results[i], Concat({"/results/", std::to_string(i)}), !split));
+      file.results.push_back(
+          ResultFromJson(results[i], Concat({"/results/", std::to_string(i)}), !split, &tables));
     }
-  } catch (const ParseFailure& failure) {
+  } catch (const ResultsParseFailure& failure) {
     return Error{failure.message};
   }
   if (!split) {
@@ -489,7 +446,7 @@ Result<ResultsFile> ParseResults(std::string_view text, const TrajectorySource& 
   int replays = -1;
   try {
     replays = ReadTrajectories(trajectories, file);
-  } catch (const ParseFailure& failure) {
+  } catch (const ResultsParseFailure& failure) {
     return Error{Concat({source.name, ": ", failure.message})};
   }
   if (replays < 0) return file;
@@ -499,7 +456,7 @@ Result<ResultsFile> ParseResults(std::string_view text, const TrajectorySource& 
   if (replayJson.is_discarded()) return Error{Concat({replaySource.name, ": not valid JSON"})};
   try {
     ReadReplays(replayJson, static_cast<std::size_t>(replays), file);
-  } catch (const ParseFailure& failure) {
+  } catch (const ResultsParseFailure& failure) {
     return Error{Concat({replaySource.name, ": ", failure.message})};
   }
   return file;
@@ -547,7 +504,7 @@ std::string RunResultToWire(const RunResult& result) {
   tExactNumbers = true;
   std::vector<std::uint8_t> bytes;
   try {
-    bytes = Json::to_cbor(ResultToJson(result, true));
+    bytes = Json::to_cbor(ResultToJson(result, true, nullptr));
   } catch (...) {
     tExactNumbers = false;
     throw;
@@ -560,8 +517,8 @@ Result<RunResult> RunResultFromWire(std::string_view bytes) {
   const Json j = Json::from_cbor(bytes.begin(), bytes.end(), true, false);
   if (j.is_discarded()) return Error{"not a serialised run result"};
   try {
-    return ResultFromJson(j, "result", true);
-  } catch (const ParseFailure& failure) {
+    return ResultFromJson(j, "result", true, nullptr);
+  } catch (const ResultsParseFailure& failure) {
     return Error{failure.message};
   }
 }

@@ -1,5 +1,7 @@
 // The results file of a testbed run (results.json): every RunResult with
-// its metrics, settings, timings and plot series, in the runner's order.
+// its metrics, settings, timings and plot series, in the runner's order;
+// each backend's settings and each run's metric definitions are written
+// once, in tables the results name (results_tables.h in harness/src/run).
 // Schema in docs/testbed-runner.md. NaN numbers (nothing measured, no
 // integrator answer) are written as null and read back as NaN. Writing is
 // deterministic: fixed key order, numbers in shortest round-trip form, so
@@ -36,8 +38,11 @@ namespace talus::harness {
 
 /// The file's "format" value, checked on reading.
 inline constexpr std::string_view kResultsFormat = "talus-testbed-results";
-/// The file's "version" value, checked on reading.
-inline constexpr int kResultsVersion = 1;
+/// The file's "version" value, checked on reading. 2: each backend's
+/// settings and each run's metric definitions in tables at the top, named by
+/// the results (results_tables.h); a file of version 1 repeated them in
+/// every result and is refused with the version this build expects.
+inline constexpr int kResultsVersion = 2;
 
 /// A whole run of the testbed.
 struct ResultsFile {
@@ -56,10 +61,12 @@ struct ResultsFile {
   bool trajectoriesInDisplayForm = false;
 };
 
-/// The trajectory file's "format" value, checked on reading.
+/// The trajectory file's "format" and "version" values, checked on reading.
 inline constexpr std::string_view kTrajectoriesFormat = "talus-testbed-trajectories";
-/// The replay file's "format" value, checked on reading.
+inline constexpr int kTrajectoriesVersion = 1;
+/// The replay file's "format" and "version" values, checked on reading.
 inline constexpr std::string_view kReplaysFormat = "talus-testbed-replays";
+inline constexpr int kReplaysVersion = 1;
 
 /// The results as one JSON text, trajectories inside each result (2-space
 /// indented, ends with a newline).
