@@ -310,242 +310,300 @@ std::string DeathReason(const Worker& worker, int status, double killAfter) {
   return "the job's process ended in an unknown way";
 }
 
+using Work = std::function<std::string(std::size_t)>;
+using Done = std::function<void(std::size_t, JobOutcome)>;
+
+// The pool of RunInChildProcesses: `slots` workers, jobs handed out in
+// index order as workers come free, each outcome passed to `done` as its
+// answer or its worker's death arrives. Members are declared in the order
+// they must be built and torn down: SIGPIPE ignored first and restored
+// last, the Reaper after the workers it kills.
+class WorkerPool {
+ public:
+  WorkerPool(std::size_t count, std::size_t slots, const ProcessLimits& limits, const Work& work,
+             const Done& done)
+      : m_count(count),
+        m_limits(limits),
+        m_work(work),
+        m_done(done),
+        m_steps(slots),
+        m_workers(slots),
+        m_reaper(m_workers),
+        m_buffer(1 << 16) {}
+
+  // Until every job has its outcome and every worker is buried.
+  void Run() {
+    while (m_finished < m_count || AnyWorkerAlive()) {
+      for (std::size_t slot = 0; slot < m_workers.size(); ++slot) Feed(slot);
+      if (!WaitAndRead(MillisecondsToNearestLimit())) continue;
+      KillOverdue();
+    }
+  }
+
+ private:
+  bool AnyWorkerAlive() const {
+    return std::any_of(m_workers.begin(), m_workers.end(), [](const Worker& w) { return w.pid > 0; });
+  }
+
+  // Counts the job as finished and hands its outcome on.
+  void Finish(std::size_t job, JobOutcome outcome) {
+    ++m_finished;
+    m_done(job, std::move(outcome));
+  }
+
+  std::string StartWorker(std::size_t slot);
+  void Feed(std::size_t slot);
+  void Bury(std::size_t slot);
+  void TakeAnswers(std::size_t slot);
+  int MillisecondsToNearestLimit() const;
+  bool WaitAndRead(int timeoutMs);
+  void KillOverdue();
+
+  const std::size_t m_count;
+  const ProcessLimits& m_limits;
+  const Work& m_work;
+  const Done& m_done;
+  const IgnoreSigpipe m_sigpipe;
+  StepSlots m_steps;
+  std::vector<Worker> m_workers;
+  const Reaper m_reaper;
+  std::vector<char> m_buffer;
+  std::size_t m_next = 0;      // the next job to hand out
+  std::size_t m_finished = 0;  // jobs whose outcome went to `done`
+  std::vector<pollfd> m_polled;
+  std::vector<std::size_t> m_polledSlot;
+};
+
+// Starts the worker of `slot`; the reason when a pipe or the fork failed.
+std::string WorkerPool::StartWorker(std::size_t slot) {
+  int command[2];
+  int answer[2];
+  int err[2];
+  if (::pipe2(command, O_CLOEXEC) != 0) return Concat({"pipe: ", std::strerror(errno)});
+  if (::pipe2(answer, O_CLOEXEC) != 0) {
+    const std::string reason = Concat({"pipe: ", std::strerror(errno)});
+    ::close(command[0]);
+    ::close(command[1]);
+    return reason;
+  }
+  if (::pipe2(err, O_CLOEXEC) != 0) {
+    const std::string reason = Concat({"pipe: ", std::strerror(errno)});
+    for (int fd : {command[0], command[1], answer[0], answer[1]}) ::close(fd);
+    return reason;
+  }
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    // The other workers' pipe ends must not stay open here: a worker
+    // holding another's command pipe would keep it from ever seeing its end.
+    for (Worker& other : m_workers) {
+      for (int fd : {other.commandFd, other.answerFd, other.stderrFd}) {
+        if (fd >= 0) ::close(fd);
+      }
+    }
+    ::close(command[1]);
+    ::close(answer[0]);
+    ::close(err[0]);
+    BeWorker(m_limits, m_work, command[0], answer[1], err[1], &m_steps[slot]);
+  }
+  ::close(command[0]);
+  ::close(answer[1]);
+  ::close(err[1]);
+  if (pid < 0) {
+    const std::string reason = Concat({"fork: ", std::strerror(errno)});
+    for (int fd : {command[1], answer[0], err[0]}) ::close(fd);
+    return reason;
+  }
+  ::fcntl(answer[0], F_SETFL, O_NONBLOCK);
+  ::fcntl(err[0], F_SETFL, O_NONBLOCK);
+  Worker& worker = m_workers[slot];
+  worker = Worker{};
+  worker.pid = pid;
+  worker.commandFd = command[1];
+  worker.answerFd = answer[0];
+  worker.stderrFd = err[0];
+  worker.slot = slot;
+  return {};
+}
+
+// Hands the next job to an idle worker of `slot` (starting it if need
+// be), or lets it retire when none is left.
+void WorkerPool::Feed(std::size_t slot) {
+  Worker& worker = m_workers[slot];
+  if (worker.busy || worker.retiring) return;
+  if (m_next == m_count) {
+    if (worker.pid > 0) {
+      worker.retiring = true;
+      CloseFd(worker.commandFd);
+    }
+    return;
+  }
+  if (worker.pid <= 0) {
+    if (const std::string refused = StartWorker(slot); !refused.empty()) {
+      JobOutcome outcome;
+      outcome.failure = Concat({"could not start the job's process: ", refused});
+      Finish(m_next++, std::move(outcome));
+      return;
+    }
+  }
+  const std::uint64_t index = m_next;
+  worker.busy = true;
+  worker.job = m_next++;
+  worker.started = Clock::now();
+  worker.killedForTime = false;
+  worker.stderrTail.clear();
+  m_steps[slot].store(kJobNotStepping, std::memory_order_relaxed);
+  // A worker that died since its last answer shows as EPIPE here and as
+  // the end of its answer pipe below, which ends this job with its cause.
+  WriteAll(worker.commandFd, reinterpret_cast<const char*>(&index), sizeof index);
+}
+
+// The worker of `slot` has ended (its answer pipe closed): its job, if
+// any, ends with the cause; the slot is free for a new worker.
+void WorkerPool::Bury(std::size_t slot) {
+  Worker& worker = m_workers[slot];
+  if (worker.stderrFd >= 0) {
+    // Blocking now: the worker is gone or going, its stderr ends with it.
+    ::fcntl(worker.stderrFd, F_SETFL, 0);
+    Drain(worker.stderrFd, m_buffer,
+          [&](const char* data, std::size_t size) { TakeStderr(worker, data, size); });
+    CloseFd(worker.stderrFd);
+  }
+  if (!worker.stderrLine.empty()) {
+    worker.stderrLine.push_back('\n');
+    WriteAll(STDERR_FILENO, worker.stderrLine.data(), worker.stderrLine.size());
+    worker.stderrLine.clear();
+  }
+  int status = 0;
+  while (::waitpid(worker.pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  CloseFd(worker.commandFd);
+  CloseFd(worker.answerFd);
+  const bool wasBusy = worker.busy;
+  JobOutcome outcome;
+  if (wasBusy) {
+    outcome.failure = DeathReason(worker, status, m_limits.killAfterSeconds);
+    outcome.killedForTime = worker.killedForTime;
+    outcome.step = m_steps[slot].load(std::memory_order_relaxed);
+    outcome.lastMessage = LastLines(worker.stderrTail);
+    outcome.wallSeconds = std::chrono::duration<double>(Clock::now() - worker.started).count();
+  }
+  const std::size_t job = worker.job;
+  worker = Worker{};
+  if (wasBusy) Finish(job, std::move(outcome));
+}
+
+// Complete answer frames in a worker's buffer go to `done`.
+void WorkerPool::TakeAnswers(std::size_t slot) {
+  Worker& worker = m_workers[slot];
+  constexpr std::size_t kHeader = 1 + sizeof(std::uint64_t);
+  while (worker.busy && worker.answer.size() >= kHeader) {
+    std::uint64_t size = 0;
+    std::memcpy(&size, worker.answer.data() + 1, sizeof size);
+    if (worker.answer.size() - kHeader < size) return;
+    // Its stderr was written before its answer: take all of it first.
+    if (worker.stderrFd >= 0) {
+      Drain(worker.stderrFd, m_buffer, [&](const char* data, std::size_t n) { TakeStderr(worker, data, n); });
+    }
+    JobOutcome outcome;
+    outcome.wallSeconds = std::chrono::duration<double>(Clock::now() - worker.started).count();
+    outcome.step = m_steps[slot].load(std::memory_order_relaxed);
+    const std::string body = worker.answer.substr(kHeader, static_cast<std::size_t>(size));
+    if (worker.answer[0] == kAnswerTag) {
+      outcome.finished = true;
+      outcome.answer = body;
+    } else {
+      outcome.failure = body;
+      outcome.lastMessage = LastLines(worker.stderrTail);
+      worker.retiring = true;  // it exits after a failed job
+      CloseFd(worker.commandFd);
+    }
+    worker.answer.erase(0, kHeader + static_cast<std::size_t>(size));
+    worker.busy = false;
+    Finish(worker.job, std::move(outcome));
+  }
+}
+
+// How long poll may wait: until the nearest busy worker's time limit
+// (at least 0 ms), or for ever (-1) without a limit or a busy worker.
+int WorkerPool::MillisecondsToNearestLimit() const {
+  int timeoutMs = -1;
+  if (m_limits.killAfterSeconds <= 0.0) return timeoutMs;
+  const auto now = Clock::now();
+  for (const Worker& worker : m_workers) {
+    if (!worker.busy || worker.killedForTime) continue;
+    const double left =
+        m_limits.killAfterSeconds - std::chrono::duration<double>(now - worker.started).count();
+    const int ms = left <= 0.0 ? 0 : static_cast<int>(std::min(left * 1000.0 + 1.0, 1e9));
+    timeoutMs = timeoutMs < 0 ? ms : std::min(timeoutMs, ms);
+  }
+  return timeoutMs;
+}
+
+// Waits for output from any worker or `timeoutMs`, then passes stderr on,
+// takes complete answers and buries workers whose answer pipe closed.
+// False when no worker has a pipe open (nothing to wait for).
+bool WorkerPool::WaitAndRead(int timeoutMs) {
+  m_polled.clear();
+  m_polledSlot.clear();
+  for (std::size_t slot = 0; slot < m_workers.size(); ++slot) {
+    const Worker& worker = m_workers[slot];
+    if (worker.answerFd >= 0) {
+      m_polled.push_back({worker.answerFd, POLLIN, 0});
+      m_polledSlot.push_back(slot);
+    }
+    if (worker.stderrFd >= 0) {
+      m_polled.push_back({worker.stderrFd, POLLIN, 0});
+      m_polledSlot.push_back(slot);
+    }
+  }
+  if (m_polled.empty()) return false;
+  if (::poll(m_polled.data(), m_polled.size(), timeoutMs) < 0 && errno != EINTR) {
+    throw std::runtime_error(Concat({"poll: ", std::strerror(errno)}));
+  }
+  for (std::size_t i = 0; i < m_polled.size(); ++i) {
+    if (m_polled[i].revents == 0) continue;
+    const std::size_t slot = m_polledSlot[i];
+    Worker& worker = m_workers[slot];
+    if (m_polled[i].fd == worker.stderrFd) {
+      const bool open = Drain(worker.stderrFd, m_buffer,
+                              [&](const char* data, std::size_t n) { TakeStderr(worker, data, n); });
+      if (!open) CloseFd(worker.stderrFd);
+    } else if (m_polled[i].fd == worker.answerFd) {
+      const bool open = Drain(worker.answerFd, m_buffer,
+                              [&](const char* data, std::size_t n) { worker.answer.append(data, n); });
+      TakeAnswers(slot);
+      if (!open) Bury(slot);
+    }
+  }
+  return true;
+}
+
+// The time limit: kill; the answer pipe then closes and the worker is
+// buried by the next WaitAndRead.
+void WorkerPool::KillOverdue() {
+  if (m_limits.killAfterSeconds <= 0.0) return;
+  const auto later = Clock::now();
+  for (Worker& worker : m_workers) {
+    if (worker.busy && !worker.killedForTime &&
+        std::chrono::duration<double>(later - worker.started).count() >= m_limits.killAfterSeconds) {
+      worker.killedForTime = true;
+      ::kill(worker.pid, SIGKILL);
+    }
+  }
+}
+
 }  // namespace
 
 void ReportJobStep(int step) {
   if (g_stepSlot != nullptr) g_stepSlot->store(step, std::memory_order_relaxed);
 }
 
-void RunInChildProcesses(std::size_t count, int parallel, const ProcessLimits& limits,
-                         const std::function<std::string(std::size_t)>& work,
-                         const std::function<void(std::size_t, JobOutcome)>& done) {
+void RunInChildProcesses(std::size_t count, int parallel, const ProcessLimits& limits, const Work& work,
+                         const Done& done) {
   const std::size_t slots = std::min<std::size_t>(static_cast<std::size_t>(std::max(1, parallel)), count);
   if (slots == 0) return;
-  const IgnoreSigpipe sigpipe;
-  StepSlots steps(slots);
-  std::vector<Worker> workers(slots);
-  const Reaper reaper(workers);
-  std::vector<char> buffer(1 << 16);
-  std::size_t next = 0;      // the next job to hand out
-  std::size_t finished = 0;  // jobs whose outcome went to `done`
-
-  // Starts the worker of `slot`; the reason when a pipe or the fork failed.
-  const auto start = [&](std::size_t slot) -> std::string {
-    int command[2];
-    int answer[2];
-    int err[2];
-    if (::pipe2(command, O_CLOEXEC) != 0) return Concat({"pipe: ", std::strerror(errno)});
-    if (::pipe2(answer, O_CLOEXEC) != 0) {
-      const std::string reason = Concat({"pipe: ", std::strerror(errno)});
-      ::close(command[0]);
-      ::close(command[1]);
-      return reason;
-    }
-    if (::pipe2(err, O_CLOEXEC) != 0) {
-      const std::string reason = Concat({"pipe: ", std::strerror(errno)});
-      for (int fd : {command[0], command[1], answer[0], answer[1]}) ::close(fd);
-      return reason;
-    }
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-      // The other workers' pipe ends must not stay open here: a worker
-      // holding another's command pipe would keep it from ever seeing its end.
-      for (Worker& other : workers) {
-        for (int fd : {other.commandFd, other.answerFd, other.stderrFd}) {
-          if (fd >= 0) ::close(fd);
-        }
-      }
-      ::close(command[1]);
-      ::close(answer[0]);
-      ::close(err[0]);
-      BeWorker(limits, work, command[0], answer[1], err[1], &steps[slot]);
-    }
-    ::close(command[0]);
-    ::close(answer[1]);
-    ::close(err[1]);
-    if (pid < 0) {
-      const std::string reason = Concat({"fork: ", std::strerror(errno)});
-      for (int fd : {command[1], answer[0], err[0]}) ::close(fd);
-      return reason;
-    }
-    ::fcntl(answer[0], F_SETFL, O_NONBLOCK);
-    ::fcntl(err[0], F_SETFL, O_NONBLOCK);
-    Worker& worker = workers[slot];
-    worker = Worker{};
-    worker.pid = pid;
-    worker.commandFd = command[1];
-    worker.answerFd = answer[0];
-    worker.stderrFd = err[0];
-    worker.slot = slot;
-    return {};
-  };
-
-  // Hands the next job to an idle worker of `slot` (starting it if need
-  // be), or lets it retire when none is left.
-  const auto feed = [&](std::size_t slot) {
-    Worker& worker = workers[slot];
-    if (worker.busy || worker.retiring) return;
-    if (next == count) {
-      if (worker.pid > 0) {
-        worker.retiring = true;
-        CloseFd(worker.commandFd);
-      }
-      return;
-    }
-    if (worker.pid <= 0) {
-      if (const std::string refused = start(slot); !refused.empty()) {
-        JobOutcome outcome;
-        outcome.failure = Concat({"could not start the job's process: ", refused});
-        ++finished;
-        done(next++, std::move(outcome));
-        return;
-      }
-    }
-    const std::uint64_t index = next;
-    worker.busy = true;
-    worker.job = next++;
-    worker.started = Clock::now();
-    worker.killedForTime = false;
-    worker.stderrTail.clear();
-    steps[slot].store(kJobNotStepping, std::memory_order_relaxed);
-    // A worker that died since its last answer shows as EPIPE here and as
-    // the end of its answer pipe below, which ends this job with its cause.
-    WriteAll(worker.commandFd, reinterpret_cast<const char*>(&index), sizeof index);
-  };
-
-  // The worker of `slot` has ended (its answer pipe closed): its job, if
-  // any, ends with the cause; the slot is free for a new worker.
-  const auto bury = [&](std::size_t slot) {
-    Worker& worker = workers[slot];
-    if (worker.stderrFd >= 0) {
-      // Blocking now: the worker is gone or going, its stderr ends with it.
-      ::fcntl(worker.stderrFd, F_SETFL, 0);
-      Drain(worker.stderrFd, buffer,
-            [&](const char* data, std::size_t size) { TakeStderr(worker, data, size); });
-      CloseFd(worker.stderrFd);
-    }
-    if (!worker.stderrLine.empty()) {
-      worker.stderrLine.push_back('\n');
-      WriteAll(STDERR_FILENO, worker.stderrLine.data(), worker.stderrLine.size());
-      worker.stderrLine.clear();
-    }
-    int status = 0;
-    while (::waitpid(worker.pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    CloseFd(worker.commandFd);
-    CloseFd(worker.answerFd);
-    const bool wasBusy = worker.busy;
-    JobOutcome outcome;
-    if (wasBusy) {
-      outcome.failure = DeathReason(worker, status, limits.killAfterSeconds);
-      outcome.killedForTime = worker.killedForTime;
-      outcome.step = steps[slot].load(std::memory_order_relaxed);
-      outcome.lastMessage = LastLines(worker.stderrTail);
-      outcome.wallSeconds = std::chrono::duration<double>(Clock::now() - worker.started).count();
-    }
-    const std::size_t job = worker.job;
-    worker = Worker{};
-    if (wasBusy) {
-      ++finished;
-      done(job, std::move(outcome));
-    }
-  };
-
-  // Complete answer frames in a worker's buffer go to `done`.
-  const auto takeAnswers = [&](std::size_t slot) {
-    Worker& worker = workers[slot];
-    constexpr std::size_t kHeader = 1 + sizeof(std::uint64_t);
-    while (worker.busy && worker.answer.size() >= kHeader) {
-      std::uint64_t size = 0;
-      std::memcpy(&size, worker.answer.data() + 1, sizeof size);
-      if (worker.answer.size() - kHeader < size) return;
-      // Its stderr was written before its answer: take all of it first.
-      if (worker.stderrFd >= 0) {
-        Drain(worker.stderrFd, buffer, [&](const char* data, std::size_t n) { TakeStderr(worker, data, n); });
-      }
-      JobOutcome outcome;
-      outcome.wallSeconds = std::chrono::duration<double>(Clock::now() - worker.started).count();
-      outcome.step = steps[slot].load(std::memory_order_relaxed);
-      const std::string body = worker.answer.substr(kHeader, static_cast<std::size_t>(size));
-      if (worker.answer[0] == kAnswerTag) {
-        outcome.finished = true;
-        outcome.answer = body;
-      } else {
-        outcome.failure = body;
-        outcome.lastMessage = LastLines(worker.stderrTail);
-        worker.retiring = true;  // it exits after a failed job
-        CloseFd(worker.commandFd);
-      }
-      worker.answer.erase(0, kHeader + static_cast<std::size_t>(size));
-      worker.busy = false;
-      const std::size_t job = worker.job;
-      ++finished;
-      done(job, std::move(outcome));
-    }
-  };
-
-  std::vector<pollfd> polled;
-  std::vector<std::size_t> polledSlot;
-  while (finished < count ||
-         std::any_of(workers.begin(), workers.end(), [](const Worker& w) { return w.pid > 0; })) {
-    for (std::size_t slot = 0; slot < slots; ++slot) feed(slot);
-
-    // Wait for output or the nearest time limit.
-    int timeoutMs = -1;
-    const auto now = Clock::now();
-    if (limits.killAfterSeconds > 0.0) {
-      for (const Worker& worker : workers) {
-        if (!worker.busy || worker.killedForTime) continue;
-        const double left =
-            limits.killAfterSeconds - std::chrono::duration<double>(now - worker.started).count();
-        const int ms = left <= 0.0 ? 0 : static_cast<int>(std::min(left * 1000.0 + 1.0, 1e9));
-        timeoutMs = timeoutMs < 0 ? ms : std::min(timeoutMs, ms);
-      }
-    }
-    polled.clear();
-    polledSlot.clear();
-    for (std::size_t slot = 0; slot < slots; ++slot) {
-      const Worker& worker = workers[slot];
-      if (worker.answerFd >= 0) {
-        polled.push_back({worker.answerFd, POLLIN, 0});
-        polledSlot.push_back(slot);
-      }
-      if (worker.stderrFd >= 0) {
-        polled.push_back({worker.stderrFd, POLLIN, 0});
-        polledSlot.push_back(slot);
-      }
-    }
-    if (polled.empty()) continue;
-    if (::poll(polled.data(), polled.size(), timeoutMs) < 0 && errno != EINTR) {
-      throw std::runtime_error(Concat({"poll: ", std::strerror(errno)}));
-    }
-    for (std::size_t i = 0; i < polled.size(); ++i) {
-      if (polled[i].revents == 0) continue;
-      const std::size_t slot = polledSlot[i];
-      Worker& worker = workers[slot];
-      if (polled[i].fd == worker.stderrFd) {
-        const bool open = Drain(worker.stderrFd, buffer,
-                                [&](const char* data, std::size_t n) { TakeStderr(worker, data, n); });
-        if (!open) CloseFd(worker.stderrFd);
-      } else if (polled[i].fd == worker.answerFd) {
-        const bool open = Drain(worker.answerFd, buffer,
-                                [&](const char* data, std::size_t n) { worker.answer.append(data, n); });
-        takeAnswers(slot);
-        if (!open) bury(slot);
-      }
-    }
-    // The time limit: kill; the answer pipe then closes and the worker is buried above.
-    if (limits.killAfterSeconds > 0.0) {
-      const auto later = Clock::now();
-      for (Worker& worker : workers) {
-        if (worker.busy && !worker.killedForTime &&
-            std::chrono::duration<double>(later - worker.started).count() >= limits.killAfterSeconds) {
-          worker.killedForTime = true;
-          ::kill(worker.pid, SIGKILL);
-        }
-      }
-    }
-  }
+  WorkerPool pool(count, slots, limits, work, done);
+  pool.Run();
 }
 
 }  // namespace talus::harness

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <utility>
 
@@ -236,32 +237,48 @@ Result<std::vector<Run>> ExpandStepping(const std::vector<Run>& runs, const std:
   return expanded;
 }
 
+namespace {
+
+// The state of every body and the world's measures at `step`, and after a
+// step its contacts' count and deepest penetration; the contacts and the
+// step counters themselves only with `detail` (a replay).
+Sample TakeSample(Backend& backend, const Run& run, int step, double timeStep, bool detail) {
+  Sample s;
+  s.step = step;
+  s.time = step * timeStep;
+  for (int b = 0; b < backend.BodyCount(); ++b) s.bodies.push_back(backend.GetBodyState(b));
+  s.measures = MeasureWorld(backend, run.scenario.world.gravity);
+  if (step > 0) {
+    for (const ContactReading& contact : backend.GetContacts()) {
+      ++s.contactCount;
+      s.maxPenetration = MaxKeepingNaN(s.maxPenetration, contact.depth);
+      if (detail) s.contacts.push_back(contact);
+    }
+    if (detail) s.counters = backend.StepCounters();
+  }
+  return s;
+}
+
+// Keeps the wall time of a timed step, at most kMaxTimedSteps of them: when
+// the list fills, every other entry goes and the spacing `timedEvery`
+// doubles, so the memory stays bounded however long the run is.
+void KeepStepTime(std::vector<double>& stepSeconds, double seconds, int& timedEvery) {
+  stepSeconds.push_back(seconds);
+  if (stepSeconds.size() < kMaxTimedSteps) return;
+  for (std::size_t i = 0; 2 * i < stepSeconds.size(); ++i) stepSeconds[i] = stepSeconds[2 * i];
+  stepSeconds.resize((stepSeconds.size() + 1) / 2);
+  timedEvery *= 2;
+}
+
+}  // namespace
+
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
                   const std::function<bool(int)>& record, std::vector<double>* stepSeconds, bool detail,
                   const std::function<std::string(int)>& tick, StepWallTimes* wall) {
   Trajectory trajectory;
   trajectory.timeStep = timeStep;
-  const auto sample = [&](int step) {
-    Sample s;
-    s.step = step;
-    s.time = step * timeStep;
-    for (int b = 0; b < backend.BodyCount(); ++b) s.bodies.push_back(backend.GetBodyState(b));
-    s.measures = MeasureWorld(backend, run.scenario.world.gravity);
-    if (step > 0) {
-      for (const ContactReading& contact : backend.GetContacts()) {
-        ++s.contactCount;
-        s.maxPenetration = MaxKeepingNaN(s.maxPenetration, contact.depth);
-        if (detail) s.contacts.push_back(contact);
-      }
-      if (detail) s.counters = backend.StepCounters();
-    }
-    trajectory.samples.push_back(std::move(s));
-  };
-  sample(0);
-  // Wall times of evenly spaced steps, at most kMaxTimedSteps of them: when
-  // the list fills, every other entry goes and the spacing doubles, so the
-  // memory stays bounded however long the run is.
-  int timedEvery = 1;
+  trajectory.samples.push_back(TakeSample(backend, run, 0, timeStep, detail));
+  int timedEvery = 1;  // the spacing of the timed steps (KeepStepTime)
   for (int step = 1; step <= steps; ++step) {
     if (tReportSteps) ReportJobStep(step);
     const auto start = std::chrono::steady_clock::now();
@@ -280,14 +297,10 @@ Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
       break;
     }
     if (stepSeconds != nullptr && (step - 1) % timedEvery == 0) {
-      stepSeconds->push_back(std::chrono::duration<double>(end - start).count());
-      if (stepSeconds->size() >= kMaxTimedSteps) {
-        for (std::size_t i = 0; 2 * i < stepSeconds->size(); ++i) (*stepSeconds)[i] = (*stepSeconds)[2 * i];
-        stepSeconds->resize((stepSeconds->size() + 1) / 2);
-        timedEvery *= 2;
-      }
+      KeepStepTime(*stepSeconds, std::chrono::duration<double>(end - start).count(), timedEvery);
     }
-    if (step == steps || record(step)) sample(step);
+    if (step == steps || record(step))
+      trajectory.samples.push_back(TakeSample(backend, run, step, timeStep, detail));
     if (tick && step % 1024 == 0) {
       if (std::string stop = tick(step); !stop.empty()) {
         trajectory.failure = Concat({"step ", std::to_string(step), ": ", backend.Name(), ": ", stop});
@@ -299,10 +312,120 @@ Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
   return trajectory;
 }
 
+namespace {
+
+// The tick Record calls every 1024 steps of a job: a reason to stop once
+// options.budgetSeconds is spent, and a progress line every
+// options.progressSeconds for a long job. Its clock starts now.
+std::function<std::string(int)> JobTick(const Run& run, const std::string& backendName,
+                                        const RunnerOptions& options) {
+  const auto begun = std::chrono::steady_clock::now();
+  return [&run, &backendName, &options, begun, nextReport = options.progressSeconds](int step) mutable {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - begun).count();
+    if (options.budgetSeconds > 0.0 && elapsed > options.budgetSeconds) {
+      return Concat({"wall-clock budget of ", FormatNumber(options.budgetSeconds), " s spent"});
+    }
+    if (!options.progress || elapsed < nextReport) return std::string();
+    nextReport = elapsed + options.progressSeconds;
+    char line[96];
+    std::snprintf(line, sizeof line, "step %d of %d (%.0f%%), %.1f s", step, run.steps,
+                  100.0 * step / run.steps, elapsed);
+    std::lock_guard lock(ProgressMutex());
+    options.progress(Concat({run.id, " ", backendName, ": ", line}));
+    return std::string();
+  };
+}
+
+// The metrics of a converged-reference truth: the same backend at
+// h / divisor, its samples falling on the run's sample times (every
+// `stride`-th step); the error when the reference cannot be made or fails.
+Result<std::vector<MetricResult>> ConvergedReferenceMetrics(const BackendRegistry& registry, const Run& run,
+                                                            const std::string& backendName,
+                                                            const Truth& truth,
+                                                            const ConvergedReferenceTruth& converged,
+                                                            const Trajectory& trajectory, int stride) {
+  const int divisor = converged.timeStepDivisor;
+  const long long fineSteps = static_cast<long long>(run.steps) * divisor;
+  if (fineSteps > kMaxSteps) {
+    return Error{Concat({"converged reference: ", std::to_string(run.steps), " steps x divisor ",
+                         std::to_string(divisor), " = ", std::to_string(fineSteps),
+                         " steps, more than the limit of ", std::to_string(kMaxSteps)})};
+  }
+  Run fine = run;
+  fine.timeStep = run.timeStep / divisor;
+  fine.steps = static_cast<int>(fineSteps);
+  auto reference = registry.Create(backendName, fine);
+  if (!reference) return Error{Concat({"converged reference: ", reference.GetError().message})};
+  const Trajectory referenceTrajectory = Record(
+      *reference.Value(), fine, fine.steps, fine.timeStep,
+      [&](int step) { return step % divisor == 0 && IsSampled(step / divisor, run.steps, stride); }, nullptr);
+  if (!referenceTrajectory.failure.empty()) {
+    return Error{Concat({"converged reference: ", referenceTrajectory.failure})};
+  }
+  return CompareWithReference(truth, trajectory, referenceTrajectory);
+}
+
+// Every truth of the run judged on `trajectory`, gated, into
+// result.metrics in the scenario's order; false (result.error set) when a
+// converged reference fails.
+bool JudgeTruths(const BackendRegistry& registry, const Run& run, const std::string& backendName,
+                 const Trajectory& trajectory, int stride, RunResult& result) {
+  for (const Truth& truth : run.scenario.truths) {
+    std::vector<MetricResult> metrics;
+    if (const auto* converged = std::get_if<ConvergedReferenceTruth>(&truth.kind)) {
+      auto compared =
+          ConvergedReferenceMetrics(registry, run, backendName, truth, *converged, trajectory, stride);
+      if (!compared) {
+        result.error = compared.GetError().message;
+        return false;
+      }
+      metrics = std::move(compared).Value();
+    } else {
+      metrics = EvaluateTruth(run, truth, trajectory);
+    }
+    ApplyGate(truth, backendName, metrics);
+    for (MetricResult& metric : metrics) result.metrics.push_back(std::move(metric));
+  }
+  return true;
+}
+
+// The quantities the scenario asks to measure ("measure"): the drifts only
+// for a closed system, then penetration and contacts.
+void AddMeasuredQuantities(const Run& run, const Trajectory& trajectory, RunResult& result) {
+  const bool closed = IsClosedSystem(run);
+  if (closed && Measures(run, Quantity::Energy)) {
+    for (MetricResult& metric : EnergyDrift(trajectory)) result.metrics.push_back(std::move(metric));
+  }
+  if (closed && Measures(run, Quantity::Momentum)) {
+    for (MetricResult& metric : MomentumDrift(run, trajectory)) result.metrics.push_back(std::move(metric));
+  }
+  if (Measures(run, Quantity::Penetration)) result.metrics.push_back(MaxPenetration(trajectory));
+  if (Measures(run, Quantity::Contacts)) result.metrics.push_back(FinalContacts(trajectory));
+}
+
+// The run's wall-clock time and longest step (none with
+// options.deterministic), kept also when the run stopped at a failed step.
+void AddRunWallTime(const RunnerOptions& options, const StepWallTimes& wall, RunResult& result) {
+  if (options.deterministic) return;
+  result.wallSeconds = wall.total;
+  result.wallSecondsLongestStep = wall.longest;
+}
+
+// The mean and median of the timed steps (none with options.deterministic).
+void AddStepWallTimes(const RunnerOptions& options, const std::vector<double>& stepSeconds,
+                      RunResult& result) {
+  if (options.deterministic || stepSeconds.empty()) return;
+  double sum = 0.0;
+  for (double seconds : stepSeconds) sum += seconds;
+  result.wallSecondsPerStepMean = sum / static_cast<double>(stepSeconds.size());
+  result.wallSecondsPerStepMedian = Median(stepSeconds);
+}
+
+}  // namespace
+
 RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::string& backendName,
                  const RunnerOptions& options) {
   RunResult result = ResultIdentity(run, backendName);
-
   auto built = registry.Create(backendName, run);
   if (!built) {
     result.error = built.GetError().message;
@@ -314,33 +437,13 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
   std::vector<double> stepSeconds;
   StepWallTimes wall;
   const bool replay = IsReplaySelected(run, options.replay);
-  // Long jobs say how far they are, every options.progressSeconds.
-  const auto begun = std::chrono::steady_clock::now();
-  double nextReport = options.progressSeconds;
-  const auto tick = [&](int step) -> std::string {
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - begun).count();
-    if (options.budgetSeconds > 0.0 && elapsed > options.budgetSeconds) {
-      return Concat({"wall-clock budget of ", FormatNumber(options.budgetSeconds), " s spent"});
-    }
-    if (!options.progress || elapsed < nextReport) return {};
-    nextReport = elapsed + options.progressSeconds;
-    char line[96];
-    std::snprintf(line, sizeof line, "step %d of %d (%.0f%%), %.1f s", step, run.steps,
-                  100.0 * step / run.steps, elapsed);
-    std::lock_guard lock(ProgressMutex());
-    options.progress(Concat({run.id, " ", backendName, ": ", line}));
-    return {};
-  };
   tReportSteps = true;
   const Trajectory trajectory = Record(
       backend, run, run.steps, run.timeStep, [&](int step) { return IsSampled(step, run.steps, stride); },
-      &stepSeconds, replay, tick, &wall);
+      &stepSeconds, replay, JobTick(run, backendName, options), &wall);
   tReportSteps = false;
   ReportJobStep(kJobPastSteps);
-  if (!options.deterministic) {
-    result.wallSeconds = wall.total;
-    result.wallSecondsLongestStep = wall.longest;
-  }
+  AddRunWallTime(options, wall, result);
   if (!trajectory.failure.empty()) {
     // The run stops at its first failed step: no metrics, but the plot up
     // to that step and the reason, which the report and the check show.
@@ -356,65 +459,20 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
     }
     result.replay = std::move(made).Value();
   }
-
-  for (const Truth& truth : run.scenario.truths) {
-    if (const auto* converged = std::get_if<ConvergedReferenceTruth>(&truth.kind)) {
-      // The same backend at h / divisor; its samples fall on our sample times.
-      const int divisor = converged->timeStepDivisor;
-      const long long fineSteps = static_cast<long long>(run.steps) * divisor;
-      if (fineSteps > kMaxSteps) {
-        result.error = Concat({"converged reference: ", std::to_string(run.steps), " steps x divisor ",
-                               std::to_string(divisor), " = ", std::to_string(fineSteps),
-                               " steps, more than the limit of ", std::to_string(kMaxSteps)});
-        return result;
-      }
-      Run fine = run;
-      fine.timeStep = run.timeStep / divisor;
-      fine.steps = static_cast<int>(fineSteps);
-      auto reference = registry.Create(backendName, fine);
-      if (!reference) {
-        result.error = Concat({"converged reference: ", reference.GetError().message});
-        return result;
-      }
-      const Trajectory referenceTrajectory = Record(
-          *reference.Value(), fine, fine.steps, fine.timeStep,
-          [&](int step) { return step % divisor == 0 && IsSampled(step / divisor, run.steps, stride); },
-          nullptr);
-      if (!referenceTrajectory.failure.empty()) {
-        result.error = Concat({"converged reference: ", referenceTrajectory.failure});
-        return result;
-      }
-      std::vector<MetricResult> metrics = CompareWithReference(truth, trajectory, referenceTrajectory);
-      ApplyGate(truth, backendName, metrics);
-      for (MetricResult& metric : metrics) result.metrics.push_back(std::move(metric));
-    } else {
-      std::vector<MetricResult> metrics = EvaluateTruth(run, truth, trajectory);
-      ApplyGate(truth, backendName, metrics);
-      for (MetricResult& metric : metrics) result.metrics.push_back(std::move(metric));
-    }
-  }
-  const bool closed = IsClosedSystem(run);
-  if (closed && Measures(run, Quantity::Energy)) {
-    for (MetricResult& metric : EnergyDrift(trajectory)) result.metrics.push_back(std::move(metric));
-  }
-  if (closed && Measures(run, Quantity::Momentum)) {
-    for (MetricResult& metric : MomentumDrift(run, trajectory)) result.metrics.push_back(std::move(metric));
-  }
-  if (Measures(run, Quantity::Penetration)) result.metrics.push_back(MaxPenetration(trajectory));
-  if (Measures(run, Quantity::Contacts)) result.metrics.push_back(FinalContacts(trajectory));
-
-  if (!options.deterministic && !stepSeconds.empty()) {
-    double sum = 0.0;
-    for (double seconds : stepSeconds) sum += seconds;
-    result.wallSecondsPerStepMean = sum / static_cast<double>(stepSeconds.size());
-    result.wallSecondsPerStepMedian = Median(stepSeconds);
-  }
+  if (!JudgeTruths(registry, run, backendName, trajectory, stride, result)) return result;
+  AddMeasuredQuantities(run, trajectory, result);
+  AddStepWallTimes(options, stepSeconds, result);
   result.series = MakeSeries(run, trajectory, options.plotPoints);
   return result;
 }
 
-Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std::vector<Run>& runs,
-                                      const RunnerOptions& options) {
+namespace {
+
+// Refuses options RunAll cannot honour: unknown backends, jobs, budget or
+// memory limit out of range, a memory limit without process isolation,
+// sample and frame counts too small, a replay naming nothing in `runs`.
+std::optional<Error> CheckRunnerOptions(const BackendRegistry& registry, const std::vector<Run>& runs,
+                                        const RunnerOptions& options) {
   if (options.backends.empty()) return Error{"no backends to run"};
   for (const std::string& name : options.backends) {
     if (!registry.Has(name)) {
@@ -441,7 +499,6 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
   if (options.maxSamples < 1) return Error{"maxSamples must be >= 1"};
   if (options.plotPoints < 2) return Error{"plotPoints must be >= 2"};
   if (options.replayFrames < 2) return Error{"replayFrames must be >= 2"};
-
   for (const std::string& entry : options.replay) {
     if (entry == "all") continue;
     if (std::none_of(runs.begin(), runs.end(),
@@ -450,13 +507,19 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
           Concat({"replay: \"", entry, "\" names no run id or scenario name of this run (or give all)"})};
     }
   }
+  return std::nullopt;
+}
 
-  // Jobs in output order; each writes only its own slot. Every scenario's
-  // list is checked before anything runs.
-  struct Job {
-    const Run* run;
-    std::string backend;
-  };
+// One (run, backend) pair to run.
+struct Job {
+  const Run* run;
+  std::string backend;
+};
+
+// The jobs in output order, every scenario's backend list checked before
+// anything runs; a run no asked backend takes gives a notice.
+Result<std::vector<Job>> ListJobs(const BackendRegistry& registry, const std::vector<Run>& runs,
+                                  const RunnerOptions& options) {
   std::vector<Job> jobs;
   std::vector<std::string> notices;
   for (const Run& run : runs) {
@@ -468,63 +531,72 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
   if (options.notice) {
     for (const std::string& line : notices) options.notice(line);
   }
-  std::vector<RunResult> results(jobs.size());
+  return jobs;
+}
+
+// "[done/total] <run id> <backend> 1.23 s", " (error)" after a job whose
+// result holds an error.
+std::string JobDoneLine(std::size_t done, std::size_t total, const Job& job, double seconds,
+                        const RunResult& result) {
+  char line[64];
+  std::snprintf(line, sizeof line, " %.2f s", seconds);
+  return Concat({"[", std::to_string(done), "/", std::to_string(total), "] ", job.run->id, " ", job.backend,
+                 line, result.error.empty() ? "" : " (error)"});
+}
+
+// Each job in its own worker process (RunInChildProcesses): its result comes
+// back serialised, or its death becomes the result's error. Each job
+// writes only its own slot of `results`.
+void RunJobsInProcesses(const BackendRegistry& registry, const std::vector<Job>& jobs,
+                        const RunnerOptions& options, std::vector<RunResult>& results) {
+  const ProcessLimits limits{
+      .killAfterSeconds = options.budgetSeconds > 0.0 ? options.budgetSeconds + kBudgetKillGraceSeconds : 0.0,
+      .memoryBytes = options.memoryLimitBytes};
+  const auto work = [&](std::size_t index) {
+    return RunResultToWire(RunOne(registry, *jobs[index].run, jobs[index].backend, options));
+  };
   std::size_t done = 0;
-  if (options.isolation == JobIsolation::Process) {
-    const ProcessLimits limits{.killAfterSeconds = options.budgetSeconds > 0.0
-                                                       ? options.budgetSeconds + kBudgetKillGraceSeconds
-                                                       : 0.0,
-                               .memoryBytes = options.memoryLimitBytes};
-    const auto work = [&](std::size_t index) {
-      return RunResultToWire(RunOne(registry, *jobs[index].run, jobs[index].backend, options));
-    };
-    const auto collect = [&](std::size_t index, JobOutcome outcome) {
-      const Job& job = jobs[index];
-      if (outcome.finished) {
-        auto answer = RunResultFromWire(outcome.answer);
-        if (answer) {
-          results[index] = std::move(answer).Value();
-        } else {
-          outcome.failure = Concat({"its answer could not be read: ", answer.GetError().message});
-        }
+  const auto collect = [&](std::size_t index, JobOutcome outcome) {
+    const Job& job = jobs[index];
+    if (outcome.finished) {
+      auto answer = RunResultFromWire(outcome.answer);
+      if (answer) {
+        results[index] = std::move(answer).Value();
+      } else {
+        outcome.failure = Concat({"its answer could not be read: ", answer.GetError().message});
       }
-      if (!outcome.failure.empty()) {
-        results[index] = ResultIdentity(*job.run, job.backend);
-        results[index].error = StoppedReason(outcome, *job.run, job.backend);
-      }
-      if (options.progress) {
-        ++done;
-        char line[64];
-        std::snprintf(line, sizeof line, " %.2f s", outcome.wallSeconds);
-        options.progress(
-            Concat({"[", std::to_string(done), "/", std::to_string(jobs.size()), "] ", job.run->id, " ",
-                    job.backend, line, results[index].error.empty() ? "" : " (error)"}));
-      }
-    };
-    RunInChildProcesses(jobs.size(), options.jobs, limits, work, collect);
-    return results;
-  }
+    }
+    if (!outcome.failure.empty()) {
+      results[index] = ResultIdentity(*job.run, job.backend);
+      results[index].error = StoppedReason(outcome, *job.run, job.backend);
+    }
+    if (options.progress) {
+      options.progress(JobDoneLine(++done, jobs.size(), job, outcome.wallSeconds, results[index]));
+    }
+  };
+  RunInChildProcesses(jobs.size(), options.jobs, limits, work, collect);
+}
+
+// The jobs in this process: in order on this thread with options.jobs 1,
+// else on threads. Jobs of independent worlds go to a shared queue; each
+// library with process-wide state gets one lane (ThreadSafety, declared at
+// registration). Each job writes only its own slot of `results`.
+void RunJobsOnThreads(const BackendRegistry& registry, const std::vector<Job>& jobs,
+                      const RunnerOptions& options, std::vector<RunResult>& results) {
+  std::size_t done = 0;
   const auto execute = [&](std::size_t index) {
     const auto start = std::chrono::steady_clock::now();
     results[index] = RunOne(registry, *jobs[index].run, jobs[index].backend, options);
     if (options.progress) {
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::lock_guard lock(ProgressMutex());
-      ++done;
-      char line[64];
-      std::snprintf(line, sizeof line, " %.2f s", seconds);
-      options.progress(
-          Concat({"[", std::to_string(done), "/", std::to_string(jobs.size()), "] ", jobs[index].run->id, " ",
-                  jobs[index].backend, line, results[index].error.empty() ? "" : " (error)"}));
+      options.progress(JobDoneLine(++done, jobs.size(), jobs[index], seconds, results[index]));
     }
   };
-
   if (options.jobs == 1) {
     for (std::size_t i = 0; i < jobs.size(); ++i) execute(i);
-    return results;
+    return;
   }
-  // Jobs of independent worlds go to a shared queue; each library with
-  // process-wide state gets one lane (ThreadSafety, declared at registration).
   std::vector<std::size_t> freeJobs;
   std::map<std::string, std::vector<std::size_t>> lanes;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
@@ -554,6 +626,21 @@ Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std
     });
   }
   for (std::thread& thread : threads) thread.join();
+}
+
+}  // namespace
+
+Result<std::vector<RunResult>> RunAll(const BackendRegistry& registry, const std::vector<Run>& runs,
+                                      const RunnerOptions& options) {
+  if (auto refused = CheckRunnerOptions(registry, runs, options)) return *refused;
+  auto jobs = ListJobs(registry, runs, options);
+  if (!jobs) return jobs.GetError();
+  std::vector<RunResult> results(jobs.Value().size());
+  if (options.isolation == JobIsolation::Process) {
+    RunJobsInProcesses(registry, jobs.Value(), options, results);
+  } else {
+    RunJobsOnThreads(registry, jobs.Value(), options, results);
+  }
   return results;
 }
 

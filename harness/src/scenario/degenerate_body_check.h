@@ -1,5 +1,5 @@
 // Degenerate bodies, refused at load before any engine sees them (the
-// loader's semantic checks, scenario_loader.cpp): a hull too small or with
+// loader's semantic checks, body_mapping.cpp): a hull too small or with
 // no volume for its extent, a mass that is zero, denormal or not finite,
 // an inertia that is not positive definite. Each such body made a peer
 // abort or return NaN (docs/testbed-backends.md, "Degenerate bodies"); the
