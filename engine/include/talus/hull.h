@@ -32,12 +32,18 @@ struct HullHalfEdge {
   int prev = -1;    ///< previous half-edge around `face`
   int face = -1;    ///< face on the left
 };
+// Five ints, three to a cache line: the SAT's hill climbs and the clipper
+// walk half-edges by index (sizes: docs/geometry-queries.md, Record sizes).
+static_assert(sizeof(HullHalfEdge) == 20, "HullHalfEdge: five ints, no padding");
 
 /// One polygonal face: an entry half-edge and its outward plane.
 struct HullFace {
   int edge = -1;  ///< some half-edge on this face's border
   Plane plane;    ///< outward unit normal; every vertex is on or behind it
 };
+// The face queries stream every face's plane (docs/geometry-queries.md,
+// Record sizes).
+static_assert(sizeof(HullFace) == 40, "HullFace: entry edge (padded to 8) and a 32-byte plane");
 
 class Hull {
  public:

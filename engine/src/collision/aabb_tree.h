@@ -73,6 +73,9 @@ class AabbTree {
     bool hasDynamic = false;  ///< some leaf below is a dynamic body
     [[nodiscard]] bool IsLeaf() const { return child1 == kNull; }
   };
+  // The pair query descends node by node; a node spans at most two cache
+  // lines (docs/collision-broad-phase.md, Record sizes).
+  static_assert(sizeof(Node) == 72, "AabbTree::Node: 48-byte box, five ints and a flag");
 
   /// Inserts, removes or reinserts leaves so the tree matches `proxies`.
   /// Returns the number of leaves (re)inserted or removed.

@@ -25,6 +25,9 @@ struct BroadPhaseProxy {
   bool isStatic = false;  ///< static-static pairs are never reported
   bool active = true;     ///< false for an empty body slot: ignored
 };
+// One per body, rewritten every step and read by every structure's pass
+// (docs/collision-broad-phase.md, Record sizes).
+static_assert(sizeof(BroadPhaseProxy) == 40, "BroadPhaseProxy: a 32-byte sphere and two flags");
 
 /// A pair of body slots whose bounding spheres touch, a < b.
 struct BroadPhasePair {
@@ -35,6 +38,9 @@ struct BroadPhasePair {
     return l.a != r.a ? l.a < r.a : l.b < r.b;
   }
 };
+// Eight to a cache line: the pair list is sorted and walked every step
+// (docs/collision-broad-phase.md, Record sizes).
+static_assert(sizeof(BroadPhasePair) == 8, "BroadPhasePair: two int slots");
 
 /// Worlds with at most this many active proxies use brute force whatever
 /// structure is selected: below it building a grid or walking a tree costs

@@ -27,6 +27,10 @@ struct ContactPoint {
   double depth;   // metres, > 0 when penetrating (may be slightly negative within a speculative margin)
   std::uint32_t featureId;  // which features of A and B made this point, stable across steps
 };
+// Eight points are 320 of ContactManifold's 360-byte budget (dynamics/
+// contact.h); every stage after the narrow phase copies or walks them
+// (docs/collision-narrow-phase.md, Record sizes).
+static_assert(sizeof(ContactPoint) == 40, "ContactPoint: position, depth, feature id (padded to 8)");
 
 struct ContactManifold {
   Vec3 normal;   // world space unit normal, pointing from B towards A

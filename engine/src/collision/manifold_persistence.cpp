@@ -116,6 +116,68 @@ void SnapAnchorsToSurfaces(const Shape& a, const Transform& xfA, const Shape& b,
   }
 }
 
+namespace {
+
+// The remembered points at the current poses into `survivors`, minus the
+// broken ones and those a fresh point replaces; returns their count.
+std::size_t CollectSurvivors(const ContactManifold& previous, const ManifoldAnchors& previousAnchors,
+                             const Transform& xfA, const Transform& xfB, double distance,
+                             const ContactManifold& fresh,
+                             std::array<Survivor, kMaxManifoldPoints>& survivors) {
+  const Vec3& n = fresh.normal;
+  const std::size_t freshCount = static_cast<std::size_t>(fresh.pointCount);
+  std::size_t survivorCount = 0;
+  const std::size_t previousCount =
+      static_cast<std::size_t>(std::min(previous.pointCount, previousAnchors.pointCount));
+  for (std::size_t i = 0; i < previousCount; ++i) {
+    const std::uint32_t id = previous.points[i].featureId;
+    bool replaced = false;
+    for (std::size_t j = 0; j < freshCount; ++j) replaced = replaced || fresh.points[j].featureId == id;
+    if (replaced) continue;
+    const Vec3 onA = xfA.Apply(previousAnchors.localPointA[i]);
+    const Vec3 onB = xfB.Apply(previousAnchors.localPointB[i]);
+    const Vec3 gap = onB - onA;
+    const double depth = n.dot(gap);
+    const double drift = (gap - depth * n).norm();
+    // Separated along n, or slid apart along the surfaces: the two surface
+    // points no longer describe a place where the shapes touch.
+    if (depth < -distance || drift > distance) continue;
+    survivors[survivorCount++] = {.point = {.position = 0.5 * (onA + onB), .depth = depth, .featureId = id},
+                                  .localA = previousAnchors.localPointA[i],
+                                  .localB = previousAnchors.localPointB[i]};
+  }
+  return survivorCount;
+}
+
+// The unused survivor that grows the area of the kept polygon (the first
+// `keptCount` of `kept`, whose slot keptCount is scratch) most; while that
+// is zero for every candidate (fewer than two kept, or all collinear), the
+// one farthest from the kept points. -1 when none is farther than
+// `distance` from every kept point.
+int WidestSurvivor(std::span<const Survivor> survivors, std::span<const bool> used, double distance,
+                   const Vec3& n, std::array<Vec3, kMaxManifoldPoints + 1>& kept, std::size_t keptCount) {
+  int best = -1;
+  double bestArea = 0.0;
+  double bestSpread = 0.0;
+  for (std::size_t i = 0; i < survivors.size(); ++i) {
+    if (used[i]) continue;
+    const Vec3& p = survivors[i].point.position;
+    const double spread = NearestDistance(p, std::span<const Vec3>(kept.data(), keptCount));
+    // Within the break distance of a kept point: adds no support.
+    if (!(spread > distance)) continue;
+    kept[keptCount] = p;
+    const double area = ContactPolygonArea(std::span<const Vec3>(kept.data(), keptCount + 1), n);
+    if (area > bestArea || (area == bestArea && spread > bestSpread)) {
+      best = static_cast<int>(i);
+      bestArea = area;
+      bestSpread = spread;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
 int MergePersistentPoints(const ContactManifold& previous, const ManifoldAnchors& previousAnchors,
                           const Transform& xfA, const Transform& xfB, double distance, int maxFreshPoints,
                           ContactManifold* fresh, ManifoldAnchors* freshAnchors) {
@@ -135,56 +197,19 @@ int MergePersistentPoints(const ContactManifold& previous, const ManifoldAnchors
   for (std::size_t j = 0; j < freshCount; ++j) deepest = std::max(deepest, fresh->points[j].depth);
   if (!(deepest > 0.0)) return 0;
 
-  // The remembered points at the current poses, minus the broken ones and
-  // those a fresh point replaces.
   std::array<Survivor, kMaxManifoldPoints> survivors{};
-  std::size_t survivorCount = 0;
-  const std::size_t previousCount =
-      static_cast<std::size_t>(std::min(previous.pointCount, previousAnchors.pointCount));
-  for (std::size_t i = 0; i < previousCount; ++i) {
-    const std::uint32_t id = previous.points[i].featureId;
-    bool replaced = false;
-    for (std::size_t j = 0; j < freshCount; ++j) replaced = replaced || fresh->points[j].featureId == id;
-    if (replaced) continue;
-    const Vec3 onA = xfA.Apply(previousAnchors.localPointA[i]);
-    const Vec3 onB = xfB.Apply(previousAnchors.localPointB[i]);
-    const Vec3 gap = onB - onA;
-    const double depth = n.dot(gap);
-    const double drift = (gap - depth * n).norm();
-    // Separated along n, or slid apart along the surfaces: the two surface
-    // points no longer describe a place where the shapes touch.
-    if (depth < -distance || drift > distance) continue;
-    survivors[survivorCount++] = {.point = {.position = 0.5 * (onA + onB), .depth = depth, .featureId = id},
-                                  .localA = previousAnchors.localPointA[i],
-                                  .localB = previousAnchors.localPointB[i]};
-  }
+  const std::size_t survivorCount =
+      CollectSurvivors(previous, previousAnchors, xfA, xfB, distance, *fresh, survivors);
 
-  // Fill up to kPersistentMaxPoints: each time the survivor that grows the
-  // kept polygon's area most; while that is zero for every candidate (fewer
-  // than two kept, or all collinear), the one farthest from the kept points.
+  // Fill up to kPersistentMaxPoints, one widest survivor at a time.
   std::array<Vec3, kMaxManifoldPoints + 1> kept{};
   std::size_t keptCount = freshCount;
   for (std::size_t j = 0; j < freshCount; ++j) kept[j] = fresh->points[j].position;
   std::array<bool, kMaxManifoldPoints> used{};
   int added = 0;
   while (keptCount < static_cast<std::size_t>(kPersistentMaxPoints)) {
-    int best = -1;
-    double bestArea = 0.0;
-    double bestSpread = 0.0;
-    for (std::size_t i = 0; i < survivorCount; ++i) {
-      if (used[i]) continue;
-      const Vec3& p = survivors[i].point.position;
-      const double spread = NearestDistance(p, std::span<const Vec3>(kept.data(), keptCount));
-      // Within the break distance of a kept point: adds no support.
-      if (!(spread > distance)) continue;
-      kept[keptCount] = p;
-      const double area = ContactPolygonArea(std::span<const Vec3>(kept.data(), keptCount + 1), n);
-      if (area > bestArea || (area == bestArea && spread > bestSpread)) {
-        best = static_cast<int>(i);
-        bestArea = area;
-        bestSpread = spread;
-      }
-    }
+    const int best = WidestSurvivor(std::span<const Survivor>(survivors.data(), survivorCount), used,
+                                    distance, n, kept, keptCount);
     if (best < 0) break;
     const Survivor& chosen = survivors[static_cast<std::size_t>(best)];
     used[static_cast<std::size_t>(best)] = true;

@@ -28,6 +28,9 @@ struct ClipVertex {
   bool segmentOnReference = false;  // the segment lies on a reference side plane
   int segmentReferenceEdge = -1;    // the reference half-edge of that side plane
 };
+// Copied at every side plane the polygon is clipped against
+// (docs/collision-narrow-phase.md, Record sizes).
+static_assert(sizeof(ClipVertex) == 48, "ClipVertex: position, three feature ids, a flag and an edge");
 
 /// The polyhedron manifold's buffers (collision/polyhedron_manifold.cpp).
 struct ManifoldScratch {

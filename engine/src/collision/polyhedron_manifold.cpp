@@ -240,20 +240,12 @@ void ClipAgainst(const PosedHull& ref, const std::vector<ClipVertex>& in, const 
   }
 }
 
-// Fills `points` and returns their count. The manifold keeps the SAT's
-// depth; the deepest point carries it unless the SAT's deepest vertex is
-// not in contact (see below).
-int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double depth, double margin,
-                       ManifoldScratch& scratch, ContactPoint* points) {
-  const PosedHull& ref = *contact.reference;
+// The incident face's polygon, each vertex with the features that made it
+// (the reference face against an incident vertex, the incident edge that
+// leaves it).
+void IncidentPolygon(const FaceContact& contact, int incidentFace, std::vector<ClipVertex>& polygon) {
   const PosedHull& inc = *contact.incident;
-  const Vec3& n = contact.plane.normal;
   const auto halfEdges = inc.hull->HalfEdges();
-  const int deepest = inc.Support(-n, 0);
-  const int incidentFace = IncidentFace(inc, n, deepest);
-
-  std::vector<ClipVertex>& polygon = scratch.polygon;
-  std::vector<ClipVertex>& clipped = scratch.clipped;
   polygon.clear();
   const int firstInc = inc.hull->Faces()[static_cast<std::size_t>(incidentFace)].edge;
   int h = firstInc;
@@ -267,10 +259,17 @@ int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double de
                        .segmentReferenceEdge = -1});
     h = halfEdges[static_cast<std::size_t>(h)].next;
   } while (h != firstInc);
+}
 
+// Clips `polygon` against the side planes of the reference face, one edge
+// at a time, stopping early once nothing is left.
+void ClipToReferenceFace(const FaceContact& contact, int incidentFace, std::vector<ClipVertex>& polygon,
+                         std::vector<ClipVertex>& clipped) {
+  const PosedHull& ref = *contact.reference;
+  const Vec3& n = contact.plane.normal;
   const auto refEdges = ref.hull->HalfEdges();
   const int firstRef = ref.hull->Faces()[static_cast<std::size_t>(contact.referenceFace)].edge;
-  h = firstRef;
+  int h = firstRef;
   do {
     const int next = refEdges[static_cast<std::size_t>(h)].next;
     const Vec3 v0 = ref.Vertex(ref.Origin(h));
@@ -281,10 +280,16 @@ int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double de
     std::swap(polygon, clipped);
     h = next;
   } while (h != firstRef && !polygon.empty());
+}
 
-  const PosedHull& a = contact.referenceIsA ? ref : inc;
-  const PosedHull& b = contact.referenceIsA ? inc : ref;
-  std::vector<ContactPoint>& kept = scratch.kept;
+// The clipped points within `margin` of the reference plane whose normal
+// line meets both shapes, into `kept`; returns the deepest kept depth
+// (-inf when none is kept).
+double KeepPointsInContact(const FaceContact& contact, const Vec3& normal, double margin,
+                           const std::vector<ClipVertex>& polygon, std::vector<ContactPoint>& kept) {
+  const PosedHull& a = contact.referenceIsA ? *contact.reference : *contact.incident;
+  const PosedHull& b = contact.referenceIsA ? *contact.incident : *contact.reference;
+  const Vec3& n = contact.plane.normal;
   kept.clear();
   double deepestKept = -std::numeric_limits<double>::infinity();
   for (const ClipVertex& c : polygon) {
@@ -303,6 +308,17 @@ int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double de
                     .depth = -s,
                     .featureId = OrderedFeatureId(contact, c.referenceFeature, c.incidentFeature)});
   }
+  return deepestKept;
+}
+
+// Adds the incident hull's deepest vertex to `kept` when clipping lost the
+// SAT's depth (see below).
+void KeepDeepestVertex(const FaceContact& contact, const Vec3& normal, double depth, int deepest,
+                       double deepestKept, std::vector<ContactPoint>& kept) {
+  const PosedHull& inc = *contact.incident;
+  const PosedHull& a = contact.referenceIsA ? *contact.reference : inc;
+  const PosedHull& b = contact.referenceIsA ? inc : *contact.reference;
+  const Vec3& n = contact.plane.normal;
   // Kept points within round-off of the SAT's depth already carry it (tied
   // deepest vertices, e.g. a box face resting on a face, differ by ulps of
   // the plane offset and the coordinates).
@@ -341,7 +357,22 @@ int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double de
                                          PackFeature(FeatureType::Vertex, deepest))});
     }
   }
-  return ReduceContactPoints(kept, n, kClippedMaxPoints, points);
+}
+
+// Fills `points` and returns their count. The manifold keeps the SAT's
+// depth; the deepest point carries it unless the SAT's deepest vertex is
+// not in contact (see KeepDeepestVertex).
+int BuildClippedPoints(const FaceContact& contact, const Vec3& normal, double depth, double margin,
+                       ManifoldScratch& scratch, ContactPoint* points) {
+  const PosedHull& inc = *contact.incident;
+  const Vec3& n = contact.plane.normal;
+  const int deepest = inc.Support(-n, 0);
+  const int incidentFace = IncidentFace(inc, n, deepest);
+  IncidentPolygon(contact, incidentFace, scratch.polygon);
+  ClipToReferenceFace(contact, incidentFace, scratch.polygon, scratch.clipped);
+  const double deepestKept = KeepPointsInContact(contact, normal, margin, scratch.polygon, scratch.kept);
+  KeepDeepestVertex(contact, normal, depth, deepest, deepestKept, scratch.kept);
+  return ReduceContactPoints(scratch.kept, n, kClippedMaxPoints, points);
 }
 
 int BuildWriteUpPoints(const FaceContact& contact, const Vec3& normal, double depth, ManifoldScratch& scratch,

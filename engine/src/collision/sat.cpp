@@ -201,106 +201,138 @@ EdgeQuery QueryAllEdges(const PosedHull& a, const PosedHull& b, double margin, N
   return best;
 }
 
+// One edge of A as the Minkowski edge query reads it against every edge of
+// B: its faces' normals, a vertex and direction, and the bisector of its
+// arc on the Gauss map (the side an axis n must lie on).
+struct MinkowskiEdgeA {
+  Vec3 normalLeft;
+  Vec3 normalRight;
+  Vec3 point;
+  Vec3 dir;
+  double dirSquared = 0.0;
+  Vec3 bisector;
+};
+
+MinkowskiEdgeA DescribeEdgeOfA(const SatFrame& frame, std::size_t ea) {
+  const auto verticesA = frame.hullA->Vertices();
+  const auto halfEdgesA = frame.hullA->HalfEdges();
+  const SatFrame::Arc& arcA = frame.arcsA[ea];
+  MinkowskiEdgeA edge;
+  edge.normalLeft = frame.hullA->Faces()[static_cast<std::size_t>(arcA.left)].plane.normal;
+  edge.normalRight = frame.hullA->Faces()[static_cast<std::size_t>(arcA.right)].plane.normal;
+  edge.point = verticesA[static_cast<std::size_t>(halfEdgesA[2 * ea].origin)];
+  edge.dir = verticesA[static_cast<std::size_t>(halfEdgesA[2 * ea + 1].origin)] - edge.point;
+  edge.dirSquared = edge.dir.squaredNorm();
+  // The side of A's arc that n must lie on. n = eA x eB is perpendicular
+  // to eA, so it lies in the plane of A's two face normals; its sign is
+  // chosen against the arc's bisector, built in that plane from the
+  // normals and the edge's outward direction (faces are counter-clockwise
+  // seen from outside, left face on half-edge 2e, so dirA x normalLeftA
+  // points out of the left face across the edge). Of n and -n exactly one
+  // lies on the arc (angle phi in [0, theta], theta <= pi), and it has
+  // cos(phi - theta / 2) >= cos(theta / 2) >= 0 with the bisector while
+  // the other has the negative. Orienting by "away from A's centroid"
+  // instead fails for a sliver hull: with n near a big face's normal,
+  // n . (pointA - centroid) is about half the sliver's thickness, and a
+  // hull whose faces are fitted within its tolerance can give it the wrong
+  // sign, turning an overlap into an equal separation (fuzz finding
+  // sliver_hull_gauss_map_separated_while_overlapping).
+  const Vec3 outwardLeftA = edge.dir.cross(edge.normalLeft).normalized();
+  const double arcAngle =
+      std::atan2(std::max(edge.normalRight.dot(outwardLeftA), 0.0), edge.normalRight.dot(edge.normalLeft));
+  edge.bisector = std::cos(0.5 * arcAngle) * edge.normalLeft + std::sin(0.5 * arcAngle) * outwardLeftA;
+  return edge;
+}
+
+// IsMinkowskiFace(a, b, b x a, c, d, d x c) with (a, b) A's normals and
+// (c, d) B's, `sideB` holding B's normals against A's arc plane: B's arc
+// must cross A's arc plane first (the cheap test).
+bool BuildsMinkowskiFace(const MinkowskiEdgeA& edgeA, std::span<const double> sideB,
+                         const SatFrame::Arc& arcB) {
+  const double cba = -sideB[static_cast<std::size_t>(arcB.left)];
+  const double dba = -sideB[static_cast<std::size_t>(arcB.right)];
+  if (!(cba * dba < 0.0)) return false;
+  const double adc = edgeA.normalLeft.dot(arcB.cross);
+  const double bdc = edgeA.normalRight.dot(arcB.cross);
+  return adc * bdc < 0.0 && cba * bdc > 0.0;
+}
+
+// Every edge of B against edge `ea` of A (described by `edgeA`), improving
+// `best`; returns true on the first pair that separates by more than
+// `margin` (the early out).
+bool QueryMinkowskiEdgesOfB(const SatFrame& frame, std::size_t ea, const MinkowskiEdgeA& edgeA, double margin,
+                            EdgeQuery& best, std::uint64_t& tested, std::uint64_t& prunedCount) {
+  const auto verticesA = frame.hullA->Vertices();
+  const auto halfEdgesB = frame.hullB->HalfEdges();
+  const std::span<const Vec3> verticesB = frame.verticesB;
+  const auto edgeCountB = frame.arcsB.size();
+  for (std::size_t eb = 0; eb < edgeCountB; ++eb) {
+    if (!BuildsMinkowskiFace(edgeA, frame.sideB, frame.arcsB[eb])) {
+      ++prunedCount;
+      continue;
+    }
+    ++tested;
+    const Vec3& pointB = verticesB[static_cast<std::size_t>(halfEdgesB[2 * eb].origin)];
+    const Vec3 dirB = verticesB[static_cast<std::size_t>(halfEdgesB[2 * eb + 1].origin)] - pointB;
+    const Vec3 cross = edgeA.dir.cross(dirB);
+    const double crossSquared = cross.squaredNorm();
+    // Parallel edges: no reliable axis, and the face axes cover it.
+    if (crossSquared <= kParallelEdgeSine * kParallelEdgeSine * edgeA.dirSquared * dirB.squaredNorm())
+      continue;
+    Vec3 n = cross / std::sqrt(crossSquared);
+    if (n.dot(edgeA.bisector) < 0.0) n = -n;
+    double separation = n.dot(pointB - edgeA.point);
+    // The shortcut is never below the projected gap (pA is no higher
+    // than A's top on n, pB no lower than B's bottom), so a pair that
+    // cannot beat the best so far needs no more work.
+    if (!(separation > best.separation)) continue;
+    // A pair that would become the best is confirmed by projecting every
+    // vertex of both hulls on n (not by hill climbing, which a sliver can
+    // stop early; only pairs that improve the best pay the V_A + V_B
+    // dots, a few per query). The shortcut assumes the edges are the
+    // supports; on an edge far shorter than the hull (a sliver's vertex
+    // cluster, 1e-13 m in the fuzz findings) the direction eA is
+    // round-off next to its faces' normals, the Gauss map test can pass a
+    // pair whose axis is off A's arc, and eA is then not A's support
+    // along n. Unconfirmed, such a pair turned an overlap into a
+    // separation (by 2.7e-4 m, sliver_hull_gauss_map_separated_while_-
+    // overlapping) and, overlapping, claimed 3.6e-8 m less overlap than
+    // its axis has, beating A's face of least overlap by more than the
+    // preference band, so the reported depth was 1.8e-8 m beyond the true
+    // minimum (sliver_edge_axis_beat_face_by_shortcut). The projected gap
+    // equals the shortcut, up to round-off, on a true Minkowski face, so
+    // the least overlap is still found.
+    separation = std::min(separation, LowestAlong(verticesB, n) - HighestAlong(verticesA, n));
+    if (separation > best.separation) {
+      best = {.edgeA = static_cast<int>(ea), .edgeB = static_cast<int>(eb), .separation = separation};
+      if (separation > margin) return true;  // early out on the first separating axis
+    }
+  }
+  return false;
+}
+
 // GaussMapPruned mode (Gregorius, GDC 2013): only edge pairs that build a
 // face of the Minkowski difference A - B are measured, and those need no
 // projection in exact arithmetic (a pair that would become the best is
-// still projected once, see below). For such a pair the axis n = eA x eB (oriented onto A's arc, away from
-// A's interior) lies on both edges' arcs, so edge eA is A's support along n and edge eB is B's support along
-// -n: the gap is n . (pB - pA) for any vertex pA of eA and pB of eB. The Gauss map test reads B's face
-// normals against A's arc plane from a table filled once per edge of A (one dot per face of B instead of two
-// per edge pair), and runs the same predicates, on the same numbers, as IsMinkowskiFace.
+// still projected once, see QueryMinkowskiEdgesOfB). For such a pair the
+// axis n = eA x eB (oriented onto A's arc, away from A's interior) lies on
+// both edges' arcs, so edge eA is A's support along n and edge eB is B's
+// support along -n: the gap is n . (pB - pA) for any vertex pA of eA and pB
+// of eB. The Gauss map test reads B's face normals against A's arc plane
+// from a table filled once per edge of A (one dot per face of B instead of
+// two per edge pair), and runs the same predicates, on the same numbers,
+// as IsMinkowskiFace.
 EdgeQuery QueryMinkowskiEdges(SatFrame& frame, double margin, NarrowPhaseStats* stats) {
-  const auto verticesA = frame.hullA->Vertices();
-  const auto halfEdgesA = frame.hullA->HalfEdges();
-  const auto halfEdgesB = frame.hullB->HalfEdges();
-  const std::span<const Vec3> verticesB = frame.verticesB;
   const auto faceCountB = frame.planesB.size();
   EdgeQuery best;
   std::uint64_t tested = 0;
   std::uint64_t prunedCount = 0;
   const auto edgeCountA = frame.arcsA.size();
-  const auto edgeCountB = frame.arcsB.size();
   for (std::size_t ea = 0; ea < edgeCountA; ++ea) {
     const SatFrame::Arc& arcA = frame.arcsA[ea];
-    const Vec3& normalLeftA = frame.hullA->Faces()[static_cast<std::size_t>(arcA.left)].plane.normal;
-    const Vec3& normalRightA = frame.hullA->Faces()[static_cast<std::size_t>(arcA.right)].plane.normal;
     for (std::size_t f = 0; f < faceCountB; ++f) frame.sideB[f] = frame.planesB[f].normal.dot(arcA.cross);
-    const Vec3& pointA = verticesA[static_cast<std::size_t>(halfEdgesA[2 * ea].origin)];
-    const Vec3 dirA = verticesA[static_cast<std::size_t>(halfEdgesA[2 * ea + 1].origin)] - pointA;
-    const double dirASquared = dirA.squaredNorm();
-    // The side of A's arc that n must lie on. n = eA x eB is perpendicular
-    // to eA, so it lies in the plane of A's two face normals; its sign is
-    // chosen against the arc's bisector, built in that plane from the
-    // normals and the edge's outward direction (faces are counter-clockwise
-    // seen from outside, left face on half-edge 2e, so dirA x normalLeftA
-    // points out of the left face across the edge). Of n and -n exactly one
-    // lies on the arc (angle phi in [0, theta], theta <= pi), and it has
-    // cos(phi - theta / 2) >= cos(theta / 2) >= 0 with the bisector while
-    // the other has the negative. Orienting by "away from A's centroid"
-    // instead fails for a sliver hull: with n near a big face's normal,
-    // n . (pointA - centroid) is about half the sliver's thickness, and a
-    // hull whose faces are fitted within its tolerance can give it the wrong
-    // sign, turning an overlap into an equal separation (fuzz finding
-    // sliver_hull_gauss_map_separated_while_overlapping).
-    const Vec3 outwardLeftA = dirA.cross(normalLeftA).normalized();
-    const double arcAngle =
-        std::atan2(std::max(normalRightA.dot(outwardLeftA), 0.0), normalRightA.dot(normalLeftA));
-    const Vec3 bisectorA = std::cos(0.5 * arcAngle) * normalLeftA + std::sin(0.5 * arcAngle) * outwardLeftA;
-    for (std::size_t eb = 0; eb < edgeCountB; ++eb) {
-      const SatFrame::Arc& arcB = frame.arcsB[eb];
-      // IsMinkowskiFace(a, b, b x a, c, d, d x c) with (a, b) A's normals and
-      // (c, d) B's: B's arc must cross A's arc plane first (the cheap test).
-      const double cba = -frame.sideB[static_cast<std::size_t>(arcB.left)];
-      const double dba = -frame.sideB[static_cast<std::size_t>(arcB.right)];
-      if (!(cba * dba < 0.0)) {
-        ++prunedCount;
-        continue;
-      }
-      const double adc = normalLeftA.dot(arcB.cross);
-      const double bdc = normalRightA.dot(arcB.cross);
-      if (!(adc * bdc < 0.0 && cba * bdc > 0.0)) {
-        ++prunedCount;
-        continue;
-      }
-      ++tested;
-      const Vec3& pointB = verticesB[static_cast<std::size_t>(halfEdgesB[2 * eb].origin)];
-      const Vec3 dirB = verticesB[static_cast<std::size_t>(halfEdgesB[2 * eb + 1].origin)] - pointB;
-      const Vec3 cross = dirA.cross(dirB);
-      const double crossSquared = cross.squaredNorm();
-      // Parallel edges: no reliable axis, and the face axes cover it.
-      if (crossSquared <= kParallelEdgeSine * kParallelEdgeSine * dirASquared * dirB.squaredNorm()) continue;
-      Vec3 n = cross / std::sqrt(crossSquared);
-      if (n.dot(bisectorA) < 0.0) n = -n;
-      double separation = n.dot(pointB - pointA);
-      // The shortcut is never below the projected gap (pA is no higher
-      // than A's top on n, pB no lower than B's bottom), so a pair that
-      // cannot beat the best so far needs no more work.
-      if (!(separation > best.separation)) continue;
-      // A pair that would become the best is confirmed by projecting every
-      // vertex of both hulls on n (not by hill climbing, which a sliver can
-      // stop early; only pairs that improve the best pay the V_A + V_B
-      // dots, a few per query). The shortcut assumes the edges are the
-      // supports; on an edge far shorter than the hull (a sliver's vertex
-      // cluster, 1e-13 m in the fuzz findings) the direction eA is
-      // round-off next to its faces' normals, the Gauss map test can pass a
-      // pair whose axis is off A's arc, and eA is then not A's support
-      // along n. Unconfirmed, such a pair turned an overlap into a
-      // separation (by 2.7e-4 m, sliver_hull_gauss_map_separated_while_-
-      // overlapping) and, overlapping, claimed 3.6e-8 m less overlap than
-      // its axis has, beating A's face of least overlap by more than the
-      // preference band, so the reported depth was 1.8e-8 m beyond the true
-      // minimum (sliver_edge_axis_beat_face_by_shortcut). The projected gap
-      // equals the shortcut, up to round-off, on a true Minkowski face, so
-      // the least overlap is still found.
-      separation = std::min(separation, LowestAlong(verticesB, n) - HighestAlong(verticesA, n));
-      if (separation > best.separation) {
-        best = {.edgeA = static_cast<int>(ea), .edgeB = static_cast<int>(eb), .separation = separation};
-        if (separation > margin) {
-          ea = edgeCountA;  // early out on the first separating axis
-          break;
-        }
-      }
-    }
+    const MinkowskiEdgeA edgeA = DescribeEdgeOfA(frame, ea);
+    if (QueryMinkowskiEdgesOfB(frame, ea, edgeA, margin, best, tested, prunedCount)) break;
   }
   if (stats) {
     stats->edgeAxesTested += tested;
@@ -400,27 +432,72 @@ double EvaluateSatAxis(const PosedHull& a, const PosedHull& b, const SatAxis& ax
   return kNegativeInfinity;
 }
 
+namespace {
+
+// Temporal coherence: last step's axis very likely still separates. The
+// result when the cached axis (valid for this pair of hulls) still
+// separates by more than `margin`; nothing otherwise.
+std::optional<SatResult> ProbeCachedAxis(const PosedHull& a, const PosedHull& b, double margin,
+                                         SatCache* cache, NarrowPhaseStats* stats) {
+  const bool cacheValid = cache && cache->hullA == a.hull && cache->hullB == b.hull;
+  if (!cacheValid || cache->axis.type == SatAxisType::None) return std::nullopt;
+  Vec3 normal = Vec3::Zero();
+  const double separation = EvaluateSatAxis(a, b, cache->axis, &normal);
+  if (!(separation > margin)) return std::nullopt;
+  if (stats) ++stats->satCacheHits;
+  cache->separated = true;
+  return SatResult{
+      .separated = true, .cacheHit = true, .axis = cache->axis, .normal = normal, .separation = separation};
+}
+
+// The edge pair the search found, re-picked as the edges that support its
+// axis (SupportingEdge), unless those measure differently.
+SatAxis SupportingEdgePair(const PosedHull& a, const PosedHull& b, const EdgeQuery& edge, double band) {
+  const SatAxis searched{SatAxisType::EdgePair, edge.edgeA, edge.edgeB};
+  Vec3 normal = Vec3::Zero();
+  const double searchedSeparation = EvaluateSatAxis(a, b, searched, &normal);
+  const SatAxis axis{SatAxisType::EdgePair, SupportingEdge(a, -normal, edge.edgeA),
+                     SupportingEdge(b, normal, edge.edgeB)};
+  // The re-picked edges must measure what the searched pair does; the
+  // pair the search measured spans the axis by construction (it skips
+  // parallel pairs), so it is kept otherwise. Two ways they differ on a
+  // sliver: the supporting edges can be parallel, which spans no axis (an
+  // edge of 2e-11 m, its direction round-off, picked at the support vertex
+  // next to a box edge it happens to parallel gave a separation of -inf in
+  // both modes); and hill climbing can stop at a vertex that is a local
+  // maximum only through round-off, so SupportingEdge starts from the
+  // wrong vertex and its edge's axis, measured by climbing, reported
+  // 1.7e-4 m less overlap than the true minimum (SatSliver case 446).
+  Vec3 unused = Vec3::Zero();
+  const double repickedSeparation = EvaluateSatAxis(a, b, axis, &unused);
+  if (!(std::abs(repickedSeparation - searchedSeparation) <= band)) return searched;
+  return axis;
+}
+
+// Least overlap, with a bias towards faces of A, then faces of B, then
+// edges, inside a band relative to the pair's size (see
+// kAxisPreferenceRelative).
+SatAxis LeastOverlapAxis(const PosedHull& a, const PosedHull& b, const FaceQuery& faceA,
+                         const FaceQuery& faceB, const EdgeQuery& edge) {
+  const double band = AxisPreferenceBand(*a.hull, *b.hull);
+  SatAxis axis{SatAxisType::FaceA, faceA.face, -1};
+  double separation = faceA.separation;
+  if (faceB.separation > separation + band) {
+    axis = {SatAxisType::FaceB, -1, faceB.face};
+    separation = faceB.separation;
+  }
+  if (edge.edgeA >= 0 && edge.separation > separation + band) axis = SupportingEdgePair(a, b, edge, band);
+  return axis;
+}
+
+}  // namespace
+
 SatResult RunSat(const PosedHull& a, const PosedHull& b, SatMode mode, double margin, SatCache* cache,
                  NarrowPhaseStats* stats, NarrowPhaseScratch* scratch) {
   if (stats) ++stats->satTests;
+  if (std::optional<SatResult> hit = ProbeCachedAxis(a, b, margin, cache, stats)) return *hit;
+
   SatResult result;
-  const bool cacheValid = cache && cache->hullA == a.hull && cache->hullB == b.hull;
-
-  // Temporal coherence: last step's axis very likely still separates.
-  if (cacheValid && cache->axis.type != SatAxisType::None) {
-    Vec3 normal = Vec3::Zero();
-    const double separation = EvaluateSatAxis(a, b, cache->axis, &normal);
-    if (separation > margin) {
-      if (stats) ++stats->satCacheHits;
-      cache->separated = true;
-      return {.separated = true,
-              .cacheHit = true,
-              .axis = cache->axis,
-              .normal = normal,
-              .separation = separation};
-    }
-  }
-
   const auto finish = [&](const SatAxis& axis, bool separated) {
     result.axis = axis;
     result.separated = separated;
@@ -452,38 +529,7 @@ SatResult RunSat(const PosedHull& a, const PosedHull& b, SatMode mode, double ma
     edge = QueryAllEdges(a, b, margin, stats);
   }
   if (edge.separation > margin) return finish({SatAxisType::EdgePair, edge.edgeA, edge.edgeB}, true);
-
-  // Least overlap, with a bias towards faces of A, then faces of B, then
-  // edges, inside a band relative to the pair's size (see
-  // kAxisPreferenceRelative).
-  const double band = AxisPreferenceBand(*a.hull, *b.hull);
-  SatAxis axis{SatAxisType::FaceA, faceA.face, -1};
-  double separation = faceA.separation;
-  if (faceB.separation > separation + band) {
-    axis = {SatAxisType::FaceB, -1, faceB.face};
-    separation = faceB.separation;
-  }
-  if (edge.edgeA >= 0 && edge.separation > separation + band) {
-    const SatAxis searched{SatAxisType::EdgePair, edge.edgeA, edge.edgeB};
-    Vec3 normal = Vec3::Zero();
-    const double searchedSeparation = EvaluateSatAxis(a, b, searched, &normal);
-    axis = {SatAxisType::EdgePair, SupportingEdge(a, -normal, edge.edgeA),
-            SupportingEdge(b, normal, edge.edgeB)};
-    // The re-picked edges must measure what the searched pair does; the
-    // pair the search measured spans the axis by construction (it skips
-    // parallel pairs), so it is kept otherwise. Two ways they differ on a
-    // sliver: the supporting edges can be parallel, which spans no axis (an
-    // edge of 2e-11 m, its direction round-off, picked at the support vertex
-    // next to a box edge it happens to parallel gave a separation of -inf in
-    // both modes); and hill climbing can stop at a vertex that is a local
-    // maximum only through round-off, so SupportingEdge starts from the
-    // wrong vertex and its edge's axis, measured by climbing, reported
-    // 1.7e-4 m less overlap than the true minimum (SatSliver case 446).
-    Vec3 unused = Vec3::Zero();
-    const double repickedSeparation = EvaluateSatAxis(a, b, axis, &unused);
-    if (!(std::abs(repickedSeparation - searchedSeparation) <= band)) axis = searched;
-  }
-  return finish(axis, false);
+  return finish(LeastOverlapAxis(a, b, faceA, faceB, edge), false);
 }
 
 }  // namespace talus

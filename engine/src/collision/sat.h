@@ -55,6 +55,9 @@ struct SatCache {
   SatAxis axis;            ///< last separating axis, or last contact axis
   bool separated = false;  ///< whether `axis` separated the pair last time
 };
+// Two to a cache line inside PairSatCache (docs/collision-narrow-phase.md,
+// Record sizes).
+static_assert(sizeof(SatCache) == 32, "SatCache: two hull pointers, a 12-byte axis and a flag");
 
 /// The SAT's answer.
 struct SatResult {

@@ -62,6 +62,9 @@ class UniformGrid {
     std::uint64_t key = 0;  ///< packed cell coordinates
     int proxy = 0;
   };
+  // Radix-sorted every step, twice per pass (docs/collision-broad-phase.md,
+  // Record sizes).
+  static_assert(sizeof(Entry) == 16, "UniformGrid::Entry: cell key and proxy (padded to 8)");
   /// What the pair loop reads of a cell's member, gathered once per entry
   /// so the loop streams through memory instead of jumping between slots.
   struct Member {
@@ -72,6 +75,9 @@ class UniformGrid {
     int proxy = 0;
     bool isStatic = false;
   };
+  // One cache line each: the pair loop streams members cell by cell
+  // (docs/collision-broad-phase.md, Record sizes).
+  static_assert(sizeof(Member) == 64, "UniformGrid::Member: one cache line");
 
   /// Finds each active proxy's cell range and the oversized ones; returns
   /// false when the occupied range needs more than 64 key bits.

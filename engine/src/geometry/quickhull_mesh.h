@@ -46,6 +46,9 @@ struct QhHalfEdge {
   int prev = -1;
   int face = -1;
 };
+// As HullHalfEdge: the horizon walk and the face merges follow half-edges
+// by index (docs/geometry-quickhull.md, Record sizes).
+static_assert(sizeof(QhHalfEdge) == 20, "QhHalfEdge: five ints, no padding");
 
 /// Life cycle of a working face.
 enum class QhFaceState : unsigned char {
@@ -60,6 +63,9 @@ struct QhConflict {
   Vec3 point;
   int index = -1;
 };
+// Two to a cache line: every new face's conflict lists are refilled from
+// its predecessors' (docs/geometry-quickhull.md, Record sizes).
+static_assert(sizeof(QhConflict) == 32, "QhConflict: a copied point and its index (padded to 8)");
 
 /// A working face: its border, plane, and conflict list (outside points).
 struct QhFace {

@@ -224,6 +224,81 @@ void GatherPair(WorldData& d, const PairOutcome& outcome) {
   }
 }
 
+// Last step's contact and cache of every pair into its outcome. Pairs come
+// sorted by (a, b), which is pair-key order, so one forward walk each finds
+// them.
+void FindPreviousEntries(WorldData& d) {
+  d.pairOutcomes.resize(d.pairs.size());
+  std::size_t oldContact = 0;
+  std::size_t oldCache = 0;
+  for (std::size_t p = 0; p < d.pairs.size(); ++p) {
+    const std::uint64_t key = PairKey(d.pairs[p].a, d.pairs[p].b);
+    while (oldContact < d.previousContacts.size() && d.previousContacts[oldContact].PairKey() < key)
+      ++oldContact;
+    while (oldCache < d.previousSatCaches.size() && d.previousSatCaches[oldCache].pairKey < key) ++oldCache;
+    PairOutcome& outcome = d.pairOutcomes[p];
+    const bool hadContact =
+        oldContact < d.previousContacts.size() && d.previousContacts[oldContact].PairKey() == key;
+    const bool hadCache =
+        oldCache < d.previousSatCaches.size() && d.previousSatCaches[oldCache].pairKey == key;
+    outcome.oldContact = hadContact ? static_cast<std::int32_t>(oldContact) : -1;
+    outcome.oldCache = hadCache ? static_cast<std::int32_t>(oldCache) : -1;
+  }
+}
+
+// The narrow phase, each pair into its own slot, on every thread, each
+// thread with its own scratch (owned by the pool).
+void CollidePairs(WorldData& d, double h) {
+  const int pairCount = static_cast<int>(d.pairs.size());
+  const std::span<NarrowPhaseScratch> scratch = d.jobs->ThreadScratch<NarrowPhaseScratch>();
+  d.jobs->ParallelForOnThreads(pairCount, kNarrowPhaseGrain,
+                               [&d, h, scratch](int thread, int begin, int end) {
+                                 NarrowPhaseScratch& mine = scratch[static_cast<std::size_t>(thread)];
+                                 for (int p = begin; p < end; ++p) {
+                                   CollidePair(d, d.pairs[static_cast<std::size_t>(p)], h, mine,
+                                               d.pairOutcomes[static_cast<std::size_t>(p)]);
+                                 }
+                               });
+}
+
+// The serial half of the gather, in pair order: each pair's places in the
+// new lists (contactSlot, cacheSlot), the counts and the wakes. Resizes the
+// new lists to the counts (capacity is kept; GatherPair overwrites every
+// element up to the new size).
+void AssignGatherSlots(WorldData& d, StepStatistics& stats) {
+  std::int32_t contactCount = 0;
+  std::int32_t cacheCount = 0;
+  for (std::size_t p = 0; p < d.pairs.size(); ++p) {
+    PairOutcome& outcome = d.pairOutcomes[p];
+    outcome.contactSlot = -1;
+    outcome.cacheSlot = -1;
+    switch (outcome.kind) {
+      case PairOutcome::Kind::Kept:
+        ++stats.sleepingPairsSkipped;
+        if (outcome.oldContact >= 0) outcome.contactSlot = contactCount++;
+        if (outcome.oldCache >= 0) outcome.cacheSlot = cacheCount++;
+        continue;
+      case PairOutcome::Kind::Reused:
+        ++stats.manifoldsReused;
+        stats.reusedContactPoints += outcome.contact.manifold.pointCount;
+        if (outcome.oldCache >= 0) outcome.cacheSlot = cacheCount++;
+        break;
+      case PairOutcome::Kind::Tested:
+        stats.narrowPhase += outcome.stats;
+        stats.persistentPoints += outcome.persistentPoints;
+        outcome.cacheSlot = cacheCount++;
+        break;
+    }
+    if (!outcome.touching) continue;
+    if (outcome.wakeA) Wake(d, static_cast<std::size_t>(d.pairs[p].a));
+    if (outcome.wakeB) Wake(d, static_cast<std::size_t>(d.pairs[p].b));
+    outcome.contactSlot = contactCount++;
+  }
+  d.contacts.resize(static_cast<std::size_t>(contactCount));
+  d.contactAnchors.resize(static_cast<std::size_t>(contactCount));
+  d.satCaches.resize(static_cast<std::size_t>(cacheCount));
+}
+
 }  // namespace
 
 Result<int> UpdateBroadPhase(WorldData& d, double h) {
@@ -276,76 +351,15 @@ void FindContacts(WorldData& d, double h, StepStatistics& stats) {
   stats.spherePairs = static_cast<std::int64_t>(d.pairs.size());
   stats.staticPairsSkipped = stats.broadPhase.skippedStaticPairs;
 
-  // 1. Last step's contact and cache of every pair. Pairs come sorted by
-  // (a, b), which is pair-key order, so one forward walk each finds them.
-  const int pairCount = static_cast<int>(d.pairs.size());
-  d.pairOutcomes.resize(d.pairs.size());
-  std::size_t oldContact = 0;
-  std::size_t oldCache = 0;
-  for (std::size_t p = 0; p < d.pairs.size(); ++p) {
-    const std::uint64_t key = PairKey(d.pairs[p].a, d.pairs[p].b);
-    while (oldContact < d.previousContacts.size() && d.previousContacts[oldContact].PairKey() < key)
-      ++oldContact;
-    while (oldCache < d.previousSatCaches.size() && d.previousSatCaches[oldCache].pairKey < key) ++oldCache;
-    PairOutcome& outcome = d.pairOutcomes[p];
-    const bool hadContact =
-        oldContact < d.previousContacts.size() && d.previousContacts[oldContact].PairKey() == key;
-    const bool hadCache =
-        oldCache < d.previousSatCaches.size() && d.previousSatCaches[oldCache].pairKey == key;
-    outcome.oldContact = hadContact ? static_cast<std::int32_t>(oldContact) : -1;
-    outcome.oldCache = hadCache ? static_cast<std::int32_t>(oldCache) : -1;
-  }
-
-  // 2. The narrow phase, each pair into its own slot, on every thread,
-  // each thread with its own scratch (owned by the pool).
-  const std::span<NarrowPhaseScratch> scratch = d.jobs->ThreadScratch<NarrowPhaseScratch>();
-  d.jobs->ParallelForOnThreads(pairCount, kNarrowPhaseGrain,
-                               [&d, h, scratch](int thread, int begin, int end) {
-                                 NarrowPhaseScratch& mine = scratch[static_cast<std::size_t>(thread)];
-                                 for (int p = begin; p < end; ++p) {
-                                   CollidePair(d, d.pairs[static_cast<std::size_t>(p)], h, mine,
-                                               d.pairOutcomes[static_cast<std::size_t>(p)]);
-                                 }
-                               });
-
-  // 3. Gathered in pair order: the contacts stay sorted by pair key and
+  FindPreviousEntries(d);
+  CollidePairs(d, h);
+  // Gathered in pair order: the contacts stay sorted by pair key and
   // nothing depends on which thread ran which pair. First, serially, each
   // pair's places in the new lists, the counts and the wakes; then the
   // copies (a contact is hundreds of bytes) on every thread, each pair into
   // its own places.
-  std::int32_t contactCount = 0;
-  std::int32_t cacheCount = 0;
-  for (std::size_t p = 0; p < d.pairs.size(); ++p) {
-    PairOutcome& outcome = d.pairOutcomes[p];
-    outcome.contactSlot = -1;
-    outcome.cacheSlot = -1;
-    switch (outcome.kind) {
-      case PairOutcome::Kind::Kept:
-        ++stats.sleepingPairsSkipped;
-        if (outcome.oldContact >= 0) outcome.contactSlot = contactCount++;
-        if (outcome.oldCache >= 0) outcome.cacheSlot = cacheCount++;
-        continue;
-      case PairOutcome::Kind::Reused:
-        ++stats.manifoldsReused;
-        stats.reusedContactPoints += outcome.contact.manifold.pointCount;
-        if (outcome.oldCache >= 0) outcome.cacheSlot = cacheCount++;
-        break;
-      case PairOutcome::Kind::Tested:
-        stats.narrowPhase += outcome.stats;
-        stats.persistentPoints += outcome.persistentPoints;
-        outcome.cacheSlot = cacheCount++;
-        break;
-    }
-    if (!outcome.touching) continue;
-    if (outcome.wakeA) Wake(d, static_cast<std::size_t>(d.pairs[p].a));
-    if (outcome.wakeB) Wake(d, static_cast<std::size_t>(d.pairs[p].b));
-    outcome.contactSlot = contactCount++;
-  }
-  // Capacity is kept; every element up to the new size is overwritten.
-  d.contacts.resize(static_cast<std::size_t>(contactCount));
-  d.contactAnchors.resize(static_cast<std::size_t>(contactCount));
-  d.satCaches.resize(static_cast<std::size_t>(cacheCount));
-  d.jobs->ParallelFor(pairCount, kGatherGrain, [&d](int begin, int end) {
+  AssignGatherSlots(d, stats);
+  d.jobs->ParallelFor(static_cast<int>(d.pairs.size()), kGatherGrain, [&d](int begin, int end) {
     for (int p = begin; p < end; ++p) GatherPair(d, d.pairOutcomes[static_cast<std::size_t>(p)]);
   });
   stats.manifolds = static_cast<std::int64_t>(d.contacts.size());

@@ -62,6 +62,10 @@ struct PairSatCache {
   std::uint64_t pairKey = 0;
   SatCache cache;
 };
+// The narrow phase's per-pair cache entry, one per tested pair, searched by
+// key and copied at every gather (docs/collision-narrow-phase.md, Record
+// sizes).
+static_assert(sizeof(PairSatCache) == 40, "PairSatCache: pair key and a 32-byte SatCache");
 
 /// What the narrow phase made of one broad-phase pair this step. Written by
 /// whichever thread ran the pair, read back in pair order, so the contacts
@@ -88,6 +92,10 @@ struct PairOutcome {
   ManifoldAnchors anchors;
   PairSatCache cache;
 };
+// One per broad-phase pair every step, written by a worker and read by the
+// gather: mostly the Contact and ManifoldAnchors budgeted in
+// dynamics/contact.h (docs/collision-narrow-phase.md, Record sizes).
+static_assert(sizeof(PairOutcome) <= 1280, "PairOutcome grew past its 1,280-byte budget");
 
 struct WorldData {
   WorldSettings settings;
