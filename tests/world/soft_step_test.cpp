@@ -79,7 +79,8 @@ TEST(SoftStep, InvalidSettingsAreRefusedNamingTheField) {
     c.spoil(settings);
     const Result<World> world = World::Create(settings);
     ASSERT_FALSE(world) << c.field;
-    EXPECT_NE(world.GetError().message.find(std::string("WorldSettings.methods.") + c.field), std::string::npos)
+    EXPECT_NE(world.GetError().message.find(std::string("WorldSettings.methods.") + c.field),
+              std::string::npos)
         << world.GetError().message;
     // The same check guards SetSettings, and a refusal changes nothing.
     World valid = World::Create(SoftSettings()).Value();
