@@ -23,19 +23,6 @@ constexpr double kSlidingSpeed = 1e-9;
 // block's eigen decomposition) cost a few microseconds.
 constexpr int kPairGrain = 32;
 
-// A unit vector orthogonal to the unit `n`, from the world axis least
-// aligned with it (deterministic and well conditioned).
-Vec3 AnyPerpendicular(const Vec3& n) {
-  const Vec3 a = n.cwiseAbs();
-  Vec3 axis = Vec3::UnitX();
-  if (a.y() <= a.x() && a.y() <= a.z()) {
-    axis = Vec3::UnitY();
-  } else if (a.z() <= a.x() && a.z() <= a.y()) {
-    axis = Vec3::UnitZ();
-  }
-  return n.cross(axis).normalized();
-}
-
 // Linear velocity at the step's start: the integrator records it for the
 // bodies it accelerated (awake dynamic); every other body keeps its own.
 const Vec3& StartVelocity(const BodySim& body) {

@@ -11,6 +11,20 @@
 
 namespace talus {
 
+// A unit vector orthogonal to the unit `n`, from the world axis least
+// aligned with it (deterministic and well conditioned). Both step solvers
+// start their contact tangents from it, so they share one basis.
+inline Vec3 AnyPerpendicular(const Vec3& n) {
+  const Vec3 a = n.cwiseAbs();
+  Vec3 axis = Vec3::UnitX();
+  if (a.y() <= a.x() && a.y() <= a.z()) {
+    axis = Vec3::UnitY();
+  } else if (a.z() <= a.x() && a.z() <= a.y()) {
+    axis = Vec3::UnitZ();
+  }
+  return n.cross(axis).normalized();
+}
+
 /// One row along direction d (the normal or a tangent) at one point: the
 /// angular parts of J and their images under the inverse inertia.
 struct RowJacobian {

@@ -29,20 +29,6 @@ constexpr int kPairGrain = 16;
 // Pairs per chunk of Prepare's parallel pass (a few microseconds each).
 constexpr int kPreparePairGrain = 32;
 
-// A unit vector orthogonal to the unit `n`, from the world axis least
-// aligned with it (the Sequential Impulses rows' choice, so both solvers
-// start from the same basis).
-Vec3 AnyPerpendicular(const Vec3& n) {
-  const Vec3 a = n.cwiseAbs();
-  Vec3 axis = Vec3::UnitX();
-  if (a.y() <= a.x() && a.y() <= a.z()) {
-    axis = Vec3::UnitY();
-  } else if (a.z() <= a.x() && a.z() <= a.y()) {
-    axis = Vec3::UnitZ();
-  }
-  return n.cross(axis).normalized();
-}
-
 Vec3 RelativeVelocity(const BodySim& a, const Vec3& rA, const BodySim& b, const Vec3& rB) {
   return (a.linearVelocity + a.angularVelocity.cross(rA)) - (b.linearVelocity + b.angularVelocity.cross(rB));
 }
