@@ -85,8 +85,8 @@ test-release: build
 # (TALUS_VALIDATE: every step's contact graph, islands, broad phase and
 # colours checked; engine/src/world/world_validate.h). Benchmarks are left out.
 # -g1 (line tables only) keeps file:line in every sanitizer stack trace and
-# compiles about 25% faster than -g (scenario_loader.cpp: 29 s against 39 s
-# of CPU), which is most of what keeps `make test` inside CI's budget.
+# compiles about 25% faster than -g (scenario_loader.cpp before its split:
+# 29 s against 39 s of CPU), which is most of what keeps `make test` inside CI's budget.
 test-asan: deps
 	@$(CMAKE) -S . -B $(ASAN_DIR) -G $(GENERATOR) -DCMAKE_BUILD_TYPE=Debug \
 	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DTALUS_SANITIZE=ON -DTALUS_VALIDATE=ON -DTALUS_BUILD_BENCH=OFF >/dev/null

@@ -1,8 +1,9 @@
 // The scenario model: what a scenario file (scenarios/<family>/<name>.json,
 // format in docs/scenarios.md) means once parsed, validated and expanded.
 //
-// Every value here has passed the schema and the semantic checks of
-// scenario_loader.cpp: numbers are finite, quaternions unit length, dynamic
+// Every value here has passed the schema and the semantic checks of the
+// loader (harness/src/scenario/, scenario_mapping.cpp and the section
+// mappings beside it): numbers are finite, quaternions unit length, dynamic
 // bodies have a positive mass or density, names are unique and every truth
 // names an existing body. Conventions: SI units, +y is up when gravity is the
 // default, quaternions are (w, x, y, z) in the file and Eigen's Quaterniond
