@@ -10,10 +10,10 @@
 // What is stored, per point: A's surface point in A's body frame and B's in
 // B's (the manifold point is midway between the surfaces, so they are
 // position -+ depth/2 along the normal: the normal points from B towards A
-// and depth = (pB - pA) . n is positive when penetrating); the normal in A's frame; and the relative pose of B in
-// A's frame at which all of it was recorded. Feature ids and the point
-// count stay in the manifold that is rebuilt, so warm starting matches the
-// points exactly as before.
+// and depth = (pB - pA) . n is positive when penetrating); the normal in
+// A's frame; and the relative pose of B in A's frame at which all of it was
+// recorded. Feature ids and the point count stay in the manifold that is
+// rebuilt, so warm starting matches the points exactly as before.
 //
 // Invariants: anchors are recorded only from a fresh narrow-phase manifold,
 // never from a rebuilt one, so the reference pose is always one the narrow

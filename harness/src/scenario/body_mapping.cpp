@@ -41,13 +41,21 @@ Result<Quat> MapOrientation(const json& orientation, std::string_view file, cons
   return Quat(Eigen::AngleAxisd(orientation["angle"].get<double>(), ScaleSafeNormalized(axis)));
 }
 
+// One ShapeSpec, assigned in place and returned once: GCC 12 at -O1 (the
+// sanitizer tree) otherwise reads a returned temporary's inactive vector
+// alternative as maybe-uninitialized (a false alarm, fatal under -Werror).
 Result<ShapeSpec> MapShape(const json& shape) {
   const std::string kind = shape["kind"].get<std::string>();
-  if (kind == "box") return ShapeSpec(BoxShape{ReadVec3(shape["halfExtents"])});
-  if (kind == "sphere") return ShapeSpec(SphereShape{shape["radius"].get<double>()});
-  HullShape hull;
-  for (const json& point : shape["points"]) hull.points.push_back(ReadVec3(point));
-  return ShapeSpec(std::move(hull));
+  ShapeSpec spec;
+  if (kind == "box") {
+    spec.emplace<BoxShape>(BoxShape{ReadVec3(shape["halfExtents"])});
+  } else if (kind == "sphere") {
+    spec.emplace<SphereShape>(SphereShape{shape["radius"].get<double>()});
+  } else {
+    HullShape& hull = spec.emplace<HullShape>();
+    for (const json& point : shape["points"]) hull.points.push_back(ReadVec3(point));
+  }
+  return spec;
 }
 
 // The body's sizes, position and speeds against scenario_limits.h, each
