@@ -8,8 +8,7 @@
 #include <cmath>
 #include <numbers>
 
-#include <Eigen/Eigenvalues>
-
+#include "dynamics/contact_row_set.h"
 #include "dynamics/integrator.h"
 
 namespace talus {
@@ -245,20 +244,8 @@ void SoftStepSolver::PrepareBlock(const SoftPair& pair) {
                 points[i].normal.angularB.dot(points[j].normal.imageB);
     }
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(k);
-  const Eigen::Vector4d values = eigen.eigenvalues();
-  const double largest = values.cwiseAbs().maxCoeff();
-  Eigen::Vector4d inverse = Eigen::Vector4d::Zero();
-  for (int i = 0; i < 4; ++i) {
-    if (values[i] > 1e-9 * largest) inverse[i] = 1.0 / values[i];
-  }
-  Eigen::Matrix4d blockInverse =
-      eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
-  for (int i = count; i < 4; ++i) {
-    blockInverse.row(i).setZero();
-    blockInverse.col(i).setZero();
-  }
-  m_blockInverses[static_cast<std::size_t>(pair.block)] = blockInverse;
+  // The same pseudo-inverse as the Sequential Impulses rows' block.
+  m_blockInverses[static_cast<std::size_t>(pair.block)] = BlockPseudoInverse(k, count);
 }
 
 // Greedy first fit in pair order (ColourPairs), then the pairs listed
