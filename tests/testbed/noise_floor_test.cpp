@@ -267,16 +267,14 @@ TEST(PerturbedCopies, SpreadsSurviveTheResultsFileAndOldFilesLoadWithSpreadZero)
   EXPECT_EQ(groups[0].families.pairs[0].outcome, PairOutcome::kSecondBetter);
   EXPECT_EQ(groups[0].families.pairs[0].firstWorst, 0.5);
 
-  // A file with the spread but not the copies' errors takes the widest
-  // range the spread allows: 0.5 +- 0.3 against 0.4 is a tie.
+  // Every version-2 writer keeps the copies' errors: a block with the
+  // spread but without them is refused at its place, not widened to a guess.
   json = nlohmann::ordered_json::parse(text);
   json["results"][0]["perturbed"].erase("errors");
-  json["results"][0]["perturbed"]["errorSpread"] = 0.3;
   auto spreadOnly = ResultsFromJson(json.dump());
-  ASSERT_TRUE(spreadOnly) << spreadOnly.GetError().message;
-  const std::vector<SweepGroup> wide = AnalyseSweep(spreadOnly.Value(), {});
-  EXPECT_EQ(wide.at(0).families.pairs.at(0).outcome, PairOutcome::kTie);
-  EXPECT_DOUBLE_EQ(wide.at(0).families.pairs.at(0).firstWorst, 0.8);
+  ASSERT_FALSE(spreadOnly);
+  EXPECT_NE(spreadOnly.GetError().message.find("/results/0/perturbed"), std::string::npos)
+      << spreadOnly.GetError().message;
 
   // A malformed block is refused at its place.
   json = nlohmann::ordered_json::parse(text);

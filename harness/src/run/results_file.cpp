@@ -211,7 +211,7 @@ RunResult ResultFromJson(const Json& j, const std::string& where, bool withTraje
     r.wallSecondsLongestStep = std::numeric_limits<double>::quiet_NaN();
   }
   if (j.contains("perturbed")) {
-    // Files written before the noise floor have none: spread 0, exact.
+    // Only sweep points run with perturbed copies carry the block.
     const Json& perturbed = Field(j, "perturbed", where);
     const std::string place = Place(where, "perturbed");
     r.perturbed.copies = GetInt(perturbed, "copies", place);
@@ -219,15 +219,15 @@ RunResult ResultFromJson(const Json& j, const std::string& where, bool withTraje
     const double spread = GetNumber(perturbed, "errorSpread", place);
     r.perturbed.errorSpread = std::isnan(spread) ? std::numeric_limits<double>::infinity() : spread;
     r.perturbed.runSeconds = GetNumbers(perturbed, "runSeconds", place);
-    if (perturbed.contains("errors")) {
-      // null: a run that failed or was not measured, an infinite error.
-      r.perturbed.errors = GetNumbers(perturbed, "errors", place);
-      for (double& error : r.perturbed.errors) {
-        if (std::isnan(error)) error = std::numeric_limits<double>::infinity();
-      }
-      if (r.perturbed.errors.size() != r.perturbed.runSeconds.size()) {
-        throw ResultsParseFailure{Concat({place, ": need one error per run (copies + 1)"})};
-      }
+    // Every version-2 writer keeps the copies' errors, so a block without
+    // them is malformed rather than old.
+    // null: a run that failed or was not measured, an infinite error.
+    r.perturbed.errors = GetNumbers(perturbed, "errors", place);
+    for (double& error : r.perturbed.errors) {
+      if (std::isnan(error)) error = std::numeric_limits<double>::infinity();
+    }
+    if (r.perturbed.errors.size() != r.perturbed.runSeconds.size()) {
+      throw ResultsParseFailure{Concat({place, ": need one error per run (copies + 1)"})};
     }
     if (r.perturbed.copies < 1 ||
         r.perturbed.runSeconds.size() != static_cast<std::size_t>(r.perturbed.copies) + 1 ||

@@ -109,11 +109,6 @@ CostErrorPoint PointOf(const RunResult& result, double error) {
       point.best = std::min(point.best, value);
       point.worst = std::max(point.worst, value);
     }
-  } else if (result.perturbed.copies > 0) {
-    // A file from before the copies' errors were kept: only the spread is
-    // known, so the range is taken as wide as it could have been.
-    point.best = std::max(0.0, error - result.perturbed.errorSpread);
-    point.worst = error + result.perturbed.errorSpread;
   }
   return point;
 }
