@@ -106,8 +106,8 @@ void SnapAnchorsToSurfaces(const Shape& a, const Transform& xfA, const Shape& b,
     if (!std::isfinite(onA) || !std::isfinite(onB) || !(std::abs((onB - onA) - point.depth) <= tolerance)) {
       double hiA = 0.0;
       double loB = 0.0;
-      LineInterval(hullA, point.position, n, &onA, &hiA);
-      LineInterval(hullB, point.position, n, &loB, &onB);
+      LineInterval(hullA, point.position, n, roundOff, &onA, &hiA);
+      LineInterval(hullB, point.position, n, roundOff, &loB, &onB);
       if (!std::isfinite(onA) || !std::isfinite(onB) || onA > hiA || loB > onB) continue;
       if (!(std::abs((onB - onA) - point.depth) <= tolerance)) continue;
     }

@@ -21,7 +21,8 @@ struct FaceContact {
   const PosedHull* incident;
   int referenceFace;
   bool referenceIsA;
-  Plane plane;  // the reference face's world plane
+  Plane plane;           // the reference face's world plane
+  double roundOffScale;  // RoundOffLengthScale of the pair (metres)
 };
 
 FaceContact MakeFaceContact(const PosedHull& a, const PosedHull& b, const SatResult& sat) {
@@ -32,7 +33,8 @@ FaceContact MakeFaceContact(const PosedHull& a, const PosedHull& b, const SatRes
           .incident = referenceIsA ? &b : &a,
           .referenceFace = face,
           .referenceIsA = referenceIsA,
-          .plane = reference.FacePlane(face)};
+          .plane = reference.FacePlane(face),
+          .roundOffScale = RoundOffLengthScale(*a.hull, *b.hull)};
 }
 
 std::uint32_t OrderedFeatureId(const FaceContact& contact, std::uint32_t referenceFeature,
@@ -65,12 +67,14 @@ double OutsideDistance(const PosedHull& hull, const Vec3& p) {
 }
 
 // Round-off of a point's distance to a face plane (metres): the point is a
-// few sums and products of world coordinates of about |p| + size, and is
-// mapped into the hull's frame; each rounds a few ulps of those. 16 ulps
-// of |p| + size is under the 64 ulps of the largest coordinate that the
-// tests and the SAT check allow a point outside a shape (the size is at
-// most sqrt(3) times the largest coordinate of a point of the shapes'
-// boxes), so a point kept here passes there.
+// few sums and products of world coordinates of about |p| + size (size:
+// RoundOffLengthScale, since a clipped corner is made from the larger
+// shape's vertices), and is mapped into the hull's frame; each rounds a
+// few ulps of those. 16 ulps of |p| + size is under the 64 ulps of the
+// largest coordinate that the tests and the SAT check allow a point
+// outside a shape (either hull's half diagonal is at most sqrt(3) times
+// the largest coordinate of a point of the shapes' boxes), so a point kept
+// here passes there.
 constexpr double kInsideRoundOffUlps = 16.0;
 
 double PointRoundOff(const Vec3& p, double size) {
@@ -99,13 +103,14 @@ double PointRoundOff(const Vec3& p, double size) {
 // `missed` says whether that point is still outside a shape by more than
 // round-off (PointRoundOff), i.e. the point is not in contact.
 Vec3 InsideBoth(const PosedHull& a, const PosedHull& b, const Vec3& n, const Vec3& midpoint,
-                bool* missed = nullptr) {
+                double roundOffScale, bool* missed = nullptr) {
+  const double roundOff = PointRoundOff(midpoint, roundOffScale);
   double loA = 0.0;
   double hiA = 0.0;
   double loB = 0.0;
   double hiB = 0.0;
-  LineInterval(a, midpoint, n, &loA, &hiA);
-  LineInterval(b, midpoint, n, &loB, &hiB);
+  LineInterval(a, midpoint, n, roundOff, &loA, &hiA);
+  LineInterval(b, midpoint, n, roundOff, &loB, &hiB);
   const double lo = std::max(loA, loB);
   const double hi = std::min(hiA, hiB);
   if (missed) *missed = false;
@@ -123,7 +128,7 @@ Vec3 InsideBoth(const PosedHull& a, const PosedHull& b, const Vec3& n, const Vec
       bestOutside = candidateOutside;
     }
   }
-  if (missed) *missed = bestOutside > PointRoundOff(best, SatLengthScale(*a.hull, *b.hull));
+  if (missed) *missed = bestOutside > PointRoundOff(best, roundOffScale);
   return best;
 }
 
@@ -135,7 +140,8 @@ void BuildEdgeContact(const PosedHull& a, const PosedHull& b, const SatResult& s
   ClosestPointsOfSegments(a.Vertex(a.EdgeStart(ea)), a.Vertex(a.EdgeEnd(ea)), b.Vertex(b.EdgeStart(eb)),
                           b.Vertex(b.EdgeEnd(eb)), &onA, &onB);
   bool missed = false;
-  Vec3 position = InsideBoth(a, b, sat.normal, 0.5 * (onA + onB), &missed);
+  Vec3 position =
+      InsideBoth(a, b, sat.normal, 0.5 * (onA + onB), RoundOffLengthScale(*a.hull, *b.hull), &missed);
   if (missed) {
     // The line along the normal through the edges' closest points crosses
     // A and B where each is thinner than the depth, so their stretches on
@@ -301,7 +307,7 @@ double KeepPointsInContact(const FaceContact& contact, const Vec3& normal, doubl
     // hull's leaning sides under the reference face's edge). It is
     // dropped; the deepest vertex below keeps the manifold non-empty.
     bool missed = false;
-    const Vec3 position = InsideBoth(a, b, normal, c.position - 0.5 * s * n, &missed);
+    const Vec3 position = InsideBoth(a, b, normal, c.position - 0.5 * s * n, contact.roundOffScale, &missed);
     if (missed && s < 0.0) continue;  // a speculative point (s >= 0) lies in the gap by design
     deepestKept = std::max(deepestKept, -s);
     kept.push_back({.position = position,
@@ -348,7 +354,8 @@ void KeepDeepestVertex(const FaceContact& contact, const Vec3& normal, double de
     // m on fuzz finding clipped_vertex_missed_depth_below_minimum_overlap.)
     const double s = contact.plane.SignedDistance(deepestVertex);
     bool missed = false;
-    const Vec3 position = InsideBoth(a, b, normal, deepestVertex - 0.5 * s * n, &missed);
+    const Vec3 position =
+        InsideBoth(a, b, normal, deepestVertex - 0.5 * s * n, contact.roundOffScale, &missed);
     if (!missed || s >= 0.0 || kept.empty()) {
       kept.push_back(
           {.position = position,
@@ -388,7 +395,8 @@ int BuildWriteUpPoints(const FaceContact& contact, const Vec3& normal, double de
   // Each point is moved onto the plane midway between the surfaces, then
   // along the normal into both shapes where it left one (InsideBoth).
   const auto midway = [&](const Vec3& p) {
-    return InsideBoth(a, b, normal, p - (contact.plane.SignedDistance(p) + 0.5 * depth) * n);
+    return InsideBoth(a, b, normal, p - (contact.plane.SignedDistance(p) + 0.5 * depth) * n,
+                      contact.roundOffScale);
   };
   for (int v = 0; v < inc.hull->VertexCount(); ++v) {
     const Vec3 p = inc.Vertex(v);
@@ -415,8 +423,14 @@ int BuildWriteUpPoints(const FaceContact& contact, const Vec3& normal, double de
 }  // namespace
 
 // A face parallel to the line excludes it only when p is farther out than
-// the hull's own tolerance.
-void LineInterval(const PosedHull& hull, const Vec3& p, const Vec3& n, double* lo, double* hi) {
+// the hull's own tolerance or the point's round-off, whichever is larger:
+// a corner clipped onto a small face's side plane lies on it to the
+// round-off of the larger shape's coordinates, which can be ten times the
+// small hull's tolerance (a 1 mm box against a 6 cm box: 6e-18 m off a
+// plane against 6e-19 m; every clipped point was then taken as beside the
+// box, and the manifold fell back to a corner of the large face 6 cm away).
+void LineInterval(const PosedHull& hull, const Vec3& p, const Vec3& n, double roundOff, double* lo,
+                  double* hi) {
   const Vec3 local = hull.rotation.transpose() * (p - hull.position);
   const Vec3 direction = hull.rotation.transpose() * n;
   *lo = -std::numeric_limits<double>::infinity();
@@ -428,7 +442,7 @@ void LineInterval(const PosedHull& hull, const Vec3& p, const Vec3& n, double* l
       *hi = std::min(*hi, -distance / rate);
     } else if (rate < -kParallelFaceCosine) {
       *lo = std::max(*lo, -distance / rate);
-    } else if (distance > hull.hull->Tolerance()) {
+    } else if (distance > std::max(hull.hull->Tolerance(), roundOff)) {
       *lo = std::numeric_limits<double>::infinity();  // parallel to the face, outside it
     }
   }

@@ -61,8 +61,12 @@ void BuildPolyhedronManifold(const PosedHull& a, const PosedHull& b, const SatRe
                              double margin, ContactManifold* out, NarrowPhaseScratch* scratch = nullptr);
 
 /// The parameters t for which p + t n (world, n unit) lies inside `hull`:
-/// [*lo, *hi], empty when *lo > *hi, infinite ends when unbounded.
-void LineInterval(const PosedHull& hull, const Vec3& p, const Vec3& n, double* lo, double* hi);
+/// [*lo, *hi], empty when *lo > *hi, infinite ends when unbounded. A face
+/// parallel to the line excludes it only when p lies outside it by more
+/// than the hull's tolerance and `roundOff` (metres, >= 0: the round-off p
+/// carries).
+void LineInterval(const PosedHull& hull, const Vec3& p, const Vec3& n, double roundOff, double* lo,
+                  double* hi);
 
 /// The closest points of segments p0-p1 and q0-q1 (Ericson, Real-Time
 /// Collision Detection 5.1.9), written to `onP` and `onQ`.

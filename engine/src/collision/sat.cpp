@@ -394,6 +394,10 @@ double HalfDiagonal(const Hull& hull) {
 
 double SatLengthScale(const Hull& a, const Hull& b) { return std::min(HalfDiagonal(a), HalfDiagonal(b)); }
 
+double RoundOffLengthScale(const Hull& a, const Hull& b) {
+  return std::max(HalfDiagonal(a), HalfDiagonal(b));
+}
+
 bool IsMinkowskiFace(const Vec3& a, const Vec3& b, const Vec3& bxa, const Vec3& c, const Vec3& d,
                      const Vec3& dxc) {
   // B enters the Minkowski difference negated: its arc is (-c, -d), whose

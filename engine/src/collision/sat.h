@@ -88,6 +88,12 @@ inline constexpr double kAxisPreferenceRelative = 1e-7;
 /// smaller shape.
 double SatLengthScale(const Hull& a, const Hull& b);
 
+/// The pair's length scale for round-off (metres): the larger of the two
+/// half diagonals. A point the narrow phase builds (a clipped corner of a
+/// 6 cm face cut down to a 1 mm face) carries the round-off of the larger
+/// shape's coordinates, not the smaller's.
+double RoundOffLengthScale(const Hull& a, const Hull& b);
+
 /// The preference band of a pair in metres: kAxisPreferenceRelative x
 /// SatLengthScale.
 inline double AxisPreferenceBand(const Hull& a, const Hull& b) {
