@@ -49,9 +49,10 @@
 
 namespace talus {
 
+// The quaternion leads and the flags trail: under AVX (Eigen aligns a Quat
+// to 32 bytes there) flags in front cost a 32-byte slot and the record
+// grew from 480 to 512 bytes.
 struct ManifoldAnchors {
-  bool recorded = false;  ///< false: nothing to rebuild from
-  int pointCount = 0;     ///< points of the recorded manifold
   /// B's rotation relative to A (qA^-1 qB) when recorded.
   Quat relativeRotation = Quat::Identity();
   /// B's frame origin in A's frame when recorded, metres.
@@ -62,6 +63,8 @@ struct ManifoldAnchors {
   std::array<Vec3, kMaxManifoldPoints> localPointA{};
   /// B's surface point of each contact point, B's frame, metres.
   std::array<Vec3, kMaxManifoldPoints> localPointB{};
+  int pointCount = 0;     ///< points of the recorded manifold
+  bool recorded = false;  ///< false: nothing to rebuild from
 };
 
 /// Writes `manifold`, computed by the narrow phase at body frames `xfA` and

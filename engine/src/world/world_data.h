@@ -70,7 +70,16 @@ static_assert(sizeof(PairSatCache) == 40, "PairSatCache: pair key and a 32-byte 
 /// What the narrow phase made of one broad-phase pair this step. Written by
 /// whichever thread ran the pair, read back in pair order, so the contacts
 /// come out in the same order whatever the thread count.
+//
+// The anchors lead (under AVX Eigen aligns their quaternion to 32 bytes,
+// and behind the 20 bytes of flags and indices they were padded to 1,312).
 struct PairOutcome {
+  /// Tested and touching: the new manifold's anchors (Reused keeps last
+  /// step's, copied straight from WorldData::previousContactAnchors).
+  ManifoldAnchors anchors;
+  Contact contact;
+  PairSatCache cache;      ///< Tested: the pair's new SAT cache
+  NarrowPhaseStats stats;  ///< Tested: the narrow phase's counts for this pair
   enum class Kind : std::uint8_t {
     Kept,    ///< nothing on either side disturbs the other: last step's contact and cache stand
     Reused,  ///< manifold rebuilt from last step's anchors; last step's cache stands
@@ -84,13 +93,7 @@ struct PairOutcome {
   std::int32_t oldCache = -1;         ///< index of last step's SAT cache of the pair, or -1
   std::int32_t contactSlot = -1;      ///< the gather's: index in this step's contacts, or -1
   std::int32_t cacheSlot = -1;        ///< the gather's: index in this step's SAT caches, or -1
-  NarrowPhaseStats stats;             ///< Tested: the narrow phase's counts for this pair
   std::int32_t persistentPoints = 0;  ///< Tested: last step's points merged back (manifold_persistence.h)
-  Contact contact;
-  /// Tested and touching: the new manifold's anchors (Reused keeps last
-  /// step's, copied straight from WorldData::previousContactAnchors).
-  ManifoldAnchors anchors;
-  PairSatCache cache;
 };
 // One per broad-phase pair every step, written by a worker and read by the
 // gather: mostly the Contact and ManifoldAnchors budgeted in
