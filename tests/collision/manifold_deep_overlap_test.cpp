@@ -18,30 +18,7 @@
 namespace talus {
 namespace {
 
-struct Pair {
-  Shape a;
-  Shape b;
-  Transform xfA;
-  Transform xfB;
-};
-
-// How far world point x lies outside the shape (metres, <= 0 inside).
-double Outside(const Shape& shape, const Transform& xf, const Vec3& x) {
-  const Vec3 local = xf.ApplyInverse(x);
-  double worst = -std::numeric_limits<double>::infinity();
-  for (const HullFace& face : shape.GetHull().Faces())
-    worst = std::max(worst, face.plane.SignedDistance(local));
-  return worst;
-}
-
-// 64 ulps of the largest world coordinate involved (the SAT check's
-// round-off; manifold_parallel_faces_test.cpp).
-double RoundOff(const Pair& p) {
-  const double coordinates =
-      std::max(p.xfA.position.cwiseAbs().maxCoeff(), p.xfB.position.cwiseAbs().maxCoeff()) +
-      2.0 * std::max(p.a.LocalAabb().max.cwiseAbs().maxCoeff(), p.b.LocalAabb().max.cwiseAbs().maxCoeff());
-  return 64.0 * std::numeric_limits<double>::epsilon() * coordinates;
-}
+using Pair = test::PosedShapes;
 
 void ExpectEveryPointInsideBoth(const Pair& p) {
   for (const SatMode sat : {SatMode::GaussMapPruned, SatMode::Full}) {
@@ -54,10 +31,11 @@ void ExpectEveryPointInsideBoth(const Pair& p) {
       ASSERT_GE(c.pointCount, 1);
       for (int i = 0; i < c.pointCount; ++i) {
         const PairContactPoint& point = c.points[static_cast<std::size_t>(i)];
-        const double outside =
-            std::max(Outside(p.a, p.xfA, point.position), Outside(p.b, p.xfB, point.position));
-        EXPECT_LE(outside, RoundOff(p)) << "point " << i << " of " << c.pointCount;
-        EXPECT_LE(point.depth, c.Depth() + RoundOff(p)) << "point " << i;
+        const double outside = std::max(test::OutsideShape(p.a, p.xfA, point.position),
+                                        test::OutsideShape(p.b, p.xfB, point.position));
+        EXPECT_LE(outside, test::PairRoundOff(p.a, p.xfA, p.b, p.xfB))
+            << "point " << i << " of " << c.pointCount;
+        EXPECT_LE(point.depth, c.Depth() + test::PairRoundOff(p.a, p.xfA, p.b, p.xfB)) << "point " << i;
       }
     }
   }

@@ -21,22 +21,7 @@
 namespace talus {
 namespace {
 
-struct Pair {
-  Shape a;
-  Shape b;
-  Transform xfA;
-  Transform xfB;
-};
-
-// Round-off of one query (metres): the depth and a point's plane distances
-// are differences of dot products of world coordinates of size `scale`;
-// 64 ulps of that covers the few roundings in each (as the SAT check).
-double RoundOff(const Pair& p) {
-  const double scale =
-      std::max(p.xfA.position.cwiseAbs().maxCoeff(), p.xfB.position.cwiseAbs().maxCoeff()) +
-      2.0 * std::max(p.a.LocalAabb().max.cwiseAbs().maxCoeff(), p.b.LocalAabb().max.cwiseAbs().maxCoeff());
-  return 64.0 * std::numeric_limits<double>::epsilon() * scale;
-}
+using Pair = test::PosedShapes;
 
 double unit01(std::mt19937_64& rng) { return std::uniform_real_distribution<double>(0.0, 1.0)(rng); }
 
@@ -48,7 +33,7 @@ void CheckPair(const Pair& p, SatMode satMode, ManifoldMode manifoldMode, bool c
   ContactManifold m{};
   if (!Collide(p.a, p.xfA, p.b, p.xfB, settings, nullptr, nullptr, &m)) return;
   ++*touching;
-  const double roundOff = RoundOff(p);
+  const double roundOff = test::PairRoundOff(p.a, p.xfA, p.b, p.xfB);
   const double size = Size(p);
   // Depth: the least overlap over every axis, up to the preference band
   // and 1e-9 of the size.

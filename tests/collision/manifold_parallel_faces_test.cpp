@@ -22,11 +22,7 @@
 namespace talus {
 namespace {
 
-struct Pair {
-  Shape a;
-  Shape b;
-  Transform xfA;
-  Transform xfB;
+struct Pair : test::PosedShapes {
   double twist = 0.0;  // radians between the two faces
 };
 
@@ -58,7 +54,7 @@ double SupportAlong(const Shape& shape, const Quat& rotation, const Vec3& direct
 // 1e-9 to 1e-2 of the size (or just apart, within 1e-9 of it), and moved
 // sideways up to 0.6 of the size, so the faces overlap only in part.
 Pair NearlyParallelPair(std::mt19937_64& rng) {
-  Pair p{LargeShape(rng), LargeShape(rng), {}, {}};
+  Pair p{{LargeShape(rng), LargeShape(rng), {}, {}}};
   const Quat rotationA = test::RandomRotation(rng);
   const auto facesA = p.a.GetHull().Faces();
   const auto facesB = p.b.GetHull().Faces();
@@ -84,29 +80,6 @@ Pair NearlyParallelPair(std::mt19937_64& rng) {
   return p;
 }
 
-// How far world point x lies outside the shape (metres, <= 0 inside): the
-// largest signed distance to its face planes.
-double Outside(const Shape& shape, const Transform& xf, const Vec3& x) {
-  const Vec3 local = xf.ApplyInverse(x);
-  double worst = -std::numeric_limits<double>::infinity();
-  for (const HullFace& face : shape.GetHull().Faces())
-    worst = std::max(worst, face.plane.SignedDistance(local));
-  return worst;
-}
-
-// Round-off of a point's distance to a face plane (metres): the position
-// comes from a few sums and products of world coordinates (rotations,
-// plane intersections, a step along the normal), and the check maps it
-// back to the shape's frame; each rounds at most a few ulps of the largest
-// coordinate involved, the world position's or the shape's extent. 64
-// ulps of their sum covers those with margin (the SAT check's figure).
-double RoundOff(const Pair& p) {
-  const double coordinates =
-      std::max(p.xfA.position.cwiseAbs().maxCoeff(), p.xfB.position.cwiseAbs().maxCoeff()) +
-      2.0 * std::max(p.a.LocalAabb().max.cwiseAbs().maxCoeff(), p.b.LocalAabb().max.cwiseAbs().maxCoeff());
-  return 64.0 * std::numeric_limits<double>::epsilon() * coordinates;
-}
-
 struct Tally {
   int touching = 0;
   int points = 0;
@@ -123,13 +96,14 @@ void CheckPoints(const Pair& p, int index, const NarrowPhaseSettings& settings, 
   if (!c.touching) return;
   ++tally->touching;
   ASSERT_GE(c.pointCount, 1) << "pair " << index;
-  const double bound = RoundOff(p);
+  const double bound = test::PairRoundOff(p.a, p.xfA, p.b, p.xfB);
   double deepest = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < c.pointCount; ++i) {
     const PairContactPoint& point = c.points[static_cast<std::size_t>(i)];
     deepest = std::max(deepest, point.depth);
     ++tally->points;
-    const double outside = std::max(Outside(p.a, p.xfA, point.position), Outside(p.b, p.xfB, point.position));
+    const double outside = std::max(test::OutsideShape(p.a, p.xfA, point.position),
+                                    test::OutsideShape(p.b, p.xfB, point.position));
     if (outside > bound) {
       if (tally->outside++ == 0) {
         std::ostringstream text;

@@ -23,12 +23,7 @@
 namespace talus {
 namespace {
 
-struct Pair {
-  Shape a;
-  Shape b;
-  Transform xfA;
-  Transform xfB;
-};
+using Pair = test::PosedShapes;
 
 double Unit01(std::mt19937_64& rng) { return std::uniform_real_distribution<double>(0.0, 1.0)(rng); }
 
@@ -68,25 +63,6 @@ Pair SizeRatioPair(std::mt19937_64& rng) {
   return {test::BoxShape(large), test::BoxShape(small), xfLarge, xfSmall};
 }
 
-// How far world point x lies outside the shape (metres, <= 0 inside).
-double Outside(const Shape& shape, const Transform& xf, const Vec3& x) {
-  const Vec3 local = xf.ApplyInverse(x);
-  double worst = -std::numeric_limits<double>::infinity();
-  for (const HullFace& face : shape.GetHull().Faces())
-    worst = std::max(worst, face.plane.SignedDistance(local));
-  return worst;
-}
-
-// Round-off of a point's distance to a face plane (metres): 64 ulps of the
-// largest world coordinate involved, the positions' and the large box's
-// extent (the SAT check's figure; manifold_parallel_faces_test.cpp).
-double RoundOff(const Pair& p) {
-  const double coordinates =
-      std::max(p.xfA.position.cwiseAbs().maxCoeff(), p.xfB.position.cwiseAbs().maxCoeff()) +
-      2.0 * std::max(p.a.LocalAabb().max.cwiseAbs().maxCoeff(), p.b.LocalAabb().max.cwiseAbs().maxCoeff());
-  return 64.0 * std::numeric_limits<double>::epsilon() * coordinates;
-}
-
 TEST(ManifoldSizeRatio, EveryClippedPointIsInsideBothShapes) {
   std::mt19937_64 rng(2528);
   std::vector<Pair> pairs;
@@ -107,9 +83,9 @@ TEST(ManifoldSizeRatio, EveryClippedPointIsInsideBothShapes) {
       ASSERT_GE(c.pointCount, 1) << "pair " << i;
       for (int k = 0; k < c.pointCount; ++k) {
         const Vec3& x = c.points[static_cast<std::size_t>(k)].position;
-        const double outside = std::max(Outside(p.a, p.xfA, x), Outside(p.b, p.xfB, x));
+        const double outside = std::max(test::OutsideShape(p.a, p.xfA, x), test::OutsideShape(p.b, p.xfB, x));
         ++points;
-        if (outside > RoundOff(p) && outsidePoints++ == 0) {
+        if (outside > test::PairRoundOff(p.a, p.xfA, p.b, p.xfB) && outsidePoints++ == 0) {
           std::ostringstream text;
           text << "pair " << i << " point " << k << ": " << outside << " m outside a shape";
           first = text.str();

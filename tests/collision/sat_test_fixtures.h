@@ -76,6 +76,36 @@ inline Vec3 RandomUnit(std::mt19937_64& rng) {
   return Vec3(normal(rng), normal(rng), normal(rng)).normalized();
 }
 
+/// Two shapes and their poses, as a pair query takes them.
+struct PosedShapes {
+  Shape a;
+  Shape b;
+  Transform xfA;
+  Transform xfB;
+};
+
+/// How far world point `x` lies outside the posed shape (metres, <= 0
+/// inside): the largest signed distance to its own face planes.
+inline double OutsideShape(const Shape& shape, const Transform& xf, const Vec3& x) {
+  const Vec3 local = xf.ApplyInverse(x);
+  double worst = -std::numeric_limits<double>::infinity();
+  for (const HullFace& face : shape.GetHull().Faces())
+    worst = std::max(worst, face.plane.SignedDistance(local));
+  return worst;
+}
+
+/// Round-off of one pair query (metres): a depth or a point's plane
+/// distance is a difference of dot products of world coordinates as large
+/// as the positions plus the shapes' extents, and each rounds a few ulps of
+/// those; 64 ulps of their sum covers them with margin (the SAT check's
+/// figure).
+inline double PairRoundOff(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB) {
+  const double coordinates =
+      std::max(xfA.position.cwiseAbs().maxCoeff(), xfB.position.cwiseAbs().maxCoeff()) +
+      2.0 * std::max(a.LocalAabb().max.cwiseAbs().maxCoeff(), b.LocalAabb().max.cwiseAbs().maxCoeff());
+  return 64.0 * std::numeric_limits<double>::epsilon() * coordinates;
+}
+
 /// A random shape of the kinds above, scaled non-uniformly (0.3..1.5 per axis).
 inline Shape RandomPolyhedron(std::mt19937_64& rng) {
   std::uniform_int_distribution<int> kind(0, 5);
