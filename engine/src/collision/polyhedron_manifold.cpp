@@ -205,8 +205,13 @@ void BuildEdgeContact(const PosedHull& a, const PosedHull& b, const SatResult& s
   // The line along the normal through the edges' closest points crosses A
   // and B where each is thinner than the depth, so their stretches on it
   // do not meet: a pair deeper than the shapes are thick there (a 5 m hull
-  // 1.7 m into another, issue 26's large parallel family).
-  if (missed) position = PointInIntersection(a, b, position, roundOffScale);
+  // 1.7 m into another, issue 26's large parallel family). A pair apart
+  // along the normal (a speculative contact within the margin) has no
+  // intersection to find: its point lies in the gap by design, and
+  // searching for one cost the 1,000-hull pile 14% more narrow phase (all
+  // but 39 of 70,398 misses in 200 steps were such pairs).
+  if (missed && out->depth > PointRoundOff(position, roundOffScale))
+    position = PointInIntersection(a, b, position, roundOffScale);
   out->pointCount = 1;
   out->points[0] = {
       .position = position,
