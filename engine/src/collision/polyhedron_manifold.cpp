@@ -161,9 +161,8 @@ void SegmentInterval(const PosedHull& hull, const Vec3& p0, const Vec3& p1, doub
 // outside either shape. Two overlapping convex shapes have a vertex of one
 // inside the other, or else an edge of one crossing the other, so this
 // finds a point inside both to round-off; the edges are searched only
-// when no vertex is (a card 0.2 m through a 0.1 m box met at a face,
-// talus-sat-check seed 10; a 5 m hull 1.6 m into another, seed 2, which
-// the vertices alone left 0.45 m outside both).
+// when no vertex is. (The vertices alone left a point far outside both on
+// a hull deep in a box: docs/collision-narrow-phase.md, Edge contact.)
 Vec3 PointInIntersection(const PosedHull& a, const PosedHull& b, const Vec3& start, double roundOffScale) {
   const auto outside = [&](const Vec3& p) { return std::max(OutsideDistance(a, p), OutsideDistance(b, p)); };
   Vec3 best = start;
@@ -207,9 +206,9 @@ void BuildEdgeContact(const PosedHull& a, const PosedHull& b, const SatResult& s
   // do not meet: a pair deeper than the shapes are thick there (a 5 m hull
   // 1.7 m into another, issue 26's large parallel family). A pair apart
   // along the normal (a speculative contact within the margin) has no
-  // intersection to find: its point lies in the gap by design, and
-  // searching for one cost the 1,000-hull pile 14% more narrow phase (all
-  // but 39 of 70,398 misses in 200 steps were such pairs).
+  // intersection to find: its point lies in the gap by design, and such
+  // pairs are nearly every miss in a hull pile, where searching them was
+  // measured (docs/collision-narrow-phase.md, Edge contact).
   if (missed && out->depth > PointRoundOff(position, roundOffScale))
     position = PointInIntersection(a, b, position, roundOffScale);
   out->pointCount = 1;
@@ -479,9 +478,7 @@ int BuildWriteUpPoints(const FaceContact& contact, const Vec3& normal, double de
 // the hull's own tolerance or the point's round-off, whichever is larger:
 // a corner clipped onto a small face's side plane lies on it to the
 // round-off of the larger shape's coordinates, which can be ten times the
-// small hull's tolerance (a 1 mm box against a 6 cm box: 6e-18 m off a
-// plane against 6e-19 m; every clipped point was then taken as beside the
-// box, and the manifold fell back to a corner of the large face 6 cm away).
+// small hull's tolerance (docs/collision-narrow-phase.md, manifold normal).
 void LineInterval(const PosedHull& hull, const Vec3& p, const Vec3& n, double roundOff, double* lo,
                   double* hi) {
   const Vec3 local = hull.rotation.transpose() * (p - hull.position);

@@ -89,8 +89,8 @@ inline constexpr double kAxisPreferenceRelative = 1e-7;
 double SatLengthScale(const Hull& a, const Hull& b);
 
 /// The pair's length scale for round-off (metres): the larger of the two
-/// half diagonals. A point the narrow phase builds (a clipped corner of a
-/// 6 cm face cut down to a 1 mm face) carries the round-off of the larger
+/// half diagonals. A point the narrow phase builds (a corner of a large
+/// face clipped down to a small one) carries the round-off of the larger
 /// shape's coordinates, not the smaller's.
 double RoundOffLengthScale(const Hull& a, const Hull& b);
 
