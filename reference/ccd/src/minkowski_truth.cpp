@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "talus/hull_builder.h"
 #include "talus/hull_queries.h"
@@ -140,19 +141,40 @@ Result<PenetrationTruth> ComputePenetrationTruth(const Hull& a, const Transform&
   return truth;
 }
 
+namespace {
+
+// The volume enclosed by qhull's triangulated facets: the tetrahedra from
+// the points' mean (inside a convex hull) to each triangle. Summed here
+// rather than read from qhull's own total, which on merged (untriangulated)
+// facets came out 5% low for the Minkowski difference of two aligned boxes
+// far from the origin (talus-sat-check --pairs 20000 --seed 101, pair
+// 9473: 63.50 against the closed form's 66.99).
+double TriangulatedVolume(const std::vector<QhullFacet>& facets, const std::vector<Vec3>& points) {
+  Vec3 inside = Vec3::Zero();
+  for (const Vec3& p : points) inside += p;
+  inside /= static_cast<double>(points.size());
+  double volume = 0.0;
+  for (const QhullFacet& facet : facets) {
+    const Vec3 u = facet.corners[1] - facet.corners[0];
+    const Vec3 v = facet.corners[2] - facet.corners[0];
+    volume += std::abs((facet.corners[0] - inside).dot(u.cross(v))) / 6.0;
+  }
+  return volume;
+}
+
+}  // namespace
+
 Result<bool> CheckMinkowskiWithQhull(const Hull& a, const Transform& xfA, const Hull& b, const Transform& xfB,
                                      double relativeTolerance) {
   const std::vector<Vec3> points = MinkowskiDifferencePoints(a, xfA, b, xfB);
   Result<std::vector<QhullFacet>> facets = QhullFacets(points);
   if (!facets) return Error{"qhull: " + facets.GetError().message};
-  Result<QhullHull> qhull = QhullConvexHull(points);
-  if (!qhull) return Error{"qhull: " + qhull.GetError().message};
   Result<Hull> built = BuildHull(points);
   if (!built) return Error{"BuildHull: " + built.GetError().message};
   Result<MassProperties> mass = ComputeMassProperties(built.Value(), 1.0);
   if (!mass) return Error{"mass properties: " + mass.GetError().message};
   const double volume = mass.Value().volume;
-  const double qhullVolume = qhull.Value().volume;
+  const double qhullVolume = TriangulatedVolume(facets.Value(), points);
   if (std::abs(volume - qhullVolume) > relativeTolerance * std::max(volume, qhullVolume)) {
     return Error{"volume " + std::to_string(volume) + " (BuildHull) vs " + std::to_string(qhullVolume) +
                  " (qhull)"};
