@@ -35,22 +35,6 @@ Vec3 RelativeVelocity(const Vec3& vA, const Vec3& wA, const Vec3& rA, const Vec3
   return (vA + wA.cross(rA)) - (vB + wB.cross(rB));
 }
 
-RowJacobian MakeJacobian(const Vec3& d, const Vec3& rA, const Vec3& rB, const Mat3& invInertiaA,
-                         const Mat3& invInertiaB) {
-  RowJacobian j;
-  j.angularA = rA.cross(d);
-  j.angularB = rB.cross(d);
-  j.imageA = invInertiaA * j.angularA;
-  j.imageB = invInertiaB * j.angularB;
-  return j;
-}
-
-// 1 / (J M^-1 J^T) of a row (the effective mass), kg; 0 when nothing can move.
-double RowMass(const RowJacobian& j, const PairRows& pair) {
-  const double k = pair.invMassA + pair.invMassB + j.angularA.dot(j.imageA) + j.angularB.dot(j.imageB);
-  return k > 0.0 ? 1.0 / k : 0.0;
-}
-
 // Friction basis: t1 along the pair's mean sliding velocity when there is
 // one, else a fixed perpendicular of n; t2 = n x t1.
 void ChooseTangents(const BodySim& a, const BodySim& b, const ContactManifold& manifold, PairRows& pair) {
@@ -227,8 +211,8 @@ void ContactRowSet::PreparePoint(const BodySim& a, const BodySim& b, const Conta
   const Vec3 rA = cp.position - a.center;
   const Vec3 rB = cp.position - b.center;
   NormalRow row;
-  row.j = MakeJacobian(n, rA, rB, m_bodies.InvInertia(pair.bodyA), m_bodies.InvInertia(pair.bodyB));
-  row.mass = RowMass(row.j, pair);
+  row.j = MakeRowJacobian(n, rA, rB, m_bodies.InvInertia(pair.bodyA), m_bodies.InvInertia(pair.bodyB));
+  row.mass = RowEffectiveMass(row.j, pair.invMassA, pair.invMassB);
   const double correction = settings.baumgarte * invH * std::max(cp.depth - settings.slop, 0.0);
   if (cp.depth < 0.0) {
     // Not touching yet: the gap may close this step, no further.
@@ -257,9 +241,9 @@ void ContactRowSet::PrepareFrictionRows(const Contact& contact, int i, const Vec
                                         const WorldSettings& settings, const PairRows& pair) {
   for (int k = 0; k < 2; ++k) {
     FrictionRow friction;
-    friction.j = MakeJacobian(pair.tangent[k], rA, rB, m_bodies.InvInertia(pair.bodyA),
-                              m_bodies.InvInertia(pair.bodyB));
-    friction.mass = RowMass(friction.j, pair);
+    friction.j = MakeRowJacobian(pair.tangent[k], rA, rB, m_bodies.InvInertia(pair.bodyA),
+                                 m_bodies.InvInertia(pair.bodyB));
+    friction.mass = RowEffectiveMass(friction.j, pair.invMassA, pair.invMassB);
     if (settings.methods.warmStarting) {
       friction.impulse = contact.frictionImpulse[static_cast<std::size_t>(i)].dot(pair.tangent[k]);
     }
@@ -281,13 +265,8 @@ void ContactRowSet::PrepareFrictionRows(const Contact& contact, int i, const Vec
 void ContactRowSet::PrepareBlock(const PairRows& pair) {
   const int count = pair.pointCount;
   const NormalRow* rows = &m_normals[static_cast<std::size_t>(pair.firstPoint)];
-  Eigen::Matrix4d k = Eigen::Matrix4d::Identity();
-  for (int i = 0; i < count; ++i) {
-    for (int j = 0; j < count; ++j) {
-      k(i, j) = pair.invMassA + pair.invMassB + rows[i].j.angularA.dot(rows[j].j.imageA) +
-                rows[i].j.angularB.dot(rows[j].j.imageB);
-    }
-  }
+  const Eigen::Matrix4d k = NormalBlock(count, pair.invMassA, pair.invMassB,
+                                        [rows](int i) -> const RowJacobian& { return rows[i].j; });
   m_blockInverses[static_cast<std::size_t>(pair.block)] = BlockPseudoInverse(k, count);
 }
 

@@ -79,6 +79,23 @@ namespace talus {
 /// propagation's blocks with a held body.
 Eigen::Matrix4d BlockPseudoInverse(const Eigen::Matrix4d& k, int count);
 
+/// A pair's normal block K = J M^-1 J^T over its `count` points, the
+/// identity past them; `jacobian(i)` is point i's normal RowJacobian.
+/// Shared by the Sequential Impulses rows and the soft step's rows (shock
+/// propagation leaves a held body's terms out, so builds its own).
+template <class JacobianOf>
+Eigen::Matrix4d NormalBlock(int count, double invMassA, double invMassB, JacobianOf jacobian) {
+  Eigen::Matrix4d k = Eigen::Matrix4d::Identity();
+  for (int i = 0; i < count; ++i) {
+    for (int j = 0; j < count; ++j) {
+      const RowJacobian& ji = jacobian(i);
+      const RowJacobian& jj = jacobian(j);
+      k(i, j) = invMassA + invMassB + ji.angularA.dot(jj.imageA) + ji.angularB.dot(jj.imageB);
+    }
+  }
+  return k;
+}
+
 class ContactRowSet {
  public:
   /// Builds the rows of `contacts` for a step of `h` seconds and gathers

@@ -34,6 +34,25 @@ struct RowJacobian {
   Vec3 imageB = Vec3::Zero();    ///< IB^-1 (rB x d), 1/(kg m); zero when B cannot move
 };
 
+/// The row along unit direction `d` at arms rA, rB (metres) of bodies with
+/// these inverse inertias (world frame). Shared by the Sequential Impulses
+/// rows and the soft step's.
+inline RowJacobian MakeRowJacobian(const Vec3& d, const Vec3& rA, const Vec3& rB, const Mat3& invInertiaA,
+                                   const Mat3& invInertiaB) {
+  RowJacobian j;
+  j.angularA = rA.cross(d);
+  j.angularB = rB.cross(d);
+  j.imageA = invInertiaA * j.angularA;
+  j.imageB = invInertiaB * j.angularB;
+  return j;
+}
+
+/// 1 / (J M^-1 J^T) of a row, the effective mass (kg); 0 when nothing can move.
+inline double RowEffectiveMass(const RowJacobian& j, double invMassA, double invMassB) {
+  const double k = invMassA + invMassB + j.angularA.dot(j.imageA) + j.angularB.dot(j.imageB);
+  return k > 0.0 ? 1.0 / k : 0.0;
+}
+
 struct NormalRow {
   RowJacobian j;
   double mass = 0.0;     ///< kg, effective mass

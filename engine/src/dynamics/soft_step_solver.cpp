@@ -32,21 +32,6 @@ Vec3 RelativeVelocity(const BodySim& a, const Vec3& rA, const BodySim& b, const 
   return (a.linearVelocity + a.angularVelocity.cross(rA)) - (b.linearVelocity + b.angularVelocity.cross(rB));
 }
 
-RowJacobian MakeRow(const Vec3& d, const Vec3& rA, const Vec3& rB, const Mat3& invInertiaA,
-                    const Mat3& invInertiaB) {
-  RowJacobian j;
-  j.angularA = rA.cross(d);
-  j.angularB = rB.cross(d);
-  j.imageA = invInertiaA * j.angularA;
-  j.imageB = invInertiaB * j.angularB;
-  return j;
-}
-
-double RowMass(const RowJacobian& j, double invMassA, double invMassB) {
-  const double k = invMassA + invMassB + j.angularA.dot(j.imageA) + j.angularB.dot(j.imageB);
-  return k > 0.0 ? 1.0 / k : 0.0;
-}
-
 // The velocities of one body as a pass works on them: a local copy, written
 // back only when the rows may move the body.
 struct PassBody {
@@ -217,13 +202,13 @@ void SoftStepSolver::PreparePair(std::span<const BodySim> bodies, const Contact&
     point.localAnchorA = a.orientation.conjugate() * point.armA;
     point.localAnchorB = b.orientation.conjugate() * point.armB;
     point.depth = cp.depth;
-    point.normal = MakeRow(n, point.armA, point.armB, invInertiaA, invInertiaB);
-    point.normalMass = RowMass(point.normal, pair.invMassA, pair.invMassB);
+    point.normal = MakeRowJacobian(n, point.armA, point.armB, invInertiaA, invInertiaB);
+    point.normalMass = RowEffectiveMass(point.normal, pair.invMassA, pair.invMassB);
     point.approachSpeed = n.dot(RelativeVelocity(a, point.armA, b, point.armB));
     point.normalImpulse = share * contact.normalImpulse[pi];
     for (int k = 0; k < 2; ++k) {
-      point.tangent[k] = MakeRow(pair.tangent[k], point.armA, point.armB, invInertiaA, invInertiaB);
-      point.tangentMass[k] = RowMass(point.tangent[k], pair.invMassA, pair.invMassB);
+      point.tangent[k] = MakeRowJacobian(pair.tangent[k], point.armA, point.armB, invInertiaA, invInertiaB);
+      point.tangentMass[k] = RowEffectiveMass(point.tangent[k], pair.invMassA, pair.invMassB);
       point.tangentImpulse[k] =
           pair.friction > 0.0 ? share * contact.frictionImpulse[pi].dot(pair.tangent[k]) : 0.0;
     }
@@ -237,14 +222,9 @@ void SoftStepSolver::PreparePair(std::span<const BodySim> bodies, const Contact&
 void SoftStepSolver::PrepareBlock(const SoftPair& pair) {
   const int count = pair.pointCount;
   const SoftPoint* points = &m_points[static_cast<std::size_t>(pair.firstPoint)];
-  Eigen::Matrix4d k = Eigen::Matrix4d::Identity();
-  for (int i = 0; i < count; ++i) {
-    for (int j = 0; j < count; ++j) {
-      k(i, j) = pair.invMassA + pair.invMassB + points[i].normal.angularA.dot(points[j].normal.imageA) +
-                points[i].normal.angularB.dot(points[j].normal.imageB);
-    }
-  }
-  // The same pseudo-inverse as the Sequential Impulses rows' block.
+  const Eigen::Matrix4d k = NormalBlock(count, pair.invMassA, pair.invMassB,
+                                        [points](int i) -> const RowJacobian& { return points[i].normal; });
+  // The same block and pseudo-inverse as the Sequential Impulses rows'.
   m_blockInverses[static_cast<std::size_t>(pair.block)] = BlockPseudoInverse(k, count);
 }
 

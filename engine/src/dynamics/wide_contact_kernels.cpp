@@ -104,7 +104,7 @@ Vector Times(const Inertia& inertia, const Vector& v) {
 }
 
 // The angular parts of four rows along d and their images, as the scalar
-// ContactRowSet's MakeJacobian forms them in Prepare (contact_row_set.cpp).
+// MakeRowJacobian (dynamics/contact_rows.h) forms them in Prepare (contact_row_set.cpp).
 struct Jacobian {
   Vector angularA, angularB, imageA, imageB;
 };
