@@ -151,7 +151,7 @@ enum class StepSolver {
   /// sweeps for new pairs), then one position update.
   SequentialImpulses,
   /// Box2D v3's and Box3D's soft step (Catto's Solver2D study): the step is
-  /// cut into WorldSettings::softStep.substeps sub-steps, each integrating
+  /// cut into MethodSettings::softStep.substeps sub-steps, each integrating
   /// velocities, warm starting, solving the contacts once as soft springs
   /// (a stiffness and damping from a frequency and a damping ratio instead
   /// of Baumgarte's push), integrating positions and relaxing once without

@@ -36,8 +36,10 @@ double PersistentBreakDistance(double setting, double radiusA, double radiusB) {
   return std::min(setting, kPersistentRelative * std::min(radiusA, radiusB));
 }
 
-// A line depth this close to the point's own is the same measure (the
-// exactness the narrow phase asks of positions, kMissRelative there).
+// A line depth this close to the point's own is the same measure: 1e-9 of
+// the pair's size, the exactness the clipped manifold's miss test asked of
+// positions when this was chosen (that test now allows round-off only,
+// kInsideRoundOffUlps in polyhedron_manifold.cpp).
 constexpr double kSnapRelative = 1e-9;
 
 namespace {

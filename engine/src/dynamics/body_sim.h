@@ -1,13 +1,16 @@
 // BodySim: the hot per-body state the integrator and the solver read, one
-// small struct per body in a dense array indexed by body index.
+// struct per body in a dense array indexed by body index. At ten cache
+// lines (asserted below) it is not small, which is why the Sequential
+// Impulses sweeps work on the velocities gathered into SolverBodies
+// (solver_body.h) rather than on this array.
 //
 // Invariants: `orientation` is a unit quaternion; `invInertiaWorld` equals
 // R invInertiaLocal R^T for the current orientation (refreshed by
 // UpdateWorldInertia after every orientation change); static, kinematic and
 // sleeping bodies have invMass == 0 and zero inverse inertia as far as the
-// solver is concerned (see SolverMass), so a contact never moves them. The
-// centre of mass `center` is the integrated point; the body frame origin is
-// derived from it (center - R localCenter).
+// solver is concerned (IsSolverDynamic, which SolverBodies::Add reads), so
+// a contact never moves them. The centre of mass `center` is the integrated
+// point; the body frame origin is derived from it (center - R localCenter).
 //
 // Cold bookkeeping (generation, friction, restitution, sleep timers, shape)
 // lives apart, in the World's records, so the solver's cache lines carry
@@ -79,8 +82,9 @@ struct alignas(32) BodySim {
 };
 
 // One layout in every translation unit, SSE2 or AVX2 (see above): 640
-// bytes, ten cache lines. A sweep never reads it (SolverBodies gathers the
-// velocities, solver_body.h); the integrator and the row preparation do.
+// bytes, ten cache lines. A Sequential Impulses sweep never reads it
+// (SolverBodies gathers the velocities, solver_body.h); the integrator, the
+// row preparation and the soft step's rows do.
 static_assert(sizeof(BodySim) == 640 && alignof(BodySim) == 32, "BodySim: 640 bytes, 32-byte aligned");
 static_assert(offsetof(BodySim, principalFrame) == 416 && offsetof(BodySim, pseudoAngular) == 608,
               "BodySim: the same offsets in the SSE2 and the AVX2 translation unit");

@@ -6,10 +6,11 @@
 // phase comes first because it is the only stage that may refuse.
 //
 // With MethodSettings::stepSolver = SoftStep the stages after the broad
-// phase are StepSoft's instead (RunSoftStage): contacts, soft rows, the
-// sub-steps (each integrating velocities and positions) under
-// SolveVelocities, impulses stored, sleep; the soft step has no stage of
-// its own for the integration or split impulses, which do nothing there.
+// phase are the soft step's instead (RunSoftStage, SoftStepSolver):
+// contacts, soft rows, the sub-steps (each integrating velocities and
+// positions) under SolveVelocities, impulses stored, sleep; the soft step
+// has no stage of its own for the integration or split impulses, which do
+// nothing there.
 //
 // Nothing in here decides physics;
 // the stages live in engine/src/dynamics and engine/src/collision.

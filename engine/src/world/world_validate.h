@@ -2,7 +2,7 @@
 // promise, as Box2D's b2Validate* are. Each check returns an empty string
 // when the invariant holds, else a message naming the invariant and the
 // ids that break it. Built with TALUS_VALIDATE (CMake option, on in the
-// sanitizer tree), World::Step runs ValidateStep after every step and
+// sanitizer tree), World::Step runs CheckStep after every step and
 // aborts on a failure (the colouring checks itself where it is made,
 // dynamics/constraint_colouring.cpp); without it nothing here runs in a
 // step, and the tests call the checks on structures broken by hand.
