@@ -24,8 +24,6 @@ constexpr std::size_t kMaxPoints = 512;
 // prefixes of 40 bytes, each byte escaped to at most 4 characters.
 constexpr std::size_t kMaxMessage = 512;
 
-double Fraction(double value) { return std::isfinite(value) ? std::fmod(value, 1.0) : 0.0; }
-
 }  // namespace
 
 std::vector<Vec3> DecodeHullInput(std::span<const std::uint8_t> data) {

@@ -7,6 +7,7 @@
 // are the file's text.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -16,6 +17,10 @@
 #include "talus/math.h"
 
 namespace talus::fuzz {
+
+/// `value`'s fractional part (its sign kept), 0 for NaN or infinity: how
+/// the targets turn raw fuzzer bytes into coordinates of a bounded size.
+inline double Fraction(double value) { return std::isfinite(value) ? std::fmod(value, 1.0) : 0.0; }
 
 /// The point set a hull fuzz input stands for. Mode (first byte, modulo 5):
 /// 0 raw doubles, three per point (NaN, inf, huge and tiny values pass

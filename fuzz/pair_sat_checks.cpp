@@ -1,6 +1,8 @@
 // The pair query against a brute-force SAT (see pair_sat_checks.h).
 #include "pair_sat_checks.h"
 
+#include "fuzz_checks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -28,8 +30,6 @@ constexpr double kPreferenceRelative = 1e-7;
 // cross-product axis: its direction would be round-off. Such a pair's
 // Minkowski face is a sliver whose neighbours' axes bound the same gap.
 constexpr double kMinEdgeSine = 1e-9;
-
-double Fraction(double value) { return std::isfinite(value) ? std::fmod(value, 1.0) : 0.0; }
 
 class ValueReader {
  public:

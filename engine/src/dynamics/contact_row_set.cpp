@@ -14,11 +14,6 @@
 namespace talus {
 namespace {
 
-// Below this tangential speed (m/s) the friction basis is a fixed function
-// of the normal instead of the sliding direction: a direction computed from
-// round-off would only add noise.
-constexpr double kSlidingSpeed = 1e-9;
-
 // Pairs per chunk of Prepare's parallel pass: a pair's rows (with its
 // block's eigen decomposition) cost a few microseconds.
 constexpr int kPairGrain = 32;

@@ -11,6 +11,12 @@
 
 namespace talus {
 
+// Below this tangential speed (m/s) the friction basis is a fixed function
+// of the normal (AnyPerpendicular) instead of the sliding direction: a
+// direction computed from round-off would only add noise. Both step
+// solvers choose their tangents by it.
+inline constexpr double kSlidingSpeed = 1e-9;
+
 // A unit vector orthogonal to the unit `n`, from the world axis least
 // aligned with it (deterministic and well conditioned). Both step solvers
 // start their contact tangents from it, so they share one basis.

@@ -14,17 +14,13 @@
 namespace talus {
 namespace {
 
-// Below this tangential speed (m/s) the friction basis is a fixed function
-// of the normal (as the Sequential Impulses rows): a direction computed
-// from round-off would only add noise.
-constexpr double kSlidingSpeed = 1e-9;
 // Bodies per chunk of the integration phases (as World::Step's kBodyGrain:
 // a body's update is 50-300 ns, a chunk tens of microseconds).
-constexpr int kBodyGrain = 128;
+constexpr int kIntegrationBodyGrain = 128;
 // Pairs per chunk of a colour's pass: one soft pair's solve is a few hundred
 // nanoseconds, so a chunk is several microseconds, above the cost of
 // claiming it. Boundaries depend on the pair count only.
-constexpr int kPairGrain = 16;
+constexpr int kColourPairGrain = 16;
 // Pairs per chunk of Prepare's parallel pass (a few microseconds each).
 constexpr int kPreparePairGrain = 32;
 
@@ -268,7 +264,7 @@ void SoftStepSolver::AddPass(Pass pass) {
     const int count =
         m_colourStart[static_cast<std::size_t>(c) + 1] - m_colourStart[static_cast<std::size_t>(c)];
     m_jobs.push_back({.kind = PhaseJob::Kind::Colour, .pass = pass, .colour = c});
-    m_phases.push_back({.count = count, .grain = kPairGrain});
+    m_phases.push_back({.count = count, .grain = kColourPairGrain});
   }
   m_jobs.push_back({.kind = PhaseJob::Kind::Overflow, .pass = pass});
   m_phases.push_back({.count = m_overflow.empty() ? 0 : 1, .grain = 1});
@@ -280,16 +276,16 @@ int SoftStepSolver::Step(std::span<BodySim> bodies, const WorldSettings& setting
   m_phases.clear();
   for (int s = 0; s < m_substeps; ++s) {
     m_jobs.push_back({.kind = PhaseJob::Kind::IntegrateVelocities});
-    m_phases.push_back({.count = bodyCount, .grain = kBodyGrain});
+    m_phases.push_back({.count = bodyCount, .grain = kIntegrationBodyGrain});
     if (settings.methods.warmStarting || s > 0) AddPass(Pass::WarmStart);
     AddPass(Pass::Solve);
     m_jobs.push_back({.kind = PhaseJob::Kind::IntegratePositions});
-    m_phases.push_back({.count = bodyCount, .grain = kBodyGrain});
+    m_phases.push_back({.count = bodyCount, .grain = kIntegrationBodyGrain});
     AddPass(Pass::Relax);
   }
   AddPass(Pass::Restitution);
   m_jobs.push_back({.kind = PhaseJob::Kind::ClearForces});
-  m_phases.push_back({.count = bodyCount, .grain = kBodyGrain});
+  m_phases.push_back({.count = bodyCount, .grain = kIntegrationBodyGrain});
 
   // Dynamic bodies integrated, counted in the first sub-step (an integer sum,
   // the same in any order).

@@ -43,10 +43,6 @@ std::string SizeName(const std::string& scene, int parameter) {
 
 bool Ran(const BenchReport* r) { return r->skipped.empty(); }
 
-bool SameSolver(const BenchReport* a, const BenchReport* b) {
-  return a->solver.iterations == b->solver.iterations && a->solver.substeps == b->solver.substeps;
-}
-
 // The run of `like`'s engine and solver settings at `threads` among `rows`
 // with as many steps, or null: a thread speed-up compares like with like.
 const BenchReport* AtThreads(const std::vector<const BenchReport*>& rows, const BenchReport* like,
@@ -145,6 +141,10 @@ void WriteStageTable(std::ostringstream& out, const SizeRows& size) {
 }
 
 }  // namespace
+
+bool SameSolver(const BenchReport* a, const BenchReport* b) {
+  return a->solver.iterations == b->solver.iterations && a->solver.substeps == b->solver.substeps;
+}
 
 std::string BenchRunLabel(const BenchReport& report) {
   std::string label = report.engine;

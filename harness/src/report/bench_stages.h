@@ -44,4 +44,8 @@ std::string BenchThreadsMarkdown(const std::vector<const BenchReport*>& rows);
 /// pyramid H = 20 or hull_pile L = 20; empty when there are none.
 std::string BenchThreadGoals(const std::vector<const BenchReport*>& rows);
 
+/// Whether two runs used the same solver settings (iterations and
+/// sub-steps): the stage and trade-off tables compare like with like.
+bool SameSolver(const BenchReport* a, const BenchReport* b);
+
 }  // namespace talus::harness

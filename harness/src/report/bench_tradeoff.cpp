@@ -18,10 +18,6 @@
 namespace talus::harness {
 namespace {
 
-bool SameSolver(const BenchReport* a, const BenchReport* b) {
-  return a->solver.iterations == b->solver.iterations && a->solver.substeps == b->solver.substeps;
-}
-
 // The accuracy figure of a run, NaN when it has none.
 double FigureOf(const BenchReport& r) { return BenchVerdictFigure(r).value_or(std::nan("")); }
 

@@ -105,7 +105,7 @@ Json ReplayRunsJson(const ResultsFile& file) {
   return runs;
 }
 
-constexpr const char* kStyle =
+constexpr const char* kReplayStyle =
     R"(.replay-controls{display:flex;gap:1em;align-items:center;margin:.5em 0}.replay-controls input[type=range]{width:30em}
 .replay-stage{position:relative}.replay-label{position:absolute;background:#fffc;padding:0 .4em;font-size:90%}
 #report-status{font-size:80%;color:#777;white-space:pre-wrap})";
@@ -163,7 +163,7 @@ std::string ReplaySections(const ResultsFile& file, std::string_view threeLibrar
   Json data;
   data["hullTrace"] = HullTraceJson();
   std::ostringstream out;
-  out << "<style>" << kStyle << "</style>\n";
+  out << "<style>" << kReplayStyle << "</style>\n";
   out << "<h2>Replay</h2>\n<p>Every run recorded with <code>talus-testbed run --replay</code>, one view per "
          "engine; drag to orbit, wheel to zoom. Contact points in red, normals (from B towards A) as red "
          "lines.</p>\n<div id=\"replay\"></div>\n";

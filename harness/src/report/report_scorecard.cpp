@@ -18,13 +18,6 @@ namespace {
 // shown as ungated.
 bool Judged(const MetricResult& m) { return m.checked || !m.ungated.empty(); }
 
-const MetricResult* FindMetric(const RunResult& r, const std::string& name) {
-  for (const MetricResult& m : r.metrics) {
-    if (m.name == name) return &m;
-  }
-  return nullptr;
-}
-
 // The cause of one FAIL of `backend`; `setting` says whether its tuned
 // counterpart removes it.
 std::string Cause(const std::string& backend, const MetricResult& failed,
@@ -108,6 +101,13 @@ document.addEventListener('DOMContentLoaded', () => {
 )";
 
 }  // namespace
+
+const MetricResult* FindMetric(const RunResult& r, const std::string& name) {
+  for (const MetricResult& m : r.metrics) {
+    if (m.name == name) return &m;
+  }
+  return nullptr;
+}
 
 std::string HeadingAnchor(std::string_view heading) {
   std::string anchor;

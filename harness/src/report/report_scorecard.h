@@ -88,4 +88,7 @@ std::string SummaryRuns(const ResultsFile& file);
 std::string FailCauseLines(const std::vector<std::string>& backends,
                            const std::map<std::string, const RunResult*>& byBackend);
 
+/// The metric of `r` named `name`, or null.
+const MetricResult* FindMetric(const RunResult& r, const std::string& name);
+
 }  // namespace talus::harness

@@ -34,13 +34,6 @@ std::vector<RunGroup> GroupByRun(const ResultsFile& file) {
   return groups;
 }
 
-const MetricResult* FindMetric(const RunResult& r, const std::string& name) {
-  for (const MetricResult& m : r.metrics) {
-    if (m.name == name) return &m;
-  }
-  return nullptr;
-}
-
 // "+0.0012 ok" / "+0.0012 FAIL" / "+0.0012" (no tolerance) / "error"; with
 // an anchor, a FAIL links to it: "+0.0012 [FAIL](#anchor)".
 std::string Cell(const RunResult* r, const std::string& metric, const std::string& anchor = "") {

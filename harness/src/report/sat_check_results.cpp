@@ -16,10 +16,10 @@
 namespace talus::harness {
 namespace {
 
-SatDistribution ReadDistribution(JsonChecker& check, const Json& method, const std::string& path,
+SatDistribution ReadDistribution(JsonChecker& check, const JsonValue& method, const std::string& path,
                                  const char* key) {
   SatDistribution d;
-  const Json* object = check.Member(method, path, key);
+  const JsonValue* object = check.Member(method, path, key);
   if (object == nullptr) return d;
   const std::string at = Concat({path, ".", key});
   d.count = check.Count(*object, at, "count");
@@ -30,10 +30,10 @@ SatDistribution ReadDistribution(JsonChecker& check, const Json& method, const s
   return d;
 }
 
-std::vector<SatCase> ReadCases(JsonChecker& check, const Json& method, const std::string& path,
+std::vector<SatCase> ReadCases(JsonChecker& check, const JsonValue& method, const std::string& path,
                                const char* key) {
   std::vector<SatCase> cases;
-  const Json* array = check.Array(method, path, key);
+  const JsonValue* array = check.Array(method, path, key);
   if (array == nullptr) return cases;
   for (std::size_t i = 0; i < array->size() && !check.Failed(); ++i) {
     const std::string at = Indexed(path, key, i);
@@ -48,9 +48,10 @@ std::vector<SatCase> ReadCases(JsonChecker& check, const Json& method, const std
   return cases;
 }
 
-std::vector<std::pair<std::string, int>> ReadCounts(JsonChecker& check, const Json& root, const char* key) {
+std::vector<std::pair<std::string, int>> ReadCounts(JsonChecker& check, const JsonValue& root,
+                                                    const char* key) {
   std::vector<std::pair<std::string, int>> counts;
-  const Json* object = check.Member(root, "$", key);
+  const JsonValue* object = check.Member(root, "$", key);
   if (object == nullptr) return counts;
   if (!object->is_object()) return check.Fail(Concat({"$.", key}), "an object"), counts;
   for (const auto& [name, value] : object->items()) {
@@ -59,12 +60,12 @@ std::vector<std::pair<std::string, int>> ReadCounts(JsonChecker& check, const Js
   return counts;
 }
 
-SatMethod ReadMethod(JsonChecker& check, const Json& method, const std::string& path) {
+SatMethod ReadMethod(JsonChecker& check, const JsonValue& method, const std::string& path) {
   SatMethod m;
   m.name = check.Text(method, path, "name");
   m.family = check.Text(method, path, "family");
   m.givesDepth = check.Bool(method, path, "givesDepth");
-  if (const Json* verdict = check.Member(method, path, "verdict")) {
+  if (const JsonValue* verdict = check.Member(method, path, "verdict")) {
     const std::string at = path + ".verdict";
     m.agree = check.Count(*verdict, at, "agree");
     m.disagree = check.Count(*verdict, at, "disagree");
@@ -104,11 +105,11 @@ void WorstRows(std::ostringstream& out, const SatMethod& m, const char* kind,
 }  // namespace
 
 Result<SatCheckSummary> ParseSatCheckJson(std::string_view text, std::string_view source) {
-  const Json root = Json::parse(text, nullptr, false);
+  const JsonValue root = JsonValue::parse(text, nullptr, false);
   if (root.is_discarded()) return Error{Concat({source, ": not valid JSON"})};
   JsonChecker check;
   SatCheckSummary s;
-  if (const Json* settings = check.Member(root, "$", "settings")) {
+  if (const JsonValue* settings = check.Member(root, "$", "settings")) {
     s.pairs = check.Count(*settings, "$.settings", "pairs");
     s.seed = check.Integer(*settings, "$.settings", "seed", false);
     s.touchingBand = check.Number(*settings, "$.settings", "touchingBand", true);
@@ -116,13 +117,13 @@ Result<SatCheckSummary> ParseSatCheckJson(std::string_view text, std::string_vie
   s.pairCount = check.Count(root, "$", "pairCount");
   s.placements = ReadCounts(check, root, "placements");
   s.alignments = ReadCounts(check, root, "alignments");
-  if (const Json* truth = check.Member(root, "$", "truth")) {
+  if (const JsonValue* truth = check.Member(root, "$", "truth")) {
     s.truthIntersecting = check.Count(*truth, "$.truth", "intersecting");
     s.truthTouchingBand = check.Count(*truth, "$.truth", "touchingBand");
     s.qhullChecks = check.Count(*truth, "$.truth", "qhullChecks");
     s.qhullMismatches = check.Count(*truth, "$.truth", "qhullMismatches");
   }
-  if (const Json* methods = check.Array(root, "$", "methods")) {
+  if (const JsonValue* methods = check.Array(root, "$", "methods")) {
     if (methods->empty()) check.Fail("$.methods", "at least one method");
     for (std::size_t i = 0; i < methods->size() && !check.Failed(); ++i) {
       s.methods.push_back(ReadMethod(check, (*methods)[i], Indexed("$", "methods", i)));

@@ -1,6 +1,7 @@
 // Drift, penetration, contact and converged-reference metrics (see
 // run_metrics.h for the definitions and where each applies).
 #include "talus/harness/run/run_metrics.h"
+#include "support/numbers.h"
 #include "talus/harness/support/nan_extremes.h"
 
 #include <algorithm>
@@ -10,8 +11,6 @@
 
 namespace talus::harness {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 MetricResult Reported(const char* name, const char* unit, double measured) {
   MetricResult metric = MakeMetric(name, unit);

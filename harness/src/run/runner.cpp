@@ -15,6 +15,7 @@
 #include <thread>
 #include <utility>
 
+#include "support/numbers.h"
 #include "support/text_util.h"
 #include "talus/harness/run/job_processes.h"
 #include "talus/harness/run/results_file.h"
@@ -44,18 +45,6 @@ std::mutex& ProgressMutex() {
 bool Measures(const Run& run, Quantity quantity) {
   const auto& list = run.scenario.measure;
   return std::find(list.begin(), list.end(), quantity) != list.end();
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
-  double median = values[mid];
-  if (values.size() % 2 == 0) {
-    median =
-        0.5 * (median + *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid)));
-  }
-  return median;
 }
 
 PlotSeries MakeSeries(const Run& run, const Trajectory& trajectory, int plotPoints) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "support/numbers.h"
 #include "talus/harness/support/number_text.h"
 
 namespace talus::harness {
@@ -32,11 +33,6 @@ std::optional<bool> BenchVerdict(const BenchReport& report) {
 namespace {
 
 // The median of a non-empty list.
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 }  // namespace
 

@@ -5,14 +5,11 @@
 #include <cmath>
 
 #include "support/json_checker.h"
+#include "support/numbers.h"
 #include "support/text_util.h"
 
 namespace talus::harness {
 namespace {
-
-nlohmann::ordered_json JsonNumber(double value) {
-  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
-}
 
 // Whether `part` <= `whole` within 1e-9 relative: room for the rounding
 // of sums of milliseconds, none for a figure that was changed by hand.
@@ -22,8 +19,8 @@ bool AtMost(double part, double whole) { return part <= whole * (1.0 + 1e-9); }
 // name met once, its mean and longest step finite and >= 0, the means adding
 // up to no more than the step's mean and no stage's longest step longer
 // than the longest step (the stages run inside the timed step).
-void ReadStages(JsonChecker& check, const Json& line, const std::string& path, BenchReport& report) {
-  const Json* stages = check.Array(line, path, "stages");
+void ReadStages(JsonChecker& check, const JsonValue& line, const std::string& path, BenchReport& report) {
+  const JsonValue* stages = check.Array(line, path, "stages");
   if (stages == nullptr) return;
   const std::string stagesPath = path + ".stages";
   double sumOfMeans = 0.0;
@@ -55,7 +52,7 @@ void ReadStages(JsonChecker& check, const Json& line, const std::string& path, B
 // The cost of a run that was made: finite times >= 0 that hang together
 // (mean = total / steps, mean <= longest <= total), so a figure edited by
 // hand does not pass for a measured one.
-void ReadCost(JsonChecker& check, const Json& line, const std::string& path, BenchReport& report) {
+void ReadCost(JsonChecker& check, const JsonValue& line, const std::string& path, BenchReport& report) {
   report.totalMs = check.Number(line, path, "total_ms", true);
   report.msMean = check.Number(line, path, "ms_per_step_mean", true);
   report.msMax = check.Number(line, path, "ms_per_step_max", true);
@@ -75,7 +72,7 @@ void ReadCost(JsonChecker& check, const Json& line, const std::string& path, Ben
 }
 
 // The figures of a run that was made; `path` is the line's JSON path.
-void ReadFigures(JsonChecker& check, const Json& line, const std::string& path, BenchReport& report) {
+void ReadFigures(JsonChecker& check, const JsonValue& line, const std::string& path, BenchReport& report) {
   ReadCost(check, line, path, report);
   report.maxContacts = check.Count(line, path, "max_contacts");
   if (JsonChecker::Has(line, "drift_m")) report.drift = check.NumberOrNull(line, path, "drift_m");
@@ -90,7 +87,7 @@ void ReadFigures(JsonChecker& check, const Json& line, const std::string& path, 
 }
 
 // The solver settings, as BenchSolverProblem accepts them for the engine.
-void ReadSolver(JsonChecker& check, const Json& line, const std::string& path, BenchReport& report) {
+void ReadSolver(JsonChecker& check, const JsonValue& line, const std::string& path, BenchReport& report) {
   report.solver.iterations = check.Count(line, path, "iterations");
   report.solver.substeps = check.Count(line, path, "substeps");
   if (check.Failed()) return;
@@ -153,7 +150,7 @@ Result<std::vector<BenchReport>> ParseBenchReportLines(std::string_view text, st
     ++lineNumber;
     if (lineText.find_first_not_of(" \t\r") == std::string_view::npos) continue;
     const std::string where = Concat({source, ":", std::to_string(lineNumber)});
-    const Json line = Json::parse(lineText, nullptr, false);
+    const JsonValue line = JsonValue::parse(lineText, nullptr, false);
     if (line.is_discarded()) return Error{Concat({where, ": not valid JSON"})};
     JsonChecker check;
     BenchReport report;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "support/numbers.h"
 #include "support/text_util.h"
 #include "talus/harness/run/runner.h"
 #include "talus/harness/sweep/sweep.h"
@@ -15,9 +16,7 @@
 namespace talus::harness {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string Number(double value) {
+std::string EnvelopeNumber(double value) {
   if (std::isnan(value)) return "-";
   return FormatNumber(value, 4);
 }
@@ -68,9 +67,9 @@ EnvelopeProbe Stands(double value, const Run& run, const Trajectory& trajectory,
   if (std::isnan(horizontal)) {
     probe.detail = "non-finite state";
   } else if (horizontal > maxHorizontal) {
-    probe.detail = Concat({"moved ", Number(horizontal), " m sideways"});
+    probe.detail = Concat({"moved ", EnvelopeNumber(horizontal), " m sideways"});
   } else if (vertical > maxVertical) {
-    probe.detail = Concat({"moved ", Number(vertical), " m vertically"});
+    probe.detail = Concat({"moved ", EnvelopeNumber(vertical), " m vertically"});
   }
   probe.pass = probe.detail.empty();
   return probe;
@@ -193,7 +192,8 @@ EnvelopeProbe ProbeStress(const BackendRegistry& registry, const std::string& ba
         return probe;
       }
       const double error = RunErrorScalar(result);
-      if (!(error <= 1.0) && probe.detail.empty()) probe.detail = Concat({run.id, " error ", Number(error)});
+      if (!(error <= 1.0) && probe.detail.empty())
+        probe.detail = Concat({run.id, " error ", EnvelopeNumber(error)});
       worst = std::isnan(error) ? std::numeric_limits<double>::infinity() : std::max(worst, error);
     }
     probe.measure = worst;
@@ -219,7 +219,7 @@ EnvelopeProbe ProbeStress(const BackendRegistry& registry, const std::string& ba
       if (!Finite(last)) {
         probe.detail = "non-finite state";
       } else if (last.centerOfMass.x() > 0.0) {
-        probe.detail = Concat({"tunnelled: ended at x = ", Number(last.centerOfMass.x()), " m"});
+        probe.detail = Concat({"tunnelled: ended at x = ", EnvelopeNumber(last.centerOfMass.x()), " m"});
       }
       break;
     }
@@ -244,9 +244,9 @@ EnvelopeProbe ProbeStress(const BackendRegistry& registry, const std::string& ba
       if (std::isnan(energy)) {
         probe.detail = "non-finite state";
       } else if (energy > 0.01) {
-        probe.detail = Concat({"kinetic energy drifted by ", Number(100.0 * energy), " %"});
+        probe.detail = Concat({"kinetic energy drifted by ", EnvelopeNumber(100.0 * energy), " %"});
       } else if (momentum > 0.01) {
-        probe.detail = Concat({"angular momentum drifted by ", Number(100.0 * momentum), " %"});
+        probe.detail = Concat({"angular momentum drifted by ", EnvelopeNumber(100.0 * momentum), " %"});
       }
       break;
     }
@@ -277,7 +277,8 @@ std::string StressMarkdown(const std::vector<StressEntry>& entries) {
     for (const std::string& axis : axes) {
       for (const StressEntry& e : entries) {
         if (e.axis == axis && e.backend == backend) {
-          out << " " << Number(e.envelope.lastPass) << " / " << Number(e.envelope.firstFail) << " |";
+          out << " " << EnvelopeNumber(e.envelope.lastPass) << " / " << EnvelopeNumber(e.envelope.firstFail)
+              << " |";
         }
       }
     }
@@ -291,8 +292,8 @@ std::string StressMarkdown(const std::vector<StressEntry>& entries) {
   out << "\n### Probes\n\n| axis | backend | value | pass | measure | why |\n|---|---|---|---|---|---|\n";
   for (const StressEntry& e : entries) {
     for (const EnvelopeProbe& p : e.envelope.probes) {
-      out << "| " << e.axis << " | " << e.backend << " | " << Number(p.value) << " | "
-          << (p.pass ? "ok" : "FAIL") << " | " << Number(p.measure) << " | " << p.detail << " |\n";
+      out << "| " << e.axis << " | " << e.backend << " | " << EnvelopeNumber(p.value) << " | "
+          << (p.pass ? "ok" : "FAIL") << " | " << EnvelopeNumber(p.measure) << " | " << p.detail << " |\n";
     }
   }
   return out.str();

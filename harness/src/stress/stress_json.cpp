@@ -12,12 +12,12 @@ namespace {
 constexpr const char* kStressFormat = "talus-testbed-stress";
 constexpr int kStressVersion = 1;
 
-EnvelopeProbe ReadProbe(JsonChecker& check, const Json& probe, const std::string& path) {
+EnvelopeProbe ReadProbe(JsonChecker& check, const JsonValue& probe, const std::string& path) {
   EnvelopeProbe p;
   p.value = check.Number(probe, path, "value", false);
   p.pass = check.Bool(probe, path, "pass");
   p.measure = check.NumberOrNull(probe, path, "measure");
-  if (const Json* detail = check.Member(probe, path, "detail")) {
+  if (const JsonValue* detail = check.Member(probe, path, "detail")) {
     if (detail->is_string()) {
       p.detail = detail->get<std::string>();
     } else {
@@ -27,13 +27,13 @@ EnvelopeProbe ReadProbe(JsonChecker& check, const Json& probe, const std::string
   return p;
 }
 
-StressEntry ReadEntry(JsonChecker& check, const Json& envelope, const std::string& path) {
+StressEntry ReadEntry(JsonChecker& check, const JsonValue& envelope, const std::string& path) {
   StressEntry e;
   e.axis = check.Text(envelope, path, "axis");
   e.backend = check.Text(envelope, path, "backend");
   e.envelope.lastPass = check.NumberOrNull(envelope, path, "lastPass");
   e.envelope.firstFail = check.NumberOrNull(envelope, path, "firstFail");
-  if (const Json* probes = check.Array(envelope, path, "probes")) {
+  if (const JsonValue* probes = check.Array(envelope, path, "probes")) {
     for (std::size_t i = 0; i < probes->size() && !check.Failed(); ++i) {
       e.envelope.probes.push_back(ReadProbe(check, (*probes)[i], Indexed(path, "probes", i)));
     }
@@ -67,7 +67,7 @@ std::string StressJson(const std::vector<StressEntry>& entries) {
 }
 
 Result<std::vector<StressEntry>> ParseStressJson(std::string_view text, std::string_view source) {
-  const Json root = Json::parse(text, nullptr, false);
+  const JsonValue root = JsonValue::parse(text, nullptr, false);
   if (root.is_discarded()) return Error{Concat({source, ": not valid JSON"})};
   JsonChecker check;
   if (check.Text(root, "$", "format") != kStressFormat && !check.Failed()) {
@@ -77,7 +77,7 @@ Result<std::vector<StressEntry>> ParseStressJson(std::string_view text, std::str
     check.Fail("$.version", "1");
   }
   std::vector<StressEntry> entries;
-  if (const Json* envelopes = check.Array(root, "$", "envelopes")) {
+  if (const JsonValue* envelopes = check.Array(root, "$", "envelopes")) {
     for (std::size_t i = 0; i < envelopes->size() && !check.Failed(); ++i) {
       entries.push_back(ReadEntry(check, (*envelopes)[i], Indexed("$", "envelopes", i)));
     }

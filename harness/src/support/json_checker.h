@@ -18,7 +18,7 @@
 
 namespace talus::harness {
 
-using Json = nlohmann::json;
+using JsonValue = nlohmann::json;
 
 // Remembers the first problem met; every getter returns a default after it.
 class JsonChecker {
@@ -27,7 +27,7 @@ class JsonChecker {
   const std::string& Message() const { return m_error; }
 
   // The member `key` of the object at `path`, or null (and a problem).
-  const Json* Member(const Json& object, const std::string& path, const char* key) {
+  const JsonValue* Member(const JsonValue& object, const std::string& path, const char* key) {
     if (Failed()) return nullptr;
     if (!object.is_object()) return Fail(path, "an object");
     const auto it = object.find(key);
@@ -38,8 +38,8 @@ class JsonChecker {
     return &*it;
   }
 
-  double Number(const Json& object, const std::string& path, const char* key, bool nonNegative) {
-    const Json* value = Member(object, path, key);
+  double Number(const JsonValue& object, const std::string& path, const char* key, bool nonNegative) {
+    const JsonValue* value = Member(object, path, key);
     if (value == nullptr) return 0.0;
     if (!value->is_number() || !std::isfinite(value->get<double>()) ||
         (nonNegative && value->get<double>() < 0.0)) {
@@ -49,8 +49,9 @@ class JsonChecker {
     return value->get<double>();
   }
 
-  long long Integer(const Json& object, const std::string& path, const char* key, bool nonNegative = true) {
-    const Json* value = Member(object, path, key);
+  long long Integer(const JsonValue& object, const std::string& path, const char* key,
+                    bool nonNegative = true) {
+    const JsonValue* value = Member(object, path, key);
     if (value == nullptr) return 0;
     if (!value->is_number_integer() || (nonNegative && value->get<long long>() < 0)) {
       Fail(Concat({path, ".", key}), nonNegative ? "an integer >= 0" : "an integer");
@@ -59,7 +60,7 @@ class JsonChecker {
     return value->get<long long>();
   }
 
-  int Count(const Json& object, const std::string& path, const char* key) {
+  int Count(const JsonValue& object, const std::string& path, const char* key) {
     const long long value = Integer(object, path, key);
     if (value > 1000000000) {
       Fail(Concat({path, ".", key}), "a count below 1e9");
@@ -68,8 +69,8 @@ class JsonChecker {
     return static_cast<int>(value);
   }
 
-  bool Bool(const Json& object, const std::string& path, const char* key) {
-    const Json* value = Member(object, path, key);
+  bool Bool(const JsonValue& object, const std::string& path, const char* key) {
+    const JsonValue* value = Member(object, path, key);
     if (value == nullptr) return false;
     if (!value->is_boolean()) {
       Fail(Concat({path, ".", key}), "true or false");
@@ -78,8 +79,8 @@ class JsonChecker {
     return value->get<bool>();
   }
 
-  std::string Text(const Json& object, const std::string& path, const char* key) {
-    const Json* value = Member(object, path, key);
+  std::string Text(const JsonValue& object, const std::string& path, const char* key) {
+    const JsonValue* value = Member(object, path, key);
     if (value == nullptr) return {};
     if (!value->is_string() || value->get<std::string>().empty()) {
       Fail(Concat({path, ".", key}), "a non-empty string");
@@ -88,16 +89,16 @@ class JsonChecker {
     return value->get<std::string>();
   }
 
-  const Json* Array(const Json& object, const std::string& path, const char* key) {
-    const Json* value = Member(object, path, key);
+  const JsonValue* Array(const JsonValue& object, const std::string& path, const char* key) {
+    const JsonValue* value = Member(object, path, key);
     if (value != nullptr && !value->is_array()) return Fail(Concat({path, ".", key}), "an array");
     return value;
   }
 
   /// The member `key` as a number, NaN when it is null (how the writers
   /// store a non-finite figure); missing or another type is a problem.
-  double NumberOrNull(const Json& object, const std::string& path, const char* key) {
-    const Json* value = Member(object, path, key);
+  double NumberOrNull(const JsonValue& object, const std::string& path, const char* key) {
+    const JsonValue* value = Member(object, path, key);
     if (value == nullptr) return 0.0;
     if (value->is_null()) return std::numeric_limits<double>::quiet_NaN();
     if (!value->is_number()) {
@@ -108,7 +109,9 @@ class JsonChecker {
   }
 
   /// Whether `object` has the member `key` (no problem either way).
-  static bool Has(const Json& object, const char* key) { return object.is_object() && object.contains(key); }
+  static bool Has(const JsonValue& object, const char* key) {
+    return object.is_object() && object.contains(key);
+  }
 
   std::nullptr_t Fail(const std::string& path, const char* expected) {
     if (!Failed()) m_error = Concat({path, ": expected ", expected});

@@ -1,16 +1,13 @@
 // One run's (cost, error) point, Pareto fronts, the comparison at one
 // budget and at equal cost (cost_error_front.h).
 #include "talus/harness/sweep/cost_error_front.h"
+#include "support/numbers.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace talus::harness {
-namespace {
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-}  // namespace
+namespace {}  // namespace
 
 double BestError(const CostErrorPoint& point) {
   const double value = std::isnan(point.best) ? point.error : point.best;

@@ -1,17 +1,14 @@
 // Every engine family against every other in one scenario instance
 // (family_verdict.h).
 #include "talus/harness/sweep/family_verdict.h"
+#include "support/numbers.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace talus::harness {
-namespace {
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-}  // namespace
+namespace {}  // namespace
 
 std::string EngineFamily(const RunResult& result) {
   for (const Setting& setting : result.settings) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "support/numbers.h"
 #include "support/text_util.h"
 #include "talus/harness/scenario/position_perturbation.h"
 #include "talus/harness/support/number_text.h"
@@ -14,12 +15,6 @@
 
 namespace talus::harness {
 namespace {
-
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 // The truths of `moved` (a copy of `run` with its bodies moved) made those
 // of its own start: a truth that names where a body starts (free fall's y0,

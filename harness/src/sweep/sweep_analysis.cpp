@@ -8,12 +8,11 @@
 #include <limits>
 #include <map>
 
+#include "support/numbers.h"
 #include "support/text_util.h"
 
 namespace talus::harness {
 namespace {
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 bool IsSteppingValue(const SweepValue& value) { return value.name == "h" || value.name == "iterations"; }
 

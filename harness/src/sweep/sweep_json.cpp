@@ -2,15 +2,11 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "support/numbers.h"
 #include "talus/harness/sweep/sweep_text.h"
 
 namespace talus::harness {
 namespace {
-
-nlohmann::ordered_json JsonNumber(double value) {
-  if (!std::isfinite(value)) return nullptr;
-  return value;
-}
 
 nlohmann::ordered_json FamilyPairJson(const FamilyPair& pair) {
   return {{"first", pair.first},

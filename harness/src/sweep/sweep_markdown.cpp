@@ -10,7 +10,7 @@
 namespace talus::harness {
 namespace {
 
-std::string Number(double value) {
+std::string CellNumber(double value) {
   if (std::isnan(value)) return "-";
   if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
   return FormatNumber(value, 3);
@@ -19,13 +19,13 @@ std::string Number(double value) {
 // An error with its noise floor when it has one: "0.5 (spread 0.02)", the
 // error moved by 0.02 between the point's perturbed copies (max - min).
 std::string ErrorText(double error, double spread) {
-  return spread > 0.0 ? Concat({Number(error), " (spread ", Number(spread), ")"}) : Number(error);
+  return spread > 0.0 ? Concat({CellNumber(error), " (spread ", CellNumber(spread), ")"}) : CellNumber(error);
 }
 
 // A point's error range: "0.5" without copies or when they agree, else
 // "0.5 [0.4, 0.9]" (the unperturbed run's, then best and worst copy).
 std::string RangeText(double best, double worst) {
-  return best == worst ? Number(worst) : Concat({"[", Number(best), ", ", Number(worst), "]"});
+  return best == worst ? CellNumber(worst) : Concat({"[", CellNumber(best), ", ", CellNumber(worst), "]"});
 }
 
 // Per group the backend most accurate at equal cost, the matched cost,
@@ -52,7 +52,7 @@ void WinnersTable(std::ostringstream& out, const std::vector<SweepGroup>& groups
       wins.append(b ? ", " : "").append(group.backends[b]).append(" ").append(std::to_string(c.wins[b]));
     }
     out << "| " << group.id << " | " << (c.winner >= 0 ? group.backends[c.winner] : std::string("none (tie)"))
-        << " | " << Number(c.matchedCost) << " | " << errors << " | " << wins << " of " << c.budgets
+        << " | " << CellNumber(c.matchedCost) << " | " << errors << " | " << wins << " of " << c.budgets
         << " |\n";
   }
 }
@@ -85,10 +85,10 @@ void FamilyPairsTable(std::ostringstream& out, const std::vector<SweepGroup>& gr
     for (const FamilyPair& pair : group.families.pairs) {
       out << "| " << group.id << " | " << pair.first << " | " << pair.second << " | "
           << PairOutcomeName(pair.outcome) << (pair.split ? " (split)" : "") << " | " << pair.firstWins
-          << ", " << pair.secondWins << ", " << pair.budgets << " | " << Number(pair.budget) << ": "
+          << ", " << pair.secondWins << ", " << pair.budgets << " | " << CellNumber(pair.budget) << ": "
           << RangeText(pair.firstBest, pair.firstWorst) << ", "
-          << RangeText(pair.secondBest, pair.secondWorst) << " | " << Number(pair.firstCostRatio) << ", "
-          << Number(pair.secondCostRatio) << " |\n";
+          << RangeText(pair.secondBest, pair.secondWorst) << " | " << CellNumber(pair.firstCostRatio) << ", "
+          << CellNumber(pair.secondCostRatio) << " |\n";
     }
   }
 }
@@ -105,9 +105,9 @@ void FrontsTable(std::ostringstream& out, const std::vector<SweepGroup>& groups)
         for (std::size_t k = 0; k < curve.points.size(); ++k) {
           if (!curve.onFront[k]) continue;
           const CostErrorPoint& p = curve.points[k];
-          front.emplace_back(p.cost, Concat({"h ", Number(curve.timeSteps[k]), ", it ",
-                                             std::to_string(curve.iterations), ": ", Number(p.cost), ", ",
-                                             Number(p.longestStep), ", ", ErrorText(p.error, p.spread)}));
+          front.emplace_back(p.cost, Concat({"h ", CellNumber(curve.timeSteps[k]), ", it ",
+                                             std::to_string(curve.iterations), ": ", CellNumber(p.cost), ", ",
+                                             CellNumber(p.longestStep), ", ", ErrorText(p.error, p.spread)}));
         }
       }
       std::stable_sort(front.begin(), front.end(),

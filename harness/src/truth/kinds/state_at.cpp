@@ -17,7 +17,7 @@ namespace {
 
 // How far a written quaternion's norm may be from 1: values written with ~7
 // significant digits (0.7071068) pass.
-constexpr double kUnitQuaternionTolerance = 1e-6;
+constexpr double kTruthQuaternionTolerance = 1e-6;
 
 const char* QuantityName(StateQuantity quantity) {
   switch (quantity) {
@@ -87,7 +87,7 @@ Result<StateAtTruth> StateAtTruth::Read(TruthReader& reader) {
   }
   truth.orientation = Eigen::Vector4d(value[0].get<double>(), value[1].get<double>(), value[2].get<double>(),
                                       value[3].get<double>());
-  if (std::abs(truth.orientation.norm() - 1.0) > kUnitQuaternionTolerance) {
+  if (std::abs(truth.orientation.norm() - 1.0) > kTruthQuaternionTolerance) {
     return reader.Refuse(
         "/value", "quaternion is not unit length (norm " + FormatNumber(truth.orientation.norm()) + ")");
   }
