@@ -7,7 +7,7 @@
 #include <string>
 
 namespace talus::cli {
-namespace {
+namespace point_file_test {
 
 std::vector<Vec3> Parse(std::string_view text, PointFormat format = PointFormat::Auto) {
   auto points = ParsePoints(text, "points.xyz", format);
@@ -163,5 +163,5 @@ TEST(PointFileHostile, LeadingByteOrderMarkIsSkipped) {
   EXPECT_EQ(file.Value()[0], Vec3(0, 0, 0));
 }
 
-}  // namespace
+}  // namespace point_file_test
 }  // namespace talus::cli

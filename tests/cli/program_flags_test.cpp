@@ -9,7 +9,7 @@
 
 #include "support/command_outcome.h"
 
-namespace {
+namespace program_flags_test {
 
 using talus::testing_support::CommandOutcome;
 using talus::testing_support::RunCommand;
@@ -96,4 +96,4 @@ TEST(ProgramFlags, SatCheckRefusesPairsAndRepeatsOutOfRange) {
 }
 #endif
 
-}  // namespace
+}  // namespace program_flags_test

@@ -17,7 +17,7 @@
 #include "support/command_outcome.h"
 #include "support/scratch_files.h"
 
-namespace {
+namespace program_outputs_test {
 
 namespace fs = std::filesystem;
 using talus::testing_support::CommandOutcome;
@@ -169,4 +169,4 @@ TEST(ProgramOutputs, TestbedReportWritesTheWholeSet) {
 }
 #endif
 
-}  // namespace
+}  // namespace program_outputs_test

@@ -15,7 +15,7 @@
 #include <vector>
 
 namespace talus::cli {
-namespace {
+namespace talus_command_test {
 
 namespace fs = std::filesystem;
 
@@ -208,5 +208,5 @@ TEST(TalusHull, BadOptionsExitNonZeroWithAMessage) {
   EXPECT_NE(RunTalus("hull missing.xyz").err.find("missing.xyz: cannot open file"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace talus_command_test
 }  // namespace talus::cli

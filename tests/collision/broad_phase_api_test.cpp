@@ -10,7 +10,7 @@
 #include "collision/broad_phase_test_worlds.h"
 
 namespace talus {
-namespace {
+namespace broad_phase_api_test {
 
 using testing::MakeWorld;
 using testing::OraclePairs;
@@ -135,5 +135,5 @@ TEST(BroadPhaseOrder, PairsAreStrictlyIncreasingWithLowerSlotFirst) {
   }
 }
 
-}  // namespace
+}  // namespace broad_phase_api_test
 }  // namespace talus

@@ -11,7 +11,7 @@
 #include "collision/broad_phase_test_worlds.h"
 
 namespace talus {
-namespace {
+namespace broad_phase_oracle_test {
 
 using testing::MakeWorld;
 using testing::OraclePairs;
@@ -173,5 +173,5 @@ TEST(BroadPhaseOracleLarge, TenThousandMixedBodiesWithFloorMatchOracle) {
   }
 }
 
-}  // namespace
+}  // namespace broad_phase_oracle_test
 }  // namespace talus

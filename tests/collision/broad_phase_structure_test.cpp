@@ -10,7 +10,7 @@
 #include "collision/broad_phase_test_worlds.h"
 
 namespace talus {
-namespace {
+namespace broad_phase_structure_test {
 
 using testing::MakeWorld;
 using testing::OraclePairs;
@@ -200,5 +200,5 @@ TEST(AabbTree, StaysValidWhenSkippedForStepsThenResumed) {
   }
 }
 
-}  // namespace
+}  // namespace broad_phase_structure_test
 }  // namespace talus

@@ -16,7 +16,7 @@
 #include "talus/pair_query.h"
 
 namespace talus {
-namespace {
+namespace manifold_deep_overlap_test {
 
 using Pair = test::PosedShapes;
 
@@ -83,5 +83,5 @@ TEST(ManifoldDeepOverlap, ALargeHullDeepInABoxGetsAPointInsideBoth) {
   ExpectEveryPointInsideBoth(p);
 }
 
-}  // namespace
+}  // namespace manifold_deep_overlap_test
 }  // namespace talus

@@ -19,7 +19,7 @@
 #include "talus/hull_queries.h"
 
 namespace talus {
-namespace {
+namespace manifold_depth_test {
 
 using Pair = test::PosedShapes;
 
@@ -176,5 +176,5 @@ TEST(ManifoldDepth, FacesTurnedAMicroradianFromParallel) {
   CheckAllModes(pairs, 60);
 }
 
-}  // namespace
+}  // namespace manifold_depth_test
 }  // namespace talus

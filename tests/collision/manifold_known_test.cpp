@@ -10,7 +10,7 @@
 #include "collision/sat_test_fixtures.h"
 
 namespace talus {
-namespace {
+namespace manifold_known_test {
 
 constexpr double kExact = 1e-12;
 
@@ -170,5 +170,5 @@ TEST(Manifold, ClippedFeatureIdsAreStableUnderSmallMotion) {
   }
 }
 
-}  // namespace
+}  // namespace manifold_known_test
 }  // namespace talus

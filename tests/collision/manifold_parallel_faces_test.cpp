@@ -20,7 +20,7 @@
 #include "talus/pair_query.h"
 
 namespace talus {
-namespace {
+namespace manifold_parallel_faces_test {
 
 struct Pair : test::PosedShapes {
   double twist = 0.0;  // radians between the two faces
@@ -168,5 +168,5 @@ TEST(ManifoldParallelFaces, PairsSpanTheTwistsAndSizesAsked) {
   EXPECT_GT(largest, 5e-7);
 }
 
-}  // namespace
+}  // namespace manifold_parallel_faces_test
 }  // namespace talus

@@ -19,7 +19,7 @@
 #include "collision/sat_test_fixtures.h"
 
 namespace talus {
-namespace {
+namespace manifold_persistence_test {
 
 // Fresh manifolds without a margin, so a lifted corner is not a fresh
 // point and only persistence can bring it back.
@@ -312,5 +312,5 @@ TEST(ManifoldPersistence, RandomRestingPairsObeyTheRules) {
               addedPoints, worstOffSurface);
 }
 
-}  // namespace
+}  // namespace manifold_persistence_test
 }  // namespace talus

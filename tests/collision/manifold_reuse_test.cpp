@@ -17,7 +17,7 @@
 #include "collision/sat_test_fixtures.h"
 
 namespace talus {
-namespace {
+namespace manifold_reuse_test {
 
 // The World's narrow-phase choices: clipped manifolds, 2 cm margin.
 const NarrowPhaseSettings kSettings{.speculativeMargin = 0.02};
@@ -203,5 +203,5 @@ TEST(ManifoldReuse, RebuiltDepthsOfPerturbedRestingHullsStayWithinTheBound) {
   CheckPerturbedRestingPairs(true, 0x5eed0004);
 }
 
-}  // namespace
+}  // namespace manifold_reuse_test
 }  // namespace talus

@@ -21,7 +21,7 @@
 #include "talus/pair_query.h"
 
 namespace talus {
-namespace {
+namespace manifold_size_ratio_test {
 
 using Pair = test::PosedShapes;
 
@@ -98,5 +98,5 @@ TEST(ManifoldSizeRatio, EveryClippedPointIsInsideBothShapes) {
   }
 }
 
-}  // namespace
+}  // namespace manifold_size_ratio_test
 }  // namespace talus

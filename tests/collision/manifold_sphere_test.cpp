@@ -10,7 +10,7 @@
 #include "collision/sat_test_fixtures.h"
 
 namespace talus {
-namespace {
+namespace manifold_sphere_test {
 
 constexpr double kExact = 1e-12;
 constexpr double kRadius = 0.5;
@@ -121,5 +121,5 @@ TEST(Sphere, SwappingSphereAndPolyhedronFlipsOnlyTheNormal) {
   }
 }
 
-}  // namespace
+}  // namespace manifold_sphere_test
 }  // namespace talus

@@ -10,7 +10,7 @@
 #include "talus/pair_query.h"
 
 namespace talus {
-namespace {
+namespace pair_query_test {
 
 constexpr double kRoundOff = 1e-12;  // metres, unit-sized shapes near the origin
 
@@ -129,5 +129,5 @@ TEST(PairQuery, RefusesBadInputNamingIt) {
   EXPECT_NE(badMargin.GetError().message.find("speculativeMargin"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace pair_query_test
 }  // namespace talus

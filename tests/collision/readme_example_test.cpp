@@ -10,7 +10,7 @@
 #include "package/consumer/collide_two_boxes.h"
 
 namespace talus {
-namespace {
+namespace readme_example_test {
 
 std::string ReadFile(const std::string& path) {
   std::ifstream file(path);
@@ -35,5 +35,5 @@ TEST(ReadmeExample, ReadmeQuotesTheExampleVerbatim) {
       << "README's 'Using the engine' example differs from tests/package/consumer/collide_two_boxes.h";
 }
 
-}  // namespace
+}  // namespace readme_example_test
 }  // namespace talus

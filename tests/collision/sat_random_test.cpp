@@ -14,7 +14,7 @@
 #include "talus/hull_queries.h"
 
 namespace talus {
-namespace {
+namespace sat_random_test {
 
 // Round-off bound for comparing one axis measured two ways on shapes of
 // size ~1 m at distances ~1 m: a few hundred ulps.
@@ -297,5 +297,5 @@ TEST(SatRandom, ClippedPointsLieBetweenTheSurfaces) {
   }
 }
 
-}  // namespace
+}  // namespace sat_random_test
 }  // namespace talus

@@ -19,7 +19,7 @@
 #include "talus/hull_builder.h"
 
 namespace talus {
-namespace {
+namespace sat_sliver_test {
 
 // Round-off of one axis measured two ways (projections of coordinates of
 // about 1 m): a few thousand ulps.
@@ -182,5 +182,5 @@ TEST(SatSliver, SeparationIsFiniteInBothModesOnRandomSlivers) {
   EXPECT_GT(built, 5000);
 }
 
-}  // namespace
+}  // namespace sat_sliver_test
 }  // namespace talus

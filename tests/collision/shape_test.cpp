@@ -11,7 +11,7 @@
 #include "talus/mass_properties.h"
 
 namespace talus {
-namespace {
+namespace shape_test {
 
 TEST(Shape, BadRadiusExtentsAndHullAreRefusedWithAMessage) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -76,5 +76,5 @@ TEST(Shape, HullMassPropertiesComeFromTheHull) {
   EXPECT_TRUE(tetra.IsPolyhedron());
 }
 
-}  // namespace
+}  // namespace shape_test
 }  // namespace talus

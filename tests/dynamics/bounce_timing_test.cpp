@@ -15,7 +15,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace bounce_timing_test {
 
 constexpr double kG = 9.81;
 constexpr double kH = 1.0 / 60.0;
@@ -300,5 +300,5 @@ TEST(TimedBounces, AnUnknownBounceTimingIsRefusedByName) {
   EXPECT_EQ(ValidateSettings(BounceSettings()), "");
 }
 
-}  // namespace
+}  // namespace bounce_timing_test
 }  // namespace talus

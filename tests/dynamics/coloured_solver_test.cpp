@@ -17,7 +17,7 @@
 #include "dynamics/constraint_colouring.h"
 
 namespace talus {
-namespace {
+namespace coloured_solver_test {
 
 using testing::ContactScene;
 using testing::GroundPlane;
@@ -266,5 +266,5 @@ TEST(ColouredSolver, PairsPastTheLastColourAreSolvedInTheOverflow) {
   EXPECT_LT(speed, 1e-2);
 }
 
-}  // namespace
+}  // namespace coloured_solver_test
 }  // namespace talus

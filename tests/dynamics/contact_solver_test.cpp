@@ -10,7 +10,7 @@
 #include "contact_scene.h"
 
 namespace talus {
-namespace {
+namespace contact_solver_test {
 
 using testing::ContactScene;
 using testing::GroundPlane;
@@ -388,5 +388,5 @@ TEST(ContactSolver, SameSceneSteppedTwiceGivesBitIdenticalStates) {
   EXPECT_EQ(first, run());
 }
 
-}  // namespace
+}  // namespace contact_solver_test
 }  // namespace talus

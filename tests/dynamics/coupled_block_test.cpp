@@ -14,7 +14,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace coupled_block_test {
 
 constexpr double kG = 9.81;
 
@@ -401,5 +401,5 @@ TEST(CoupledBlock, BitIdenticalForAnyThreadCount) {
   }
 }
 
-}  // namespace
+}  // namespace coupled_block_test
 }  // namespace talus

@@ -11,7 +11,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace integrator_test {
 
 constexpr double kH = 1.0 / 60.0;
 
@@ -157,5 +157,5 @@ TEST(Integrator, IntermediateAxisNeverFlipsWithoutGyroscopicTerm) {
   EXPECT_GT(MinimumIntermediateAxisAlignment(RotationIntegrator::ConstantRate), 0.99);
 }
 
-}  // namespace
+}  // namespace integrator_test
 }  // namespace talus

@@ -16,7 +16,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace momentum_splitting_test {
 
 // The Gazebo "boxes" body (Peters and Hsu 2014): 10 kg, 0.1 x 0.4 x 0.9 m.
 const Vec3 kGazeboInertia(0.8083333333333333, 0.6833333333333333, 0.14166666666666666);
@@ -357,5 +357,5 @@ TEST(ExactConstantAcceleration, ContactsRestTheSameAsWithSymplecticEuler) {
   }
 }
 
-}  // namespace
+}  // namespace momentum_splitting_test
 }  // namespace talus

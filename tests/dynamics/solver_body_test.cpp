@@ -10,7 +10,7 @@
 #include "dynamics/solver_body.h"
 
 namespace talus {
-namespace {
+namespace solver_body_test {
 
 using testing::ContactScene;
 
@@ -126,5 +126,5 @@ TEST(ContactSolver, PrecomputedRowsGiveARestingBoxTheImpulseMgh) {
   }
 }
 
-}  // namespace
+}  // namespace solver_body_test
 }  // namespace talus

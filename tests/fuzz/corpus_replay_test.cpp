@@ -20,7 +20,7 @@
 #include "talus/harness/scenario/scenario_writer.h"
 
 namespace talus::fuzz {
-namespace {
+namespace corpus_replay_test {
 
 namespace fs = std::filesystem;
 
@@ -113,5 +113,5 @@ TEST(FuzzCorpus, HullInputModesProduceTheirShapes) {
   EXPECT_EQ(DecodeHullInput(data).size(), 9u);
 }
 
-}  // namespace
+}  // namespace corpus_replay_test
 }  // namespace talus::fuzz

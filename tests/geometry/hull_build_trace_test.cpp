@@ -8,7 +8,7 @@
 #include "talus/hull_builder.h"
 
 namespace talus {
-namespace {
+namespace hull_build_trace_test {
 
 // A cube's 8 corners plus its centre: the tetrahedron takes 4 corners, the
 // other 4 are added one step each, and the centre is never an eye.
@@ -79,5 +79,5 @@ TEST(HullBuildTrace, TracingDoesNotChangeTheHullAndIsClearedOnReuse) {
   EXPECT_EQ(trace.steps.size(), 4u);
 }
 
-}  // namespace
+}  // namespace hull_build_trace_test
 }  // namespace talus

@@ -23,7 +23,7 @@
 #include "talus/reference/qhull_oracle.h"
 
 namespace talus {
-namespace {
+namespace hull_builder_fuzz_test {
 
 using Draw = harness::RandomDraw;
 
@@ -200,5 +200,5 @@ TEST(HullBuilderFuzz, GridSnappedPointsAlwaysBuildValidHulls) {
   }
 }
 
-}  // namespace
+}  // namespace hull_builder_fuzz_test
 }  // namespace talus

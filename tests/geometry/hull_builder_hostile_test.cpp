@@ -21,7 +21,7 @@
 #include "talus/math.h"
 
 namespace talus {
-namespace {
+namespace hull_builder_hostile_test {
 
 std::vector<Vec3> Corpus(const std::string& name) {
   const auto points = test::ReadXyz(std::string(TALUS_TEST_DATA_DIR) + "/hulls/hostile/" + name);
@@ -210,5 +210,5 @@ TEST(HullBuilderHostile, RandomNearDegenerateSetsGiveAValidHullOrACleanRefusal) 
   EXPECT_GT(built, 500);
 }
 
-}  // namespace
+}  // namespace hull_builder_hostile_test
 }  // namespace talus

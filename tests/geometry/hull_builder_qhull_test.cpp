@@ -10,7 +10,7 @@
 #include "talus/reference/qhull_oracle.h"
 
 namespace talus {
-namespace {
+namespace hull_builder_qhull_test {
 
 std::vector<std::array<double, 3>> SortedCoordinates(std::vector<Vec3> points) {
   std::vector<std::array<double, 3>> out;
@@ -96,5 +96,5 @@ TEST(HullBuilderRegression, EveryCorpusPointSetBuildsAValidHullMatchingQhull) {
   }
 }
 
-}  // namespace
+}  // namespace hull_builder_qhull_test
 }  // namespace talus

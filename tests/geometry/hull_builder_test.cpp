@@ -10,7 +10,7 @@
 #include "talus/hull_builder.h"
 
 namespace talus {
-namespace {
+namespace hull_builder_test {
 
 using test::CheckHull;
 
@@ -179,5 +179,5 @@ TEST(HullBuilder, MillionPointsInBallBuildValidHull) {
   EXPECT_TRUE(CheckHull(hull.Value(), sample));
 }
 
-}  // namespace
+}  // namespace hull_builder_test
 }  // namespace talus

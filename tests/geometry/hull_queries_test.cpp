@@ -15,7 +15,7 @@
 #include "talus/mass_properties.h"
 
 namespace talus {
-namespace {
+namespace hull_queries_test {
 
 using test::MakeHull;
 
@@ -334,5 +334,5 @@ TEST(HullQueries, SupportAndSpheresHoldOnQuickhullsOfRandomClouds) {
   }
 }
 
-}  // namespace
+}  // namespace hull_queries_test
 }  // namespace talus

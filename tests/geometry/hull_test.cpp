@@ -7,7 +7,7 @@
 #include "talus/hull.h"
 
 namespace talus {
-namespace {
+namespace hull_test {
 
 // A regular-ish tetrahedron, counter-clockwise from outside.
 std::vector<Vec3> TetraPoints() { return {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}; }
@@ -116,5 +116,5 @@ TEST(Hull, BoxWithNonPositiveExtentIsRefused) {
   EXPECT_FALSE(Hull::Box({1, std::numeric_limits<double>::infinity(), 1}));
 }
 
-}  // namespace
+}  // namespace hull_test
 }  // namespace talus

@@ -12,7 +12,7 @@
 #include "talus/mass_properties.h"
 
 namespace talus {
-namespace {
+namespace mass_properties_test {
 
 using test::BoxPolygons;
 using test::MakeHull;
@@ -216,5 +216,5 @@ TEST(MassProperties, MassIsDensityTimesVolume) {
   EXPECT_DOUBLE_EQ(Props(box, 1000.0).volume, 1.0);
 }
 
-}  // namespace
+}  // namespace mass_properties_test
 }  // namespace talus

@@ -14,7 +14,7 @@
 #include "talus/harness/support/atomic_file.h"
 
 namespace talus::harness {
-namespace {
+namespace atomic_file_set_test {
 
 namespace fs = std::filesystem;
 
@@ -95,5 +95,5 @@ TEST(AtomicFileSet, OnePathNamedTwiceIsRefused) {
   EXPECT_TRUE(Names(dir).empty());
 }
 
-}  // namespace
+}  // namespace atomic_file_set_test
 }  // namespace talus::harness

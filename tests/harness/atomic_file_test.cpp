@@ -20,7 +20,7 @@
 #include <vector>
 
 namespace talus::harness {
-namespace {
+namespace atomic_file_test {
 
 namespace fs = std::filesystem;
 
@@ -164,5 +164,5 @@ TEST(AtomicFileSet, AFullDiskChangesNoFileOfTheSet) {
   EXPECT_TRUE(Others(dir, "summary.md").empty());
 }
 
-}  // namespace
+}  // namespace atomic_file_test
 }  // namespace talus::harness

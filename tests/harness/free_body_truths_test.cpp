@@ -14,7 +14,7 @@
 #include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
-namespace {
+namespace free_body_truths_test {
 
 // gtest's Test::Run hides harness::Run inside TEST bodies.
 using ScenarioRun = Run;
@@ -256,5 +256,5 @@ TEST(FreeBodyTruths, LoaderRefusesWhatTheTruthsCannotMean) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace free_body_truths_test
 }  // namespace talus::harness

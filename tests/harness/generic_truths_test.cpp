@@ -16,7 +16,7 @@
 #include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
-namespace {
+namespace generic_truths_test {
 
 // gtest's Test::Run hides harness::Run inside TEST bodies.
 using ScenarioRun = Run;
@@ -484,5 +484,5 @@ TEST(MaxPenetrationTruth, ShallowContactsPassAndASinkingBodyFails) {
             "tolerance alone allows nothing");
 }
 
-}  // namespace
+}  // namespace generic_truths_test
 }  // namespace talus::harness

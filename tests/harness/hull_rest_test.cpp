@@ -10,7 +10,7 @@
 #include "talus/harness/analytic/hull_rest_analysis.h"
 
 namespace talus::harness {
-namespace {
+namespace hull_rest_test {
 
 std::vector<Vec3> BoxPoints(const Vec3& half, const Vec3& offset) {
   std::vector<Vec3> points;
@@ -97,5 +97,5 @@ TEST(HullRest, FlatPointSetsAreRefused) {
   EXPECT_FALSE(AnalyseHullRest(flat));
 }
 
-}  // namespace
+}  // namespace hull_rest_test
 }  // namespace talus::harness

@@ -5,7 +5,7 @@
 #include "talus/harness/support/json_schema.h"
 
 namespace talus::harness {
-namespace {
+namespace json_schema_test {
 
 using nlohmann::json;
 
@@ -63,5 +63,5 @@ TEST(JsonSchema, ScenarioSchemaIsAnObjectSchemaClosedToUnknownFields) {
   EXPECT_EQ(Check(schema, json::parse(R"({"name": "x"})")), ": missing required field \"world\"");
 }
 
-}  // namespace
+}  // namespace json_schema_test
 }  // namespace talus::harness

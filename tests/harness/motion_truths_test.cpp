@@ -10,7 +10,7 @@
 #include "talus/harness/analytic/truths.h"
 
 namespace talus::harness {
-namespace {
+namespace motion_truths_test {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
@@ -140,5 +140,5 @@ TEST(MotionTruths, TallBoxOnAGrippySlopeTipsPastItsAspectAngle) {
   EXPECT_STREQ(InclineOutcomeName(InclineOutcome::Tips), "tips");
 }
 
-}  // namespace
+}  // namespace motion_truths_test
 }  // namespace talus::harness

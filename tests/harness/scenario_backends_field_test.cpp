@@ -10,7 +10,7 @@
 #include "talus/harness/scenario/scenario_loader.h"
 
 namespace talus::harness {
-namespace {
+namespace scenario_backends_field_test {
 
 // A one-body scenario with `backends` as the JSON value of the field, or
 // no field when it is empty.
@@ -56,5 +56,5 @@ TEST(ScenarioBackendsField, NonStringEntryIsRefusedWithItsPointer) {
   EXPECT_NE(message.find("x.json: /backends/1: must be of type string"), std::string::npos) << message;
 }
 
-}  // namespace
+}  // namespace scenario_backends_field_test
 }  // namespace talus::harness

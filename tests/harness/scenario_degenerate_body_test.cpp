@@ -12,7 +12,7 @@
 #include "talus/harness/support/number_text.h"
 
 namespace talus::harness {
-namespace {
+namespace scenario_degenerate_body_test {
 
 bool Has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
@@ -119,5 +119,5 @@ TEST(DegenerateBody, AnInertiaThatIsNotPositiveDefiniteIsRefused) {
   EXPECT_TRUE(Accepted(Scene(R"({"kind": "box", "halfExtents": [1e-6, 1e-6, 0.1]})", R"("density": 1000)")));
 }
 
-}  // namespace
+}  // namespace scenario_degenerate_body_test
 }  // namespace talus::harness

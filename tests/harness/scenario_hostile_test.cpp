@@ -13,7 +13,7 @@
 #include "talus/harness/scenario/scenario_loader.h"
 
 namespace talus::harness {
-namespace {
+namespace scenario_hostile_test {
 
 namespace fs = std::filesystem;
 
@@ -206,5 +206,5 @@ TEST(HostileScenario, ManyBodiesLoadAndADuplicateAmongThemIsFound) {
       << runs.GetError().message;
 }
 
-}  // namespace
+}  // namespace scenario_hostile_test
 }  // namespace talus::harness

@@ -8,7 +8,7 @@
 #include "talus/harness/scenario/scenario_writer.h"
 
 namespace talus::harness {
-namespace {
+namespace scenario_loader_test {
 
 const std::string kScenarioDir = TALUS_SCENARIO_DIR;
 const std::string kBadDir = std::string(TALUS_TEST_DATA_DIR) + "/scenarios_bad/";
@@ -283,5 +283,5 @@ TEST(ScenarioLoader, MissingFileIsAnErrorNotACrash) {
   EXPECT_NE(runs.GetError().message.find("cannot open"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace scenario_loader_test
 }  // namespace talus::harness

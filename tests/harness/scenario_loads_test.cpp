@@ -13,7 +13,7 @@
 #include "talus/harness/scenario/scenario_writer.h"
 
 namespace talus::harness {
-namespace {
+namespace scenario_loads_test {
 
 // A 1 s run at 0.01 s (100 steps) with a ground, a box, a platform and
 // whatever `extra` adds at the top level (loads, impulses).
@@ -207,5 +207,5 @@ TEST(AppliedImpulseAtStep, IsTheStepNearestItsTime) {
   EXPECT_FALSE(AppliedImpulseAtStep(impulse, 49, 0.01));
 }
 
-}  // namespace
+}  // namespace scenario_loads_test
 }  // namespace talus::harness

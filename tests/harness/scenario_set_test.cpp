@@ -16,7 +16,7 @@
 #include "talus/harness/scenario/scenario_loader.h"
 
 namespace talus::harness {
-namespace {
+namespace scenario_set_test {
 
 using nlohmann::json;
 
@@ -645,5 +645,5 @@ TEST(ScenarioSet, BadPerTargetSweepsAreRefused) {
   EXPECT_NE(message.find("t.json (mu=high): /truths/0/mu: must be > 0"), std::string::npos) << message;
 }
 
-}  // namespace
+}  // namespace scenario_set_test
 }  // namespace talus::harness

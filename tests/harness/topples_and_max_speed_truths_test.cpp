@@ -21,7 +21,7 @@
 #include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
-namespace {
+namespace topples_and_max_speed_truths_test {
 
 // gtest's Test::Run hides harness::Run inside TEST bodies.
 using ScenarioRun = Run;
@@ -243,5 +243,5 @@ TEST(MaxSpeedTruth, TheLoaderRefusesABadEntryNamingTheField) {
       "row.json: /truths/0/bodies/1: body \"d0\" is listed twice");
 }
 
-}  // namespace
+}  // namespace topples_and_max_speed_truths_test
 }  // namespace talus::harness

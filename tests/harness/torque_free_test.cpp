@@ -10,7 +10,7 @@
 #include "talus/harness/analytic/torque_free_motion.h"
 
 namespace talus::harness {
-namespace {
+namespace torque_free_test {
 
 // Half the period of the body-frame angular velocity, from the invariants:
 // with I1 < I2 < I3, L^2 > 2 E I2 (else swap I1 and I3),
@@ -97,5 +97,5 @@ TEST(TorqueFree, FlipIntervalRefusesInputsWithoutAFlip) {
   EXPECT_NE(exact.GetError().message.find("does not turn over"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace torque_free_test
 }  // namespace talus::harness

@@ -9,7 +9,7 @@
 #include "talus/harness/backend/trajectory.h"
 
 namespace talus::harness {
-namespace {
+namespace trajectory_sampling_test {
 
 using Indices = std::vector<std::size_t>;
 
@@ -50,5 +50,5 @@ TEST(TrajectorySampling, SpreadIndicesAreIncreasingWithinBudgetForEveryCount) {
   }
 }
 
-}  // namespace
+}  // namespace trajectory_sampling_test
 }  // namespace talus::harness

@@ -14,7 +14,7 @@
 #include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
-namespace {
+namespace truth_evaluators_test {
 
 harness::Run LoadRun(const std::string& file, size_t index = 0) {
   auto runs = LoadScenarioFile(std::string(TALUS_SCENARIO_DIR) + "/" + file);
@@ -428,5 +428,5 @@ TEST(TruthEvaluators, SlidingStopMeasuresStopTimeAndLateralDeviation) {
   EXPECT_GT(Find(bent, "sliding_stop.lateral").measured, 0.05);
 }
 
-}  // namespace
+}  // namespace truth_evaluators_test
 }  // namespace talus::harness

@@ -15,7 +15,7 @@
 #include "talus/harness/scenario/truth_schema.h"
 
 namespace talus::harness {
-namespace {
+namespace truth_kind_table_test {
 
 std::string ReadFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -98,5 +98,5 @@ TEST(TruthKindTable, EveryShippedTruthWritesAndReadsBack) {
   EXPECT_GT(truths, 40);
 }
 
-}  // namespace
+}  // namespace truth_kind_table_test
 }  // namespace talus::harness

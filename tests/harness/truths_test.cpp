@@ -8,7 +8,7 @@
 #include "talus/harness/scenario/scenario.h"
 
 namespace talus::harness {
-namespace {
+namespace truths_test {
 
 TEST(Truths, SymplecticEulerFreeFallMatchesSteppingTheIntegrator) {
   const double h = 1.0 / 60.0, g = 9.81;
@@ -54,5 +54,5 @@ TEST(Truths, CombineRulesFollowTheirDefinitions) {
   EXPECT_STREQ(CombineRuleName(CombineRule::Sqrt), "sqrt");
 }
 
-}  // namespace
+}  // namespace truths_test
 }  // namespace talus::harness

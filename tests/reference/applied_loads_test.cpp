@@ -22,7 +22,7 @@
 #include "peer_fixture.h"
 
 namespace talus::reference {
-namespace {
+namespace applied_loads_test {
 
 using harness::Backend;
 
@@ -241,5 +241,5 @@ TEST_P(AppliedLoads, AKinematicBodyAtRestHoldsABoxUp) {
 
 INSTANTIATE_TEST_SUITE_P(EveryBackend, AppliedLoads, ::testing::ValuesIn(AllBackends()), test::PeerTestName);
 
-}  // namespace
+}  // namespace applied_loads_test
 }  // namespace talus::reference

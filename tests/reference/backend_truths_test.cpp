@@ -17,7 +17,7 @@
 #include "peer_fixture.h"
 
 namespace talus::reference {
-namespace {
+namespace backend_truths_test {
 
 using harness::Backend;
 using test::Build;
@@ -174,5 +174,5 @@ TEST_P(BackendTruths, SettingsRecordSolverStepAndCombineRules) {
 INSTANTIATE_TEST_SUITE_P(Peers, BackendTruths, ::testing::ValuesIn(test::BulletAndOdePeers()),
                          test::PeerTestName);
 
-}  // namespace
+}  // namespace backend_truths_test
 }  // namespace talus::reference

@@ -22,7 +22,7 @@
 #include "peer_fixture.h"
 
 namespace talus::reference {
-namespace {
+namespace hull_bodies_test {
 
 using harness::Backend;
 using test::Build;
@@ -142,5 +142,5 @@ TEST(BulletTunedHull, RefusesAHullThinnerThanTwiceTheMarginItIsShrunkBy) {
 INSTANTIATE_TEST_SUITE_P(Peers, HullBodies, ::testing::ValuesIn(test::BulletAndOdePeers()),
                          test::PeerTestName);
 
-}  // namespace
+}  // namespace hull_bodies_test
 }  // namespace talus::reference

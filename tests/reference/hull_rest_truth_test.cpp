@@ -20,7 +20,7 @@
 #include "talus/reference/point_hull.h"
 
 namespace talus {
-namespace {
+namespace hull_rest_truth_test {
 
 namespace fs = std::filesystem;
 
@@ -96,5 +96,5 @@ TEST(HullRestTruth, EveryShippedHullRestTruthAgreesWithQhull) {
   EXPECT_GE(checked, 1);
 }
 
-}  // namespace
+}  // namespace hull_rest_truth_test
 }  // namespace talus

@@ -17,7 +17,7 @@
 #include "peer_fixture.h"
 
 namespace talus::reference {
-namespace {
+namespace mujoco_backend_test {
 
 using harness::Backend;
 using test::Build;
@@ -285,5 +285,5 @@ TEST(MujocoBackend, RefusesWhatMuJoCoCannotDoWithTheReason) {
       << tooBig.GetError().message;
 }
 
-}  // namespace
+}  // namespace mujoco_backend_test
 }  // namespace talus::reference

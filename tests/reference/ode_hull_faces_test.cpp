@@ -12,7 +12,7 @@
 #include "peer_fixture.h"
 
 namespace talus::reference {
-namespace {
+namespace ode_hull_faces_test {
 
 // Round-off on coordinates of size ~1 m: a corner off its plane, or a turn
 // the wrong way, is off by the hull's own size, not by 1e-12.
@@ -85,5 +85,5 @@ TEST(OdeHullFaces, HullRestsBottomFaceIsOneQuadrilateral) {
   ExpectValidFaces(hull.Value(), faces);
 }
 
-}  // namespace
+}  // namespace ode_hull_faces_test
 }  // namespace talus::reference

@@ -18,7 +18,7 @@
 #include "peer_fixture.h"
 
 namespace talus::reference {
-namespace {
+namespace peer_configurations_test {
 
 using harness::Backend;
 using test::Build;
@@ -186,5 +186,5 @@ TEST(BulletSingle, PassesABadHullErrorThroughTheModuleBoundary) {
   EXPECT_EQ(backend.GetError().message.rfind("bullet-f32: ", 0), 0u) << backend.GetError().message;
 }
 
-}  // namespace
+}  // namespace peer_configurations_test
 }  // namespace talus::reference

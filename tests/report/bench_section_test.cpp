@@ -20,7 +20,7 @@
 #include "talus/harness/scenes/bench_report_json.h"
 
 namespace talus::harness {
-namespace {
+namespace bench_section_test {
 
 // The cost of a 600-step run whose mean step is `meanMs`: total 600 x mean,
 // and a longest (landing) step of three means.
@@ -476,5 +476,5 @@ TEST(BenchSection, ReportHasTheSectionAndChartsOnlyWhenGiven) {
   EXPECT_TRUE(BenchMarkdown({}).empty());
 }
 
-}  // namespace
+}  // namespace bench_section_test
 }  // namespace talus::harness

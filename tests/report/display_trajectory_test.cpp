@@ -13,7 +13,7 @@
 #include "talus/harness/support/split_mix64.h"
 
 namespace talus::harness {
-namespace {
+namespace display_trajectory_test {
 
 TEST(DisplayTrajectory, RoundsToTheDecimalItsJsonWritesShortest) {
   // The nearest double to the decimal, so nlohmann's shortest round-trip
@@ -108,5 +108,5 @@ TEST(DisplayTrajectory, ReplayKeepsEveryFrameWithinTheStatedSteps) {
   }
 }
 
-}  // namespace
+}  // namespace display_trajectory_test
 }  // namespace talus::harness

@@ -23,7 +23,7 @@
 #include "talus/harness/stress/stress.h"
 
 namespace talus::harness {
-namespace {
+namespace internal_links_test {
 
 // One run with one truth "a" of the given error.
 RunResult Run(const std::string& runId, const std::string& backend, double error) {
@@ -187,5 +187,5 @@ TEST_F(InternalLinks, EveryMarkdownLinkLandsOnAHeading) {
   EXPECT_NE(md.find("](#large-scenes)"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace internal_links_test
 }  // namespace talus::harness

@@ -12,7 +12,7 @@
 #include "talus/harness/run/results_file.h"
 
 namespace talus::harness {
-namespace {
+namespace peer_configurations_section_test {
 
 MetricResult Metric(const std::string& name, double error, bool pass) {
   MetricResult m;
@@ -127,5 +127,5 @@ TEST(PeerSection, SummaryShowsBothAndResultsJsonKeepsTheFields) {
   EXPECT_EQ(back.Value().results[0].settings[0].engineDefault, "");
 }
 
-}  // namespace
+}  // namespace peer_configurations_section_test
 }  // namespace talus::harness

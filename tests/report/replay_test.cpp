@@ -10,7 +10,7 @@
 #include "talus/reference/talus_backend.h"
 
 namespace talus::harness {
-namespace {
+namespace replay_test {
 
 BackendRegistry MakeRegistry() {
   BackendRegistry registry;
@@ -188,5 +188,5 @@ TEST(Replay, HullShapesCarryTheirFacesAndBadJsonIsReportedWithItsPlace) {
   EXPECT_EQ(bad.GetError().message.rfind("/results/0/replay/frames/0/q", 0), 0u) << bad.GetError().message;
 }
 
-}  // namespace
+}  // namespace replay_test
 }  // namespace talus::harness

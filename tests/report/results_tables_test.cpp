@@ -19,7 +19,7 @@
 #include "talus/harness/run/results_file.h"
 
 namespace talus::harness {
-namespace {
+namespace results_tables_test {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
@@ -247,5 +247,5 @@ TEST(ResultsTables, AReferenceToNothingIsRefusedWithThePlace) {
   EXPECT_EQ(Refusal(j), ": missing field \"settings\"");
 }
 
-}  // namespace
+}  // namespace results_tables_test
 }  // namespace talus::harness

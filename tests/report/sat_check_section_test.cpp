@@ -13,7 +13,7 @@
 #include "talus/harness/report/sat_check_results.h"
 
 namespace talus::harness {
-namespace {
+namespace sat_check_section_test {
 
 const std::filesystem::path kFixture =
     std::filesystem::path(TALUS_TEST_DATA_DIR) / "sat_check" / "small.json";
@@ -172,5 +172,5 @@ TEST(SatCheckSection, MalformedFilesAreRefusedNamingThePlace) {
   EXPECT_NE(missing.GetError().message.find("/nonexistent/sat_check.json: cannot read"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace sat_check_section_test
 }  // namespace talus::harness

@@ -13,7 +13,7 @@
 #include "talus/harness/run/results_file.h"
 
 namespace talus::harness {
-namespace {
+namespace scorecard_section_test {
 
 // A truth with a 0.01 m tolerance; `gate` false makes it ungated (still judged).
 MetricResult Metric(const std::string& name, double error, bool gate = true) {
@@ -216,5 +216,5 @@ TEST(ScorecardSection, SweepAndScenesAddTheirColumns) {
   EXPECT_NE(md.find("| bullet-f32 | - | - | - | - | - | 3.25 | - |"), std::string::npos) << md;
 }
 
-}  // namespace
+}  // namespace scorecard_section_test
 }  // namespace talus::harness

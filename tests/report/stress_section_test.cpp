@@ -11,7 +11,7 @@
 #include "talus/harness/stress/stress.h"
 
 namespace talus::harness {
-namespace {
+namespace stress_section_test {
 
 std::vector<StressEntry> Entries() {
   StressEntry column{.axis = "column", .backend = "talus", .envelope = {}};
@@ -77,5 +77,5 @@ TEST(StressSection, ReportHasTheEnvelopeOnlyWhenGiven) {
   EXPECT_EQ(ReportHtml(file, "").find("top box moved 0.31 m"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace stress_section_test
 }  // namespace talus::harness

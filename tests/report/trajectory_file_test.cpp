@@ -15,7 +15,7 @@
 #include "talus/harness/run/results_file.h"
 
 namespace talus::harness {
-namespace {
+namespace trajectory_file_test {
 
 namespace fs = std::filesystem;
 
@@ -197,5 +197,5 @@ TEST(TrajectoryFile, TheOneTextFormStillReads) {
   EXPECT_EQ(ResultsToJson(fromDisk.Value()), ResultsToJson(file));
 }
 
-}  // namespace
+}  // namespace trajectory_file_test
 }  // namespace talus::harness

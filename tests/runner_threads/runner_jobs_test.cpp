@@ -21,7 +21,7 @@
 #include "talus/reference/talus_backend.h"
 
 namespace talus::harness {
-namespace {
+namespace runner_jobs_test {
 
 namespace fs = std::filesystem;
 // gtest's Test::Run hides harness::Run inside TEST bodies.
@@ -152,5 +152,5 @@ TEST(RunnerJobs, TalusBackendsRefuseABadThreadCountByName) {
   }
 }
 
-}  // namespace
+}  // namespace runner_jobs_test
 }  // namespace talus::harness

@@ -19,7 +19,7 @@
 #include "talus/reference/all_backends.h"
 
 namespace talus::harness {
-namespace {
+namespace bench_perturb_test {
 
 constexpr double kProbe = 1e-9;  // issue 12's perturbation, metres
 
@@ -299,5 +299,5 @@ TEST(ScenesCommandPerturb, RepeatsPrintOneLineEachAndTheSpread) {
 }
 #endif
 
-}  // namespace
+}  // namespace bench_perturb_test
 }  // namespace talus::harness

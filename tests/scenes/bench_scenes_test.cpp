@@ -17,7 +17,7 @@
 #include "talus/reference/talus_backend.h"
 
 namespace talus::harness {
-namespace {
+namespace bench_scenes_test {
 
 const Scenario& Pyramid15() {
   static const Scenario scene = MakePyramidScene(15).Value();
@@ -216,5 +216,5 @@ TEST(HullPileScene, EveryBackendPlacesFramesAndCentresOfMassAsSpecified) {
   }
 }
 
-}  // namespace
+}  // namespace bench_scenes_test
 }  // namespace talus::harness

@@ -15,7 +15,7 @@
 
 #include "support/command_outcome.h"
 
-namespace {
+namespace scenes_command_test {
 
 #ifdef TALUS_SCENES_BINARY
 using Outcome = talus::testing_support::CommandOutcome;
@@ -111,4 +111,4 @@ TEST(ScenesCommand, SettingsOutOfRangeOrWithoutAKnobAreRefusedBeforeAnyRun) {
 }
 #endif
 
-}  // namespace
+}  // namespace scenes_command_test

@@ -17,7 +17,7 @@
 #include "talus/world_settings.h"
 
 namespace talus::harness {
-namespace {
+namespace small_scenes_test {
 
 // docs/bench-scenes.md: "a pyramid that stands has drift well under 0.05 m".
 constexpr double kStandingDrift = 0.05;
@@ -370,5 +370,5 @@ TEST(ReportWriter, JsonLinesCarryOnlyTheSceneFiguresAndNullForNan) {
   EXPECT_FALSE(json.contains("skipped"));
 }
 
-}  // namespace
+}  // namespace small_scenes_test
 }  // namespace talus::harness

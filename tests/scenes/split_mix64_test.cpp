@@ -8,7 +8,7 @@
 #include <cstdint>
 
 namespace talus::harness {
-namespace {
+namespace split_mix64_test {
 
 // The definition written out again, step by step, as the oracle.
 std::uint64_t OracleNext(std::uint64_t& state) {
@@ -63,5 +63,5 @@ TEST(SplitMix64, UniformsLieInUnitIntervalWithMeanOneHalf) {
   EXPECT_NEAR(sum / count, 0.5, 0.005);
 }
 
-}  // namespace
+}  // namespace split_mix64_test
 }  // namespace talus::harness

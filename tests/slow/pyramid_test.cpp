@@ -12,7 +12,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace pyramid_test {
 
 constexpr double kH = 1.0 / 60.0;
 
@@ -82,5 +82,5 @@ TEST(SlowScenes, PyramidOfFifteenLayersStandsWithDefaultSettings) {
   }
 }
 
-}  // namespace
+}  // namespace pyramid_test
 }  // namespace talus

@@ -8,7 +8,7 @@
 #include "talus/reference/all_backends.h"
 
 namespace talus::harness::soak {
-namespace {
+namespace soak_short_test {
 
 RunnerOptions Options() {
   RunnerOptions options;
@@ -79,5 +79,5 @@ TEST(SoakShort, VerdictNeedsTheStepEngineAndBody) {
   EXPECT_EQ(SoakVerdict(result), "");
 }
 
-}  // namespace
+}  // namespace soak_short_test
 }  // namespace talus::harness::soak

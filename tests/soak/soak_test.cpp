@@ -12,7 +12,7 @@
 #include "talus/reference/all_backends.h"
 
 namespace talus::harness::soak {
-namespace {
+namespace soak_test {
 
 constexpr int kSoakSteps = 100000;
 
@@ -44,5 +44,5 @@ TEST(Soak, EveryFamilyFor1e5StepsOnEveryBackend) { ExpectSurvival(FamilyRuns(kSo
 
 TEST(Soak, AbuseCasesOnEveryBackend) { ExpectSurvival(AbuseRuns(kSoakSteps, 1000, 1000)); }
 
-}  // namespace
+}  // namespace soak_test
 }  // namespace talus::harness::soak

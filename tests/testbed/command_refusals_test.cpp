@@ -11,7 +11,7 @@
 
 #include "support/command_outcome.h"
 
-namespace {
+namespace command_refusals_test {
 
 #ifdef TALUS_TESTBED_BINARY
 namespace fs = std::filesystem;
@@ -89,4 +89,4 @@ TEST(TestbedCommand, AnUnknownReplaySelectorIsRefused) {
 }
 #endif
 
-}  // namespace
+}  // namespace command_refusals_test

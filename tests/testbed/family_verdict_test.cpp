@@ -16,7 +16,7 @@
 #include "testbed/one_metric_run.h"
 
 namespace talus::harness {
-namespace {
+namespace family_verdict_test {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -38,7 +38,7 @@ struct FileBuilder {
                  double error) {
     if (std::find(file.backends.begin(), file.backends.end(), backend) == file.backends.end())
       file.backends.push_back(backend);
-    RunResult r = testing::OneMetricRun(backend, std::to_string(h), h, seconds, error);
+    RunResult r = sweep_fixture::OneMetricRun(backend, std::to_string(h), h, seconds, error);
     if (!engine.empty()) r.settings = {{"engine", engine}, {"variant", backend}};
     file.results.push_back(r);
     return file.results.back();
@@ -340,5 +340,5 @@ TEST(AnalyseSweep, TalliesEveryPairOverTheInstancesWhereBothRan) {
   EXPECT_EQ(tallies[2].firstBetter, 1);
 }
 
-}  // namespace
+}  // namespace family_verdict_test
 }  // namespace talus::harness

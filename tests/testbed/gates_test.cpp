@@ -20,7 +20,7 @@
 #include "talus/reference/all_backends.h"
 
 namespace talus::harness {
-namespace {
+namespace gates_test {
 
 using ScenarioRun = Run;  // gtest's Test::Run hides harness::Run inside TEST bodies
 
@@ -204,5 +204,5 @@ TEST(Gates, GravityOnePercentStrongFailsTheTossFlight) {
   EXPECT_NE(FirstProblem(broken).find("free_fall.height"), std::string::npos) << FirstProblem(broken);
 }
 
-}  // namespace
+}  // namespace gates_test
 }  // namespace talus::harness

@@ -17,7 +17,7 @@
 #include "talus/reference/all_backends.h"
 
 namespace talus::harness {
-namespace {
+namespace gyroscopic_backends_test {
 
 // gtest's Test::Run hides harness::Run inside TEST bodies.
 using ScenarioRun = Run;
@@ -138,5 +138,5 @@ INSTANTIATE_TEST_SUITE_P(Backends, GyroscopicSetting,
                            return name;
                          });
 
-}  // namespace
+}  // namespace gyroscopic_backends_test
 }  // namespace talus::harness

@@ -29,7 +29,7 @@ extern "C" const char* __asan_default_options() { return "handle_segv=0"; }
 #endif
 
 namespace talus::harness {
-namespace {
+namespace isolation_test {
 
 using testing_support::OneBodyRun;
 using Runs = std::vector<harness::Run>;  // gtest's Test::Run hides harness::Run
@@ -306,5 +306,5 @@ TEST(Isolation, AHullOfPointsWithinAPicometreCostsNoEngineItsResults) {
   ExpectNoEngineCostsAnotherItsResults({run});
 }
 
-}  // namespace
+}  // namespace isolation_test
 }  // namespace talus::harness

@@ -11,7 +11,7 @@
 #include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
-namespace {
+namespace nan_extremes_test {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -79,5 +79,5 @@ TEST(NanExtremes, ANaNSampleFailsTheRestJitterAndTheStackDrift) {
   EXPECT_TRUE(sawDrift);
 }
 
-}  // namespace
+}  // namespace nan_extremes_test
 }  // namespace talus::harness

@@ -24,7 +24,7 @@
 #include "testbed/one_metric_run.h"
 
 namespace talus::harness {
-namespace {
+namespace noise_floor_test {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -223,7 +223,7 @@ TEST(PerturbedCopies, ResultsThatDoNotMatchTheCountsAreRefused) {
 // ---- The file format ----
 
 RunResult PointResult(double error, double seconds) {
-  RunResult r = testing::OneMetricRun("talus", "0.01", 0.01, seconds, error);
+  RunResult r = sweep_fixture::OneMetricRun("talus", "0.01", 0.01, seconds, error);
   r.settings = {{"engine", "Talus (double)"}};
   return r;
 }
@@ -303,5 +303,5 @@ TEST(PerturbedCopies, BadOptionValuesAreRefusedNamingTheOption) {
 }
 #endif
 
-}  // namespace
+}  // namespace noise_floor_test
 }  // namespace talus::harness

@@ -10,7 +10,7 @@
 #include "talus/harness/run/runner.h"
 #include "talus/harness/truth/truth_check.h"
 
-namespace talus::harness::testing {
+namespace talus::harness::sweep_fixture {
 
 inline RunResult OneMetricRun(const std::string& backend, const std::string& hLabel, double h, double seconds,
                               double error) {
@@ -35,4 +35,4 @@ inline RunResult OneMetricRun(const std::string& backend, const std::string& hLa
   return run;
 }
 
-}  // namespace talus::harness::testing
+}  // namespace talus::harness::sweep_fixture

@@ -25,7 +25,7 @@
 #include "support/scratch_files.h"
 
 namespace talus::harness {
-namespace {
+namespace report_check_test {
 
 namespace fs = std::filesystem;
 // gtest's Test::Run hides harness::Run inside TEST bodies.
@@ -374,5 +374,5 @@ TEST(TestbedCommand, RunWritesDeterministicResultsAndRefusesBadArguments) {
 }
 #endif
 
-}  // namespace
+}  // namespace report_check_test
 }  // namespace talus::harness

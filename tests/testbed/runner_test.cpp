@@ -15,7 +15,7 @@
 #include "talus/reference/all_backends.h"
 
 namespace talus::harness {
-namespace {
+namespace runner_test {
 
 // gtest's Test::Run hides harness::Run inside TEST bodies.
 using ScenarioRun = Run;
@@ -263,5 +263,5 @@ TEST(TalusBackend, RefusesARestitutionRuleItDoesNotHave) {
   EXPECT_NE(backend.GetError().message.find("restitution combine \"sqrt\""), std::string::npos);
 }
 
-}  // namespace
+}  // namespace runner_test
 }  // namespace talus::harness

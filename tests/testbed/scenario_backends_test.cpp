@@ -16,7 +16,7 @@
 #include "talus/reference/all_backends.h"
 
 namespace talus::harness {
-namespace {
+namespace scenario_backends_test {
 
 // gtest's Test::Run hides harness::Run inside TEST bodies.
 using ScenarioRun = Run;
@@ -178,5 +178,5 @@ TEST(ScenarioBackends, OutputIsByteIdenticalWhateverTheThreadCountAndSharding) {
   EXPECT_FALSE(MergeShards(shards));
 }
 
-}  // namespace
+}  // namespace scenario_backends_test
 }  // namespace talus::harness

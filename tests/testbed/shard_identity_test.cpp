@@ -13,7 +13,7 @@
 #include "talus/harness/sweep/sweep.h"
 
 namespace talus::harness {
-namespace {
+namespace shard_identity_test {
 
 // The runs of box_free_fall and box_rest at two time steps.
 std::vector<harness::Run> TwoScenarioRuns() {
@@ -157,5 +157,5 @@ TEST_F(ShardPartition, OldAndForgedShardFilesAreRefusedBeforeAnyAllocation) {
   EXPECT_NE(huge.GetError().message.find("count 2000000000"), std::string::npos) << huge.GetError().message;
 }
 
-}  // namespace
+}  // namespace shard_identity_test
 }  // namespace talus::harness

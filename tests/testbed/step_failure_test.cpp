@@ -16,7 +16,7 @@
 #include "talus/reference/all_backends.h"
 
 namespace talus::harness {
-namespace {
+namespace step_failure_test {
 
 using reference::AllBackends;
 using Runs = std::vector<harness::Run>;  // gtest's Test::Run hides harness::Run
@@ -252,5 +252,5 @@ TEST(Counts, UpAxisSurvivesHugeAndTinyGravity) {
   }
 }
 
-}  // namespace
+}  // namespace step_failure_test
 }  // namespace talus::harness

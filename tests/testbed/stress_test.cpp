@@ -9,7 +9,7 @@
 #include "talus/reference/talus_backend.h"
 
 namespace talus::harness {
-namespace {
+namespace stress_test {
 
 std::function<EnvelopeProbe(double)> Below(double threshold, int* calls) {
   return [threshold, calls](double value) {
@@ -113,5 +113,5 @@ TEST(StressEnvelope, ATwoBoxColumnStandsEndToEnd) {
   EXPECT_NE(StressHtml(entries).find("<td>2 / -</td>"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace stress_test
 }  // namespace talus::harness

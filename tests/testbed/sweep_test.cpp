@@ -16,7 +16,7 @@
 #include "talus/reference/all_backends.h"
 
 namespace talus::harness {
-namespace {
+namespace sweep_test {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -216,5 +216,5 @@ TEST(AnalyseSweep, GroupsStepsIntoCurvesPerBackendAndIterations) {
   EXPECT_NE(SweepMarkdown(groups).find("| drop[mu=0.5] | none (tie) |"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace sweep_test
 }  // namespace talus::harness

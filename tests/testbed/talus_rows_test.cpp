@@ -17,7 +17,7 @@
 #include "talus/reference/talus_backend.h"
 
 namespace talus::reference {
-namespace {
+namespace talus_rows_test {
 
 // Every run of the shipped suite, scenarios/ as talus-testbed run reads it
 // (sweeps expanded).
@@ -215,5 +215,5 @@ TEST(TalusRows, EachRowsSettingsTextListsItsDepartures) {
                              "gyroscopic term", "shock propagation"}));
 }
 
-}  // namespace
+}  // namespace talus_rows_test
 }  // namespace talus::reference

@@ -17,7 +17,7 @@
 #include "talus/reference/all_backends.h"
 
 namespace talus::harness {
-namespace {
+namespace thread_safety_test {
 
 using Runs = std::vector<harness::Run>;  // gtest's Test::Run hides harness::Run
 
@@ -115,5 +115,5 @@ TEST(ThreadSafety, EveryShippedBackendDeclaresWhatItsLibraryShares) {
   }
 }
 
-}  // namespace
+}  // namespace thread_safety_test
 }  // namespace talus::harness

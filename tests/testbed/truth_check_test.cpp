@@ -12,7 +12,7 @@
 #include "talus/harness/truth/truth_check.h"
 
 namespace talus::harness {
-namespace {
+namespace truth_check_test {
 
 // gtest's Test::Run hides harness::Run inside TEST bodies.
 using ScenarioRun = Run;
@@ -287,5 +287,5 @@ TEST(RunMetrics, ClosedSystemDriftsAreZeroForExactFreeFall) {
   EXPECT_NEAR(MomentumDrift(run, trajectory)[0].measured, 0.5, 1e-12);
 }
 
-}  // namespace
+}  // namespace truth_check_test
 }  // namespace talus::harness

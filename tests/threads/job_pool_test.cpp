@@ -17,7 +17,7 @@
 #include "jobs/job_pool.h"
 
 namespace talus {
-namespace {
+namespace job_pool_test {
 
 TEST(ChunkCount, CeilingOfCountOverGrain) {
   EXPECT_EQ(ChunkCount(0, 4), 0);
@@ -220,5 +220,5 @@ TEST(JobPool, PoolsStartAndStopWithoutWork) {
   }
 }
 
-}  // namespace
+}  // namespace job_pool_test
 }  // namespace talus

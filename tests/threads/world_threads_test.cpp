@@ -20,7 +20,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace world_threads_test {
 
 constexpr double kH = 1.0 / 60.0;
 
@@ -378,5 +378,5 @@ TEST(WorldThreads, BadThreadCountsAreRefusedByName) {
   EXPECT_EQ(WorldSettings{}.threads, 1);
 }
 
-}  // namespace
+}  // namespace world_threads_test
 }  // namespace talus

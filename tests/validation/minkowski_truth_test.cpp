@@ -11,7 +11,7 @@
 #include "talus/reference/minkowski_truth.h"
 
 namespace talus {
-namespace {
+namespace minkowski_truth_test {
 
 using reference::ComputePenetrationTruth;
 
@@ -100,5 +100,5 @@ TEST(CcdOracle, GjkPenetrationOfOverlappingBoxesMatchesTruth) {
       reference::CcdGjkIntersect(a, {.hull = &box, .transform = {.position = Vec3(0, 2.5, 0)}}).intersecting);
 }
 
-}  // namespace
+}  // namespace minkowski_truth_test
 }  // namespace talus

@@ -12,7 +12,7 @@
 #include "support/scratch_files.h"
 
 #ifdef TALUS_SAT_CHECK_BINARY
-namespace {
+namespace sat_check_outputs_test {
 
 namespace fs = std::filesystem;
 
@@ -95,5 +95,5 @@ TEST(SatCheckOutputs, AFullStandardOutputIsAnError) {
   EXPECT_FALSE(fs::exists(dir / "s.json"));
 }
 
-}  // namespace
+}  // namespace sat_check_outputs_test
 #endif  // TALUS_SAT_CHECK_BINARY

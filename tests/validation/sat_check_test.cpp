@@ -10,7 +10,7 @@
 #include "sat_check.h"
 
 namespace talus::validation {
-namespace {
+namespace sat_check_test {
 
 const SatCheckReport& SmallReport() {
   static const SatCheckReport report = [] {
@@ -200,5 +200,5 @@ TEST(ParseSeed, TakesEveryUnsignedValueAndRefusesSignsJunkAndOverflow) {
   EXPECT_NE(ParseSeed(std::string(100, '7')).GetError().message.find("..."), std::string::npos);
 }
 
-}  // namespace
+}  // namespace sat_check_test
 }  // namespace talus::validation

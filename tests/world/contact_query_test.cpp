@@ -8,7 +8,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace contact_query_test {
 
 TEST(ContactQuery, RestingBoxReportsItsFourBottomCornersWithNormalFromBToA) {
   World world;
@@ -38,5 +38,5 @@ TEST(ContactQuery, RestingBoxReportsItsFourBottomCornersWithNormalFromBToA) {
   }
 }
 
-}  // namespace
+}  // namespace contact_query_test
 }  // namespace talus

@@ -16,7 +16,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace forced_broad_phase_test {
 
 using testing_support::SameBits;
 
@@ -154,5 +154,5 @@ TEST(ForcedBroadPhase, AnUnknownStructureIsRefusedWithTheFieldNamed) {
       << world.GetError().message;
 }
 
-}  // namespace
+}  // namespace forced_broad_phase_test
 }  // namespace talus

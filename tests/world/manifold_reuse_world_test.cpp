@@ -17,7 +17,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace manifold_reuse_world_test {
 
 constexpr double kH = 1.0 / 60.0;
 constexpr double kG = 9.81;
@@ -265,5 +265,5 @@ TEST(ManifoldReuse, BadReuseDistanceIsRefusedWithTheFieldNamed) {
   EXPECT_EQ(WorldSettings{}.methods.narrowPhase.reuseDistance, 0.0005);
 }
 
-}  // namespace
+}  // namespace manifold_reuse_world_test
 }  // namespace talus

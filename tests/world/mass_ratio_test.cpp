@@ -14,7 +14,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace mass_ratio_test {
 
 constexpr double kH = 1.0 / 60.0;
 constexpr double kG = 9.81;
@@ -99,5 +99,5 @@ TEST(MassRatio, WithoutShockPropagationTheThousandToOneSlabIsThrown) {
   EXPECT_GT(std::max(rise, e.energyRise / (1000.0 * kG)), 1e-4);
 }
 
-}  // namespace
+}  // namespace mass_ratio_test
 }  // namespace talus

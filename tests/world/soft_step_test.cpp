@@ -17,7 +17,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace soft_step_test {
 
 constexpr double kH = 1.0 / 60.0;
 constexpr double kG = 9.81;
@@ -360,5 +360,5 @@ TEST(SoftStep, BitIdenticalForAnyThreadCount) {
   EXPECT_EQ(PileBytes(3), one);
 }
 
-}  // namespace
+}  // namespace soft_step_test
 }  // namespace talus

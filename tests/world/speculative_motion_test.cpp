@@ -14,7 +14,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace speculative_motion_test {
 
 using testing_support::SameBits;
 
@@ -138,5 +138,5 @@ TEST(SpeculativeMotion, BelowTheFixedMarginNothingChanges) {
   EXPECT_LT(states[1].linearVelocity.norm(), 1e-9);  // it did stop (the run exercised contact)
 }
 
-}  // namespace
+}  // namespace speculative_motion_test
 }  // namespace talus

@@ -17,7 +17,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace step_stage_test {
 
 std::vector<std::string> TableNames() {
   std::vector<std::string> names;
@@ -109,5 +109,5 @@ TEST(StepStages, DocsListTheStagesInTableOrder) {
   ExpectTableOrder("dynamics.md", "## The step (`World::Step(dt)`, `world/world_step.cpp`)");
 }
 
-}  // namespace
+}  // namespace step_stage_test
 }  // namespace talus

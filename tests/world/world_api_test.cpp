@@ -8,7 +8,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace world_api_test {
 
 using testing_support::SameBits;
 
@@ -199,5 +199,5 @@ TEST(WorldApi, StageTimesAreFilledOnlyWhenAskedFor) {
   EXPECT_EQ(states[0].orientation.coeffs(), states[1].orientation.coeffs());
 }
 
-}  // namespace
+}  // namespace world_api_test
 }  // namespace talus

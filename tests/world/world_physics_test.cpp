@@ -11,7 +11,7 @@
 #include "talus/world.h"
 
 namespace talus {
-namespace {
+namespace world_physics_test {
 
 constexpr double kH = 1.0 / 60.0;
 constexpr double kG = 9.81;
@@ -380,5 +380,5 @@ TEST(WorldPhysics, DestroyingASupportWakesWhatRestedOnIt) {
   EXPECT_LT(world.GetBodyState(box).Value().position.y(), 0.0);
 }
 
-}  // namespace
+}  // namespace world_physics_test
 }  // namespace talus

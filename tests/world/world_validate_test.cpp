@@ -12,7 +12,7 @@
 #include "world/world_validate.h"
 
 namespace talus {
-namespace {
+namespace world_validate_test {
 
 // Contacts are set in place (their Eigen members are left uninitialised
 // by default, so copies of them trip GCC's maybe-uninitialized).
@@ -196,5 +196,5 @@ TEST(ValidateDeathTest, AFailedCheckAbortsWithItsMessage) {
   AbortIfInvalid("");  // an empty message is a pass
 }
 
-}  // namespace
+}  // namespace world_validate_test
 }  // namespace talus

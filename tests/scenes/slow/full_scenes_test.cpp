@@ -14,7 +14,7 @@
 #include "talus/world_settings.h"
 
 namespace talus::harness {
-namespace {
+namespace full_scenes_test {
 
 BenchReport RunTalus(std::string_view scene, int parameter) {
   BackendRegistry registry;
@@ -43,5 +43,5 @@ TEST(FullScenes, TalusHullPileOfSideTenKeepsEveryBodyInside) {
   EXPECT_LE(*report.maxPenetration, talus::WorldSettings{}.slop + gravity * kBenchTimeStep * kBenchTimeStep);
 }
 
-}  // namespace
+}  // namespace full_scenes_test
 }  // namespace talus::harness
