@@ -18,6 +18,7 @@ packages=(
   libbenchmark-dev                  # micro benchmarks
   python3-scipy                     # LP solver of scripts/arch_friction_threshold.py (ctest docs.arch_friction_threshold)
   clang-format                      # style check
+  ccache                            # compiler cache (cmake/TalusBuildSpeed.cmake; a rebuild costs lookups)
   chromium                          # headless browser: the report's render test (ctest label browser)
 )
 
