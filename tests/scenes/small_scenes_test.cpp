@@ -151,6 +151,17 @@ TEST(BenchRun, TalusReportsItsStepStagesInStepOrder) {
   EXPECT_TRUE(RunScene("bullet", "pyramid", 2, 3).stages.empty());
 }
 
+// The soft step reports the stages it runs and no empty rows for the ones
+// it has none of (the integrations and split impulses happen inside its
+// sub-steps, timed as SolveVelocities).
+TEST(BenchRun, TheSoftStepReportsOnlyTheStagesItRuns) {
+  const BenchReport soft = RunScene("talus-soft", "pyramid", 2, 30);
+  std::vector<std::string> names;
+  for (const BenchStage& stage : soft.stages) names.push_back(stage.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"UpdateBroadPhase", "FindContacts", "PrepareContacts",
+                                             "SolveVelocities", "ScatterAndStoreImpulses", "UpdateSleep"}));
+}
+
 // A backend whose stage list changes between steps cannot be summarised
 // per stage: the run is an Error naming the step, not a silent mix.
 class ShiftingStagesBackend final : public Backend {

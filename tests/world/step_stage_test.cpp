@@ -57,6 +57,42 @@ TEST(StepStages, EveryStageIsTimedUnderItsOwnSlot) {
   EXPECT_GT(last.seconds[Stage::SolveVelocities], 0.0);
 }
 
+// Each step solver runs the stages of its own table and marks them
+// (StageTimes::ran), timed or not: Sequential Impulses all nine, the soft
+// step all but the two integrations and the split impulses, which it does
+// inside its sub-steps; a stage that did not run has exactly no time.
+World BoxOnGround(const WorldSettings& settings) {
+  World world = World::Create(settings).Value();
+  EXPECT_TRUE(world.CreateBody({.type = BodyType::Static, .shape = Shape::CreateBox({5, 0.5, 5}).Value()}));
+  EXPECT_TRUE(world.CreateBody({.type = BodyType::Dynamic,
+                                .position = {0, 0.69, 0},
+                                .shape = Shape::CreateBox({0.2, 0.2, 0.2}).Value()}));
+  return world;
+}
+
+TEST(StepStages, EachStepSolverMarksTheStagesItRan) {
+  for (const bool timed : {false, true}) {
+    World sequential = BoxOnGround({.timeStages = timed});
+    const StepStatistics si = sequential.Step(1.0 / 60.0).Value();
+    for (const StageInfo& stage : kStages)
+      EXPECT_TRUE(si.seconds.ran[static_cast<std::size_t>(stage.stage)]) << stage.name;
+
+    WorldSettings softSettings{.timeStages = timed};
+    softSettings.methods.stepSolver = StepSolver::SoftStep;
+    World soft = BoxOnGround(softSettings);
+    const StepStatistics ss = soft.Step(1.0 / 60.0).Value();
+    const std::set<Stage> absent = {Stage::IntegrateVelocities, Stage::SolveSplitImpulses,
+                                    Stage::IntegratePositions};
+    for (const StageInfo& stage : kStages) {
+      const bool ran = ss.seconds.ran[static_cast<std::size_t>(stage.stage)];
+      EXPECT_EQ(ran, absent.count(stage.stage) == 0) << stage.name;
+      if (!ran) {
+        EXPECT_EQ(ss.seconds[stage.stage], 0.0) << stage.name;
+      }
+    }
+  }
+}
+
 // A line "N. `Name..." as (N, Name); nullopt for any other line. Parsed by
 // hand: std::regex trips GCC 12's maybe-uninitialized warning in the
 // sanitizer build (-O1), which -Werror turns into an error.

@@ -20,7 +20,12 @@ namespace talus {
 /// WorldSettings::timeStages is on.
 struct StageTimes {
   std::array<double, kStageCount> byStage = {};  ///< seconds of each stage, in kStages order
-  double total = 0.0;                            ///< the whole step
+  /// Whether the step's solver ran each stage, in kStages order: the soft
+  /// step has no integration or split-impulse stage of its own, so those
+  /// stay false (and their seconds 0) under it. Set whether or not
+  /// stages are timed.
+  std::array<bool, kStageCount> ran = {};
+  double total = 0.0;  ///< the whole step
 
   double& operator[](Stage stage) { return byStage[static_cast<std::size_t>(stage)]; }
   double operator[](Stage stage) const { return byStage[static_cast<std::size_t>(stage)]; }

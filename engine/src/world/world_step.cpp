@@ -1,16 +1,13 @@
-// World::Step: THE step. It walks the stage table (kStages,
-// talus/step_stage.h: the stages, their order, what each does and whether
-// it runs on worker threads) and runs each stage's function, timing it
-// under its Stage in StepStatistics::seconds (StageTimes). The table's
-// order is the pipeline of section 3 of the original write-up; the broad
-// phase comes first because it is the only stage that may refuse.
-//
-// With MethodSettings::stepSolver = SoftStep the stages after the broad
-// phase are the soft step's instead (RunSoftStage, SoftStepSolver):
-// contacts, soft rows, the sub-steps (each integrating velocities and
-// positions) under SolveVelocities, impulses stored, sleep; the soft step
-// has no stage of its own for the integration or split impulses, which do
-// nothing there.
+// World::Step: THE step. After the broad phase (the only stage that may
+// refuse, so it runs first) it walks its step solver's stage table,
+// kSequentialImpulseStages or kSoftStepStages: each entry names a stage of
+// kStages (talus/step_stage.h: the stages, their order, what each does and
+// whether it runs on worker threads) and carries the function that does
+// it. Each stage that ran is timed under its Stage in
+// StepStatistics::seconds (StageTimes) and marked in StageTimes::ran; a
+// stage its solver lacks (the soft step has no integration or split
+// impulse stage of its own) has neither. The order is the pipeline of
+// section 3 of the original write-up.
 //
 // Nothing in here decides physics;
 // the stages live in engine/src/dynamics and engine/src/collision.
@@ -20,6 +17,7 @@
 // run on the calling thread. The results are bit-identical for any thread
 // count (docs/threading.md).
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -155,67 +153,69 @@ void SoftPrepareContacts(WorldData& d, double dt, StepStatistics& stats) {
   d.softSolver.Prepare(d.sims, d.contacts, d.settings, dt, stats);
 }
 
+// Each stage's function, one signature for all: the world, the step in
+// seconds and the step's statistics.
+using StageFunction = void (*)(WorldData&, double, StepStatistics&);
+
+// One entry of a step solver's stage table: the stage (its name, order and
+// threads in kStages) and the function that does its work.
+struct StageStep {
+  Stage stage;
+  StageFunction run;
+};
+
+// The Sequential Impulses step (MethodSettings::stepSolver =
+// SequentialImpulses): every stage of kStages after the broad phase.
+constexpr std::array<StageStep, 8> kSequentialImpulseStages = {{
+    {Stage::IntegrateVelocities,
+     [](WorldData& d, double h, StepStatistics& stats) {
+       stats.awakeBodies = IntegrateVelocitiesOnThreads(d, h);
+     }},
+    {Stage::FindContacts, [](WorldData& d, double h, StepStatistics& stats) { FindContacts(d, h, stats); }},
+    {Stage::PrepareContacts,
+     [](WorldData& d, double h, StepStatistics& stats) { PrepareContacts(d, h, stats); }},
+    {Stage::SolveVelocities, [](WorldData& d, double, StepStatistics& stats) { SolveVelocities(d, stats); }},
+    {Stage::SolveSplitImpulses,
+     [](WorldData& d, double, StepStatistics& stats) { SolveSplitImpulses(d, stats); }},
+    {Stage::ScatterAndStoreImpulses,
+     [](WorldData& d, double, StepStatistics&) { ScatterAndStoreImpulses(d); }},
+    {Stage::IntegratePositions,
+     [](WorldData& d, double h, StepStatistics&) { IntegratePositionsOnThreads(d, h); }},
+    {Stage::UpdateSleep, [](WorldData& d, double h, StepStatistics& stats) { UpdateSleep(d, h, stats); }},
+}};
+
 // The soft step (StepSolver::SoftStep, dynamics/soft_step_solver.h): the
 // narrow phase once at the step's start, then the sub-steps (each
 // integrating velocities, solving, integrating positions, relaxing) as one
-// chain of phases on the world's threads, timed as SolveVelocities.
-// Stages it has no work for do nothing.
-void RunSoftStage(Stage stage, WorldData& d, double dt, StepStatistics& stats) {
-  switch (stage) {
-    case Stage::FindContacts:
-      FindContacts(d, dt, stats);
-      return;
-    case Stage::PrepareContacts:
-      SoftPrepareContacts(d, dt, stats);
-      return;
-    case Stage::SolveVelocities:
-      stats.awakeBodies = d.softSolver.Step(d.sims, d.settings, dt);
-      return;
-    case Stage::ScatterAndStoreImpulses:
-      d.softSolver.StoreImpulses(d.contacts);
-      return;
-    case Stage::UpdateSleep:
-      UpdateSleep(d, dt, stats);
-      return;
-    case Stage::UpdateBroadPhase:  // run by Step itself: it may refuse
-    case Stage::IntegrateVelocities:
-    case Stage::SolveSplitImpulses:
-    case Stage::IntegratePositions:
-      return;
-  }
-}
+// chain of phases on the world's threads, timed as SolveVelocities. It has
+// no stage of its own for the integration or split impulses, so its table
+// leaves them out and they report no time.
+constexpr std::array<StageStep, 5> kSoftStepStages = {{
+    {Stage::FindContacts, [](WorldData& d, double h, StepStatistics& stats) { FindContacts(d, h, stats); }},
+    {Stage::PrepareContacts,
+     [](WorldData& d, double h, StepStatistics& stats) { SoftPrepareContacts(d, h, stats); }},
+    {Stage::SolveVelocities,
+     [](WorldData& d, double h, StepStatistics& stats) {
+       stats.awakeBodies = d.softSolver.Step(d.sims, d.settings, h);
+     }},
+    {Stage::ScatterAndStoreImpulses,
+     [](WorldData& d, double, StepStatistics&) { d.softSolver.StoreImpulses(d.contacts); }},
+    {Stage::UpdateSleep, [](WorldData& d, double h, StepStatistics& stats) { UpdateSleep(d, h, stats); }},
+}};
 
-// One stage of the sequential-impulse step.
-void RunStage(Stage stage, WorldData& d, double dt, StepStatistics& stats) {
-  switch (stage) {
-    case Stage::IntegrateVelocities:
-      stats.awakeBodies = IntegrateVelocitiesOnThreads(d, dt);
-      return;
-    case Stage::FindContacts:
-      FindContacts(d, dt, stats);
-      return;
-    case Stage::PrepareContacts:
-      PrepareContacts(d, dt, stats);
-      return;
-    case Stage::SolveVelocities:
-      SolveVelocities(d, stats);
-      return;
-    case Stage::SolveSplitImpulses:
-      SolveSplitImpulses(d, stats);
-      return;
-    case Stage::ScatterAndStoreImpulses:
-      ScatterAndStoreImpulses(d);
-      return;
-    case Stage::IntegratePositions:
-      IntegratePositionsOnThreads(d, dt);
-      return;
-    case Stage::UpdateSleep:
-      UpdateSleep(d, dt, stats);
-      return;
-    case Stage::UpdateBroadPhase:  // run by Step itself: it may refuse
-      return;
+// A solver's table runs its stages in kStages order, after the broad phase
+// (which World::Step runs itself: it may refuse), each stage once.
+template <std::size_t N>
+constexpr bool InStepOrder(const std::array<StageStep, N>& table) {
+  Stage last = Stage::UpdateBroadPhase;
+  for (const StageStep& step : table) {
+    if (!(static_cast<int>(step.stage) > static_cast<int>(last)) || step.run == nullptr) return false;
+    last = step.stage;
   }
+  return true;
 }
+static_assert(InStepOrder(kSequentialImpulseStages), "the Sequential Impulses stages run in kStages order");
+static_assert(InStepOrder(kSoftStepStages), "the soft step's stages run in kStages order");
 
 }  // namespace
 
@@ -234,14 +234,15 @@ Result<StepStatistics> World::Step(double dt) {
   CountBodies(d, stats);
   stats.seconds[Stage::UpdateBroadPhase] = clock.Lap();
 
-  const bool soft = d.settings.methods.stepSolver == StepSolver::SoftStep;
-  for (const StageInfo& stage : std::span(kStages).subspan(1)) {
-    if (soft) {
-      RunSoftStage(stage.stage, d, dt, stats);
-    } else {
-      RunStage(stage.stage, d, dt, stats);
-    }
+  stats.seconds.ran[static_cast<std::size_t>(Stage::UpdateBroadPhase)] = true;
+
+  const std::span<const StageStep> stages = d.settings.methods.stepSolver == StepSolver::SoftStep
+                                                ? std::span<const StageStep>(kSoftStepStages)
+                                                : std::span<const StageStep>(kSequentialImpulseStages);
+  for (const StageStep& stage : stages) {
+    stage.run(d, dt, stats);
     stats.seconds[stage.stage] = clock.Lap();
+    stats.seconds.ran[static_cast<std::size_t>(stage.stage)] = true;
   }
 
   for (const double seconds : stats.seconds.byStage) stats.seconds.total += seconds;

@@ -216,12 +216,16 @@ std::vector<harness::StepCounter> TalusBackend::StepCounters() const {
 }
 
 // World::Step's stages (StepStatistics::seconds), named and ordered as the
-// engine's stage table (kStages, talus/step_stage.h) is.
+// engine's stage table (kStages, talus/step_stage.h) is; only the stages
+// the world's step solver ran (StageTimes::ran), so the soft step reports
+// no empty integration rows.
 std::vector<harness::StageTiming> TalusBackend::StageTimings() const {
   std::vector<harness::StageTiming> timings;
   timings.reserve(kStages.size());
-  for (const StageInfo& stage : kStages)
+  for (const StageInfo& stage : kStages) {
+    if (!m_lastStep.seconds.ran[static_cast<std::size_t>(stage.stage)]) continue;
     timings.push_back({std::string(stage.name), m_lastStep.seconds[stage.stage]});
+  }
   return timings;
 }
 
