@@ -69,13 +69,15 @@ CLI::App* AddRunCommand(CLI::App& app, RunOptions& run) {
                    "is killed 2 s later (0 = no budget)")
       ->check(ZeroOrWithin(0.0, talus::harness::kMaxBudgetSeconds, "s"))
       ->capture_default_str();
-  command
-      ->add_option("--memory-limit", run.memoryLimitMiB,
-                   "address space each job's process may add, MiB; past it the job stops naming the limit "
-                   "(0 = none)")
-      ->check(ZeroOrWithin(static_cast<double>(talus::harness::kMinMemoryLimitBytes >> 20),
-                           static_cast<double>(talus::harness::kMaxMemoryLimitBytes >> 20), "MiB"))
-      ->capture_default_str();
+  CLI::Option* memoryLimit =
+      command
+          ->add_option(
+              "--memory-limit", run.memoryLimitMiB,
+              "address space each job's process may add, MiB; past it the job stops naming the limit "
+              "(0 = none)")
+          ->check(ZeroOrWithin(static_cast<double>(talus::harness::kMinMemoryLimitBytes >> 20),
+                               static_cast<double>(talus::harness::kMaxMemoryLimitBytes >> 20), "MiB"))
+          ->capture_default_str();
   command->add_flag("--deterministic", run.deterministic, "zero wall times so reruns are byte-identical");
   command->add_flag("-q,--quiet", run.quiet, "no progress on stderr");
   command
@@ -86,6 +88,11 @@ CLI::App* AddRunCommand(CLI::App& app, RunOptions& run) {
   command->add_flag("--full-trajectories", run.fullTrajectories,
                     "write results.trajectories.json exact, not thinned and rounded for display "
                     "(metrics are computed from the full trajectories either way)");
+  command
+      ->add_flag("--in-process", run.inProcess,
+                 "run the jobs on threads of this process, not a child process each, for a debugger: a crash "
+                 "then stops every job, and the budget stops a job only between steps (no memory limit)")
+      ->excludes(memoryLimit);
   return command;
 }
 
@@ -124,6 +131,8 @@ CLI::App* AddCheckCommand(CLI::App& app, CheckOptions& check) {
       ->delimiter(',');
   command->add_option("-j,--jobs", check.jobs, "threads (0 = every core)")->check(kJobsRange);
   command->add_flag("-q,--quiet", check.quiet, "no progress on stderr");
+  command->add_flag("--in-process", check.inProcess,
+                    "run the jobs on threads of this process, not a child process each (for a debugger)");
   return command;
 }
 

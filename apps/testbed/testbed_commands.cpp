@@ -42,36 +42,34 @@ std::vector<fs::path> ScenarioPaths(const std::vector<std::string>& given) {
   return paths;
 }
 
-// Loads and runs; prints the error and returns nothing on bad input.
-std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
-                                      const std::vector<std::string>& backends, int jobs, bool deterministic,
-                                      bool quiet, const std::vector<double>& timeSteps = {},
-                                      const std::vector<int>& iterations = {},
-                                      const std::vector<std::string>& replay = {}, double budget = 0.0,
-                                      int talusThreads = 1, std::size_t memoryLimitMiB = 0) {
-  auto loaded = harness::LoadScenarios(ScenarioPaths(scenarios));
+// Loads `run.scenarios` and runs them through `backends` (run.backends is
+// not read: the caller has chosen the list); prints the error and returns
+// nothing on bad input.
+std::optional<ResultsFile> LoadAndRun(const RunOptions& run, const std::vector<std::string>& backends) {
+  auto loaded = harness::LoadScenarios(ScenarioPaths(run.scenarios));
   if (!loaded) {
     std::cerr << "talus-testbed: " << loaded.GetError().message << "\n";
     return std::nullopt;
   }
-  auto runs = harness::ExpandStepping(loaded.Value(), timeSteps, iterations);
+  auto runs = harness::ExpandStepping(loaded.Value(), run.timeSteps, run.iterations);
   if (!runs) {
     std::cerr << "talus-testbed: " << runs.GetError().message << "\n";
     return std::nullopt;
   }
   harness::RunnerOptions options;
   options.backends = backends;
-  options.jobs = Jobs(jobs);
-  options.deterministic = deterministic;
-  options.replay = replay;
-  options.budgetSeconds = budget;
-  options.memoryLimitBytes = memoryLimitMiB << 20;
-  if (!quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+  options.jobs = Jobs(run.jobs);
+  options.deterministic = run.deterministic;
+  options.replay = run.replay;
+  options.budgetSeconds = run.budget;
+  options.memoryLimitBytes = run.inProcess ? 0 : run.memoryLimitMiB << 20;
+  options.isolation = run.inProcess ? harness::JobIsolation::InProcess : harness::JobIsolation::Process;
+  if (!run.quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   // Shown even with --quiet: a run that ran nowhere must not vanish unseen.
   options.notice = [](const std::string& line) { std::cout << "talus-testbed: " << line << "\n"; };
   // The shared registry unless the Talus worlds need another thread count.
   const std::optional<harness::BackendRegistry> threaded =
-      talusThreads == 1 ? std::nullopt : std::optional(reference::MakeAllBackends(talusThreads));
+      run.threads == 1 ? std::nullopt : std::optional(reference::MakeAllBackends(run.threads));
   auto results = harness::RunAll(threaded ? *threaded : reference::AllBackends(), runs.Value(), options);
   if (!results) {
     std::cerr << "talus-testbed: " << results.GetError().message << "\n";
@@ -79,7 +77,7 @@ std::optional<ResultsFile> LoadAndRun(const std::vector<std::string>& scenarios,
   }
   ResultsFile file;
   file.backends = backends;
-  file.deterministic = deterministic;
+  file.deterministic = run.deterministic;
   file.results = std::move(results).Value();
   return file;
 }
@@ -112,9 +110,7 @@ std::vector<std::string> DefaultBackends() {
 
 int RunCommand(const RunOptions& options) {
   const std::vector<std::string> backends = options.backends.empty() ? DefaultBackends() : options.backends;
-  auto file = LoadAndRun(options.scenarios, backends, options.jobs, options.deterministic, options.quiet,
-                         options.timeSteps, options.iterations, options.replay, options.budget,
-                         options.threads, options.memoryLimitMiB);
+  auto file = LoadAndRun(options, backends);
   if (!file) return kExitBadInput;
   file->fullTrajectories = options.fullTrajectories;
   std::error_code error;
@@ -212,7 +208,17 @@ int CheckCommand(const CheckOptions& options) {
   } else {
     // By default every registered Talus variant.
     if (backends.empty()) backends = harness::TalusVariants(reference::AllBackends().Names());
-    auto ran = LoadAndRun(options.scenarios, backends, options.jobs, true, options.quiet);
+    // The check's own run: deterministic, and without the run command's
+    // budget and memory limit (0 = none), as before they were options.
+    RunOptions run;
+    run.scenarios = options.scenarios;
+    run.jobs = options.jobs;
+    run.deterministic = true;
+    run.quiet = options.quiet;
+    run.budget = 0.0;
+    run.memoryLimitMiB = 0;
+    run.inProcess = options.inProcess;
+    auto ran = LoadAndRun(run, backends);
     if (!ran) return kExitBadInput;
     file = std::move(*ran);
   }

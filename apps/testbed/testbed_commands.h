@@ -41,6 +41,14 @@ struct RunOptions {
   /// Address space each job's process may add, MiB (0 = none); the default
   /// is far above any suite job's and far below what the CI machine has.
   std::size_t memoryLimitMiB = 8192;
+  /// Run the jobs on threads of this process (JobIsolation::InProcess)
+  /// instead of a child process each, so a debugger's breakpoint in
+  /// RunOne or an engine is hit. Nothing then protects the other jobs from
+  /// one that crashes; the budget stops a job between steps but cannot
+  /// kill one stuck inside a step; memoryLimitMiB is not applied (a limit
+  /// needs a process of its own; the command line refuses both flags
+  /// together).
+  bool inProcess = false;
 };
 int RunCommand(const RunOptions& options);
 
@@ -62,6 +70,7 @@ struct CheckOptions {
   std::vector<std::string> backends;   ///< whose metrics are checked; empty = every Talus variant
   int jobs = 0;                        ///< 0 = every core
   bool quiet = false;
+  bool inProcess = false;  ///< as RunOptions::inProcess, for the run check makes
 };
 int CheckCommand(const CheckOptions& options);
 
