@@ -27,23 +27,30 @@ namespace {
 
 using namespace results_json;
 
-// True while RunResultToWire writes: numbers go out exactly as they are
-// (CBOR keeps NaN and infinities), not as JSON's null. Thread-local, so the
-// writers below need no second signature for the wire.
-thread_local bool tExactNumbers = false;
+// How a writer puts NaN and infinities: results.json as JSON's null (JSON
+// has neither), the wire between a job's process and the runner
+// (RunResultToWire) as they are (CBOR keeps both), so a result that crossed
+// it is the one computed.
+enum class NonFinite {
+  AsNull,
+  Kept,
+};
 
-Json Number(double value) { return std::isfinite(value) || tExactNumbers ? Json(value) : Json(nullptr); }
+Json Number(double value, NonFinite nonFinite) {
+  return std::isfinite(value) || nonFinite == NonFinite::Kept ? Json(value) : Json(nullptr);
+}
 
-Json NumbersOrNull(const std::vector<double>& values) {
+Json NumbersOrNull(const std::vector<double>& values, NonFinite nonFinite) {
   Json array = Json::array();
-  for (double value : values) array.push_back(Number(value));
+  for (double value : values) array.push_back(Number(value, nonFinite));
   return array;
 }
 
 // A metric of `run`: in full when `tables` is null (the wire's record);
 // else what was measured, naming its definition (name, unit, tolerance,
 // published figure) in `run`'s list of `tables`.
-Json MetricToJson(const MetricResult& m, ResultsTableWriter* tables, const std::string& run) {
+Json MetricToJson(const MetricResult& m, ResultsTableWriter* tables, const std::string& run,
+                  NonFinite nonFinite) {
   Json j;
   if (tables == nullptr) {
     j["name"] = m.name;
@@ -51,29 +58,31 @@ Json MetricToJson(const MetricResult& m, ResultsTableWriter* tables, const std::
   } else {
     j["definition"] = tables->MetricDefinition(run, m);
   }
-  j["measured"] = Number(m.measured);
-  j["truth"] = Number(m.truth);
-  j["truthIntegrator"] = Number(m.truthIntegrator);
-  j["error"] = Number(m.error);
+  j["measured"] = Number(m.measured, nonFinite);
+  j["truth"] = Number(m.truth, nonFinite);
+  j["truthIntegrator"] = Number(m.truthIntegrator, nonFinite);
+  j["error"] = Number(m.error, nonFinite);
   if (tables == nullptr) j["tolerance"] = ToleranceToJson(m);
   j["checked"] = m.checked;
   j["pass"] = m.pass;
   j["ungated"] = m.ungated;
   // Only metrics of a truth with a published figure carry one.
-  if (tables == nullptr && !std::isnan(m.publishedValue)) j["published"] = PublishedToJson(m, tExactNumbers);
+  if (tables == nullptr && !std::isnan(m.publishedValue))
+    j["published"] = PublishedToJson(m, nonFinite == NonFinite::Kept);
   return j;
 }
 
 // A result's trajectory: its plot series and, when recorded and
 // `withReplay`, its replay; in the display form of display_trajectory.h
 // unless `exact`.
-void TrajectoryToJson(const RunResult& r, Json& j, bool exact = true, bool withReplay = true) {
+void TrajectoryToJson(const RunResult& r, Json& j, NonFinite nonFinite, bool exact = true,
+                      bool withReplay = true) {
   const PlotSeries shown = exact ? r.series : DisplaySeries(r.series);
   Json series;
   series["time"] = shown.time;
   series["heights"] = shown.heights;
   series["energy"] = Json::array();
-  for (double e : shown.energy) series["energy"].push_back(Number(e));
+  for (double e : shown.energy) series["energy"].push_back(Number(e, nonFinite));
   j["series"] = series;
   // Only runs recorded for replay carry one, so other files are unchanged.
   if (withReplay && !r.replay.frames.empty()) {
@@ -84,7 +93,7 @@ void TrajectoryToJson(const RunResult& r, Json& j, bool exact = true, bool withR
 // The result; its trajectory too when `withTrajectory` (the one-text form).
 // In full when `tables` is null (the wire's record); else its settings and
 // its metrics' definitions go into `tables` and it names them.
-Json ResultToJson(const RunResult& r, bool withTrajectory, ResultsTableWriter* tables) {
+Json ResultToJson(const RunResult& r, bool withTrajectory, ResultsTableWriter* tables, NonFinite nonFinite) {
   Json j;
   j["scenario"] = r.scenario;
   j["file"] = r.file;
@@ -104,20 +113,20 @@ Json ResultToJson(const RunResult& r, bool withTrajectory, ResultsTableWriter* t
   }
   j["error"] = r.error;
   j["metrics"] = Json::array();
-  for (const MetricResult& m : r.metrics) j["metrics"].push_back(MetricToJson(m, tables, r.runId));
+  for (const MetricResult& m : r.metrics) j["metrics"].push_back(MetricToJson(m, tables, r.runId, nonFinite));
   j["wallSecondsPerStep"] = {{"median", r.wallSecondsPerStepMedian}, {"mean", r.wallSecondsPerStepMean}};
-  j["wallSeconds"] = {{"total", r.wallSeconds}, {"longestStep", Number(r.wallSecondsLongestStep)}};
+  j["wallSeconds"] = {{"total", r.wallSeconds}, {"longestStep", Number(r.wallSecondsLongestStep, nonFinite)}};
   // Only sweep points run with perturbed copies carry this, so files of
   // other runs (and sweeps with --perturb-copies 0) are unchanged. An
   // infinite spread (some copies unmeasured) is written as null.
   if (r.perturbed.copies > 0) {
     j["perturbed"] = {{"copies", r.perturbed.copies},
                       {"amount", r.perturbed.amount},
-                      {"errorSpread", Number(r.perturbed.errorSpread)},
+                      {"errorSpread", Number(r.perturbed.errorSpread, nonFinite)},
                       {"runSeconds", r.perturbed.runSeconds},
-                      {"errors", NumbersOrNull(r.perturbed.errors)}};
+                      {"errors", NumbersOrNull(r.perturbed.errors, nonFinite)}};
   }
-  if (withTrajectory) TrajectoryToJson(r, j);
+  if (withTrajectory) TrajectoryToJson(r, j, nonFinite);
   return j;
 }
 
@@ -252,7 +261,8 @@ Json ResultsJson(const ResultsFile& file, bool withTrajectories) {
   // The tables come before the results that fill them (results_tables.h).
   ResultsTableWriter tables;
   Json results = Json::array();
-  for (const RunResult& r : file.results) results.push_back(ResultToJson(r, withTrajectories, &tables));
+  for (const RunResult& r : file.results)
+    results.push_back(ResultToJson(r, withTrajectories, &tables, NonFinite::AsNull));
   j["settings"] = tables.SettingsJson();
   j["metricDefinitions"] = tables.MetricDefinitionsJson();
   j["results"] = std::move(results);
@@ -287,7 +297,7 @@ std::string TrajectoriesToJson(const ResultsFile& file) {
     line["result"] = i;
     line["run"] = r.runId;
     line["backend"] = r.backend;
-    TrajectoryToJson(r, line, WrittenExact(file), false);
+    TrajectoryToJson(r, line, NonFinite::AsNull, WrittenExact(file), false);
     text += Concat({i == 0 ? "\n" : ",\n", line.dump()});
   }
   return text + "\n]}\n";
@@ -501,15 +511,7 @@ std::vector<FileText> ResultsFileTexts(const std::filesystem::path& path, const 
 }
 
 std::string RunResultToWire(const RunResult& result) {
-  tExactNumbers = true;
-  std::vector<std::uint8_t> bytes;
-  try {
-    bytes = Json::to_cbor(ResultToJson(result, true, nullptr));
-  } catch (...) {
-    tExactNumbers = false;
-    throw;
-  }
-  tExactNumbers = false;
+  const std::vector<std::uint8_t> bytes = Json::to_cbor(ResultToJson(result, true, nullptr, NonFinite::Kept));
   return {bytes.begin(), bytes.end()};
 }
 

@@ -30,11 +30,6 @@ namespace {
 // median, bounded for runs of a billion steps.
 constexpr std::size_t kMaxTimedSteps = std::size_t{1} << 20;
 
-// True while RunOne records its run (not a converged reference): Record
-// then reports each step to the runner's parent process (ReportJobStep),
-// which places a crash at its step.
-thread_local bool tReportSteps = false;
-
 // Serialises every call of RunnerOptions::progress (job lines and the
 // long-job lines), so lines never interleave.
 std::mutex& ProgressMutex() {
@@ -263,13 +258,13 @@ void KeepStepTime(std::vector<double>& stepSeconds, double seconds, int& timedEv
 
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
                   const std::function<bool(int)>& record, std::vector<double>* stepSeconds, bool detail,
-                  const std::function<std::string(int)>& tick, StepWallTimes* wall) {
+                  const std::function<std::string(int)>& tick, StepWallTimes* wall, bool reportSteps) {
   Trajectory trajectory;
   trajectory.timeStep = timeStep;
   trajectory.samples.push_back(TakeSample(backend, run, 0, timeStep, detail));
   int timedEvery = 1;  // the spacing of the timed steps (KeepStepTime)
   for (int step = 1; step <= steps; ++step) {
-    if (tReportSteps) ReportJobStep(step);
+    if (reportSteps) ReportJobStep(step);
     const auto start = std::chrono::steady_clock::now();
     backend.Step();
     const auto end = std::chrono::steady_clock::now();
@@ -426,11 +421,9 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
   std::vector<double> stepSeconds;
   StepWallTimes wall;
   const bool replay = IsReplaySelected(run, options.replay);
-  tReportSteps = true;
   const Trajectory trajectory = Record(
       backend, run, run.steps, run.timeStep, [&](int step) { return IsSampled(step, run.steps, stride); },
-      &stepSeconds, replay, JobTick(run, backendName, options), &wall);
-  tReportSteps = false;
+      &stepSeconds, replay, JobTick(run, backendName, options), &wall, /*reportSteps=*/true);
   ReportJobStep(kJobPastSteps);
   AddRunWallTime(options, wall, result);
   if (!trajectory.failure.empty()) {

@@ -195,7 +195,11 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
 /// non-empty answer stops the recording with that reason. The first failed
 /// step or non-finite body state stops it too (Trajectory::failure).
 /// `wall`, when not null, gets the total and the longest of every step's
-/// wall time (every step, not only those kept in `stepSeconds`).
+/// wall time (every step, not only those kept in `stepSeconds`). With
+/// `reportSteps`, each step's number goes to the runner's parent process
+/// before the step is taken (ReportJobStep, job_processes.h), so a job
+/// that dies is placed at its step; RunOne asks it for the run it records,
+/// not for a converged reference.
 struct StepWallTimes {
   double total = 0.0;    ///< seconds
   double longest = 0.0;  ///< seconds
@@ -203,6 +207,6 @@ struct StepWallTimes {
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
                   const std::function<bool(int)>& record, std::vector<double>* stepSeconds,
                   bool detail = false, const std::function<std::string(int)>& tick = {},
-                  StepWallTimes* wall = nullptr);
+                  StepWallTimes* wall = nullptr, bool reportSteps = false);
 
 }  // namespace talus::harness
