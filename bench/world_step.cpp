@@ -57,13 +57,10 @@ void BM_StepStacksOptions(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(world.Step(1.0 / 60.0));
 }
 // Arguments: warm starting (0/1), PositionCorrection (0 Baumgarte, 1 split
-// impulses, 2 non-linear Gauss-Seidel).
-BENCHMARK(BM_StepStacksOptions)
-    ->Args({1, 0})
-    ->Args({0, 0})
-    ->Args({1, 1})
-    ->Args({1, 2})
-    ->Unit(benchmark::kMicrosecond);
+// impulses). The non-linear Gauss-Seidel sweeps this once listed as 2 were
+// retired (docs/dynamics.md, "Retired options"), and World::Create refuses
+// that value.
+BENCHMARK(BM_StepStacksOptions)->Args({1, 0})->Args({0, 0})->Args({1, 1})->Unit(benchmark::kMicrosecond);
 
 // Sleeping: the same stacks after they fell asleep cost only the broad phase.
 void BM_StepSleepingStacks(benchmark::State& state) {
