@@ -1,10 +1,12 @@
 # How the tree compiles fast on a 2-core machine (docs/building.md gives
 # each tree's measured time and why each switch is on).
 #
-# - ccache, when it is installed: a rebuild of unchanged sources costs a
-#   cache lookup. Its cache lives outside the repository (ccache's own
-#   default, ~/.cache/ccache, or CCACHE_DIR), so a clean clone on the same
-#   machine starts warm and nothing of it can be committed.
+# - ccache, when it is installed: a rebuild of unchanged sources in the
+#   same checkout (another branch and back, a tree removed and made again)
+#   costs a cache lookup. Its cache lives outside the repository (ccache's
+#   own default, ~/.cache/ccache, or CCACHE_DIR), so nothing of it can be
+#   committed. A clone in another folder does not hit it: the unity files
+#   name their sources by absolute path (docs/building.md).
 # - Unity builds: most of a translation unit's time here is parsing Eigen,
 #   nlohmann-json and GoogleTest, so compiling several sources as one file
 #   parses them once per batch. Files that cannot share a unit (their own
