@@ -20,16 +20,12 @@ namespace {
 
 using nlohmann::json;
 
-// How far a quaternion's norm may be from 1 and still count as unit: values
-// written with ~7 significant digits (e.g. 0.7071068) must pass.
-constexpr double kBodyQuaternionTolerance = 1e-6;
-
 Result<Quat> MapOrientation(const json& orientation, std::string_view file, const std::string& pointer) {
   if (orientation.contains("quaternion")) {
     const json& q = orientation["quaternion"];
     const Quat quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
     const double norm = quat.norm();
-    if (std::abs(norm - 1.0) > kBodyQuaternionTolerance) {
+    if (std::abs(norm - 1.0) > kUnitQuaternionTolerance) {
       std::ostringstream problem;
       problem << "quaternion is not unit length (norm " << norm << ")";
       return FieldError(file, pointer + "/quaternion", problem.str());

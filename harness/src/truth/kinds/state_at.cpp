@@ -9,15 +9,12 @@
 // at the stated time too.
 #include <cmath>
 
+#include "talus/harness/scenario/scenario_limits.h"
 #include "talus/harness/support/number_text.h"
 #include "truth/kinds/kind_support.h"
 
 namespace talus::harness {
 namespace {
-
-// How far a written quaternion's norm may be from 1: values written with ~7
-// significant digits (0.7071068) pass.
-constexpr double kTruthQuaternionTolerance = 1e-6;
 
 const char* QuantityName(StateQuantity quantity) {
   switch (quantity) {
@@ -87,7 +84,7 @@ Result<StateAtTruth> StateAtTruth::Read(TruthReader& reader) {
   }
   truth.orientation = Eigen::Vector4d(value[0].get<double>(), value[1].get<double>(), value[2].get<double>(),
                                       value[3].get<double>());
-  if (std::abs(truth.orientation.norm() - 1.0) > kTruthQuaternionTolerance) {
+  if (std::abs(truth.orientation.norm() - 1.0) > kUnitQuaternionTolerance) {
     return reader.Refuse(
         "/value", "quaternion is not unit length (norm " + FormatNumber(truth.orientation.norm()) + ")");
   }

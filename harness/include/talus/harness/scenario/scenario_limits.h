@@ -42,6 +42,14 @@ inline constexpr double kMinLength = 1e-6;
 /// the model.
 inline constexpr double kMaxSpeed = 299'792'458.0;
 
+/// How far a quaternion written in a scenario file (a body's orientation,
+/// a state_at truth's) may be from unit norm and still be taken as a
+/// rotation. A value written to 7 significant digits (0.7071068) is off by
+/// up to 5e-8 per component, so its norm by at most about 1e-7; 1e-6 leaves
+/// room for that and refuses anything that is not meant as a unit
+/// quaternion. Not a tolerance on any engine's result.
+inline constexpr double kUnitQuaternionTolerance = 1e-6;
+
 /// Largest |gravity|, m/s^2: at 1e9 a body falls 1e9 m (the world bound) in
 /// under 1.5 s, and beyond ~1e154 the norm itself overflows.
 inline constexpr double kMaxGravity = 1e9;
