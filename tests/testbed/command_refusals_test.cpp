@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "support/command_outcome.h"
+#include "testbed/testbed_command.h"
 
 namespace command_refusals_test {
 
@@ -17,24 +17,20 @@ namespace command_refusals_test {
 namespace fs = std::filesystem;
 
 using Outcome = talus::testing_support::CommandOutcome;
-
-Outcome Execute(const std::string& arguments) {
-  return talus::testing_support::RunCommand(std::string(TALUS_TESTBED_BINARY) + " " + arguments);
-}
-
-bool Has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using talus::testing_support::Contains;
+using talus::testing_support::RunTestbed;
 
 TEST(TestbedCommand, AnUnknownSubcommandIsNamedWithTheKnownOnes) {
-  const Outcome outcome = Execute("frobnicate");
+  const Outcome outcome = RunTestbed("frobnicate");
   EXPECT_EQ(outcome.code, 2);
-  EXPECT_TRUE(Has(outcome.output, "unknown subcommand \"frobnicate\" (known: run, report, check"))
+  EXPECT_TRUE(Contains(outcome.output, "unknown subcommand \"frobnicate\" (known: run, report, check"))
       << outcome.output;
 }
 
 TEST(TestbedCommand, AHugeJobCountIsRefusedWithItsRange) {
-  const Outcome outcome = Execute("run --jobs 1000000 -q");
+  const Outcome outcome = RunTestbed("run --jobs 1000000 -q");
   EXPECT_EQ(outcome.code, 2);
-  EXPECT_TRUE(Has(outcome.output, "1024")) << outcome.output;
+  EXPECT_TRUE(Contains(outcome.output, "1024")) << outcome.output;
 }
 
 TEST(TestbedCommand, OutOfRangeLimitsAreRefusedNamingTheFlagTheValueAndTheRange) {
@@ -49,9 +45,9 @@ TEST(TestbedCommand, OutOfRangeLimitsAreRefusedNamingTheFlagTheValueAndTheRange)
       {"--memory-limit 1e9", "--memory-limit: 1e9 is not 0 (none) or 16 to 1048576 MiB"},
   };
   for (const auto& c : cases) {
-    const Outcome outcome = Execute(std::string("run -q ") + c.arguments);
+    const Outcome outcome = RunTestbed(std::string("run -q ") + c.arguments);
     EXPECT_EQ(outcome.code, 2) << c.arguments;
-    EXPECT_TRUE(Has(outcome.output, c.expected)) << c.arguments << ": " << outcome.output;
+    EXPECT_TRUE(Contains(outcome.output, c.expected)) << c.arguments << ": " << outcome.output;
   }
 }
 
@@ -60,16 +56,17 @@ TEST(TestbedCommand, ARunWhoseStepFailsIsReportedAndTheOthersFinish) {
   fs::remove_all(out);
   const std::string scenario = std::string(TALUS_TEST_DATA_DIR) + "/scenarios_hostile/gravity_to_bound.json";
   const Outcome outcome =
-      Execute("run " + scenario + " -q --deterministic -b talus,bullet -j 1 -o " + out.string());
+      RunTestbed("run " + scenario + " -q --deterministic -b talus,bullet -j 1 -o " + out.string());
   EXPECT_EQ(outcome.code, 1);  // a run failed (it used to exit 0 with "error": "")
   // Step 143: talus falls exactly for constant gravity (step_failure_test.cpp).
-  EXPECT_TRUE(Has(outcome.output, "gravity_to_bound with talus failed: step 143: talus: World::Step refused"))
+  EXPECT_TRUE(
+      Contains(outcome.output, "gravity_to_bound with talus failed: step 143: talus: World::Step refused"))
       << outcome.output;
-  EXPECT_FALSE(Has(outcome.output, "with bullet failed")) << outcome.output;
+  EXPECT_FALSE(Contains(outcome.output, "with bullet failed")) << outcome.output;
   std::ifstream results(out / "results.json");
   std::ostringstream text;
   text << results.rdbuf();
-  EXPECT_TRUE(Has(text.str(), "\"error\": \"step 143: talus: World::Step refused"))
+  EXPECT_TRUE(Contains(text.str(), "\"error\": \"step 143: talus: World::Step refused"))
       << text.str().substr(0, 2000);
   // Written whole, with its trajectory and replay files, through temporary siblings, which are gone.
   for (const auto& entry : fs::directory_iterator(out)) {
@@ -82,10 +79,11 @@ TEST(TestbedCommand, ARunWhoseStepFailsIsReportedAndTheOthersFinish) {
 
 TEST(TestbedCommand, AnUnknownReplaySelectorIsRefused) {
   const std::string scenario = std::string(TALUS_SCENARIO_DIR) + "/stacking/box_rest.json";
-  const Outcome outcome = Execute("run " + scenario + " -q -b talus --replay box_rst -o " +
-                                  (fs::temp_directory_path() / "talus_command_refusals_replay").string());
+  const Outcome outcome = RunTestbed("run " + scenario + " -q -b talus --replay box_rst -o " +
+                                     (fs::temp_directory_path() / "talus_command_refusals_replay").string());
   EXPECT_EQ(outcome.code, 2);
-  EXPECT_TRUE(Has(outcome.output, "replay: \"box_rst\" names no run id or scenario name")) << outcome.output;
+  EXPECT_TRUE(Contains(outcome.output, "replay: \"box_rst\" names no run id or scenario name"))
+      << outcome.output;
 }
 #endif
 

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "support/command_outcome.h"
+#include "testbed/testbed_command.h"
 
 namespace in_process_command_test {
 
@@ -19,12 +19,8 @@ namespace in_process_command_test {
 namespace fs = std::filesystem;
 
 using Outcome = talus::testing_support::CommandOutcome;
-
-Outcome Execute(const std::string& arguments) {
-  return talus::testing_support::RunCommand(std::string(TALUS_TESTBED_BINARY) + " " + arguments);
-}
-
-bool Has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using talus::testing_support::Contains;
+using talus::testing_support::RunTestbed;
 
 std::string Read(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -41,8 +37,8 @@ TEST(TestbedCommand, InProcessJobsWriteTheSameResultsAsChildProcesses) {
   const fs::path base = fs::temp_directory_path() / ("talus_in_process_" + std::to_string(::getpid()));
   fs::remove_all(base);
   const std::string common = "run " + scenarios + " -q --deterministic -b talus,bullet -j 2 -o ";
-  const Outcome children = Execute(common + (base / "children").string());
-  const Outcome inProcess = Execute(common + (base / "in_process").string() + " --in-process");
+  const Outcome children = RunTestbed(common + (base / "children").string());
+  const Outcome inProcess = RunTestbed(common + (base / "in_process").string() + " --in-process");
   ASSERT_EQ(children.code, 0) << children.output;
   ASSERT_EQ(inProcess.code, 0) << inProcess.output;
   for (const char* name : {"results.json", "results.trajectories.json", "results.replays.json"}) {
@@ -54,15 +50,15 @@ TEST(TestbedCommand, InProcessJobsWriteTheSameResultsAsChildProcesses) {
 }
 
 TEST(TestbedCommand, InProcessRefusesAMemoryLimitNamingBothFlags) {
-  const Outcome outcome = Execute("run -q --in-process --memory-limit 100");
+  const Outcome outcome = RunTestbed("run -q --in-process --memory-limit 100");
   EXPECT_EQ(outcome.code, 2);
-  EXPECT_TRUE(Has(outcome.output, "--in-process")) << outcome.output;
-  EXPECT_TRUE(Has(outcome.output, "--memory-limit")) << outcome.output;
+  EXPECT_TRUE(Contains(outcome.output, "--in-process")) << outcome.output;
+  EXPECT_TRUE(Contains(outcome.output, "--memory-limit")) << outcome.output;
 }
 
 TEST(TestbedCommand, CheckRunsInProcessToo) {
-  const Outcome outcome = Execute("check " + std::string(TALUS_SCENARIO_DIR) +
-                                  "/stacking/box_column_2.json -q -b talus --in-process");
+  const Outcome outcome = RunTestbed("check " + std::string(TALUS_SCENARIO_DIR) +
+                                     "/stacking/box_column_2.json -q -b talus --in-process");
   EXPECT_EQ(outcome.code, 0) << outcome.output;
 }
 #endif
