@@ -7,15 +7,13 @@
 #include <atomic>
 #include <cmath>
 
-#include <Eigen/Eigenvalues>
-
 #include "dynamics/bounce_timing.h"
 
 namespace talus {
 namespace {
 
 // Pairs per chunk of Prepare's parallel pass: a pair's rows (with its
-// block's eigen decomposition) cost a few microseconds.
+// block's pseudo-inverse) cost a few microseconds.
 constexpr int kPairGrain = 32;
 
 // Linear velocity at the step's start: the integrator records it for the
@@ -247,39 +245,17 @@ void ContactRowSet::PrepareFrictionRows(const Contact& contact, int i, const Vec
 }
 
 // K = J M^-1 J^T of the pair's normal rows, from the rows' precomputed
-// angular terms and images, and its pseudo-inverse from an eigen
-// decomposition: eigenvalues below 1e-9 of the largest count as zero (four
-// coplanar points give rank 3; K is padded with the identity below four
-// points), so a symmetric load gets the least-norm, equal split.
-//
-// A closed form (deflating the null vector of the four points' affine
-// dependency, then a 4x4 inverse; 1.7x faster Prepare) agreed with this to
-// 1e-8 but is not used: pyramid 15's drift is a lottery at round-off level
-// (this same matrix scaled by 1 +- 1e-14 gives 1.5 mm or 1.2 cm; the closed
-// form drew 11 cm, past the 5 cm gate). See docs/dynamics.md.
+// angular terms and images, and its least-norm pseudo-inverse
+// (dynamics/normal_block.h: a closed form where provably well conditioned,
+// else the eigen decomposition), so a symmetric load gets the equal split.
 void ContactRowSet::PrepareBlock(const PairRows& pair) {
   const int count = pair.pointCount;
   const NormalRow* rows = &m_normals[static_cast<std::size_t>(pair.firstPoint)];
   const Eigen::Matrix4d k = NormalBlock(count, pair.invMassA, pair.invMassB,
                                         [rows](int i) -> const RowJacobian& { return rows[i].j; });
-  m_blockInverses[static_cast<std::size_t>(pair.block)] = BlockPseudoInverse(k, count);
-}
-
-Eigen::Matrix4d BlockPseudoInverse(const Eigen::Matrix4d& k, int count) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(k);
-  const Eigen::Vector4d values = eigen.eigenvalues();
-  const double largest = values.cwiseAbs().maxCoeff();
-  Eigen::Vector4d inverse = Eigen::Vector4d::Zero();
-  for (int i = 0; i < 4; ++i) {
-    if (values[i] > 1e-9 * largest) inverse[i] = 1.0 / values[i];
-  }
-  Eigen::Matrix4d blockInverse =
-      eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
-  for (int i = count; i < 4; ++i) {
-    blockInverse.row(i).setZero();
-    blockInverse.col(i).setZero();
-  }
-  return blockInverse;
+  NormalArms arms{};
+  for (int i = 0; i < count; ++i) arms[static_cast<std::size_t>(i)] = rows[i].j.angularA;
+  m_blockInverses[static_cast<std::size_t>(pair.block)] = BlockPseudoInverse(k, count, arms);
 }
 
 void ContactRowSet::StoreImpulses(std::span<Contact> contacts) const {

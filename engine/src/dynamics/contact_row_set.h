@@ -33,9 +33,9 @@
 //   Jacobian  J = [ t, rA x t, -t, -rB x t ],  m_t likewise with t for n.
 //
 // Normal block. A pair of 2-4 points gets K = J M^-1 J^T of its normal rows
-//   (4x4, rank 3 for four coplanar points) and its pseudo-inverse, from an
-//   eigen decomposition (BlockPseudoInverse), for the block solve of the
-//   sweeps (dynamics/sequential_impulse_sweeps.h).
+//   (4x4, rank 3 for four points) and its pseudo-inverse
+//   (dynamics/normal_block.h), for the block solve of the sweeps
+//   (dynamics/sequential_impulse_sweeps.h).
 //
 // Data (the layout the sweeps walk; see docs/dynamics.md). Prepare()
 //   gathers the velocities of every body a row touches into SolverBodies
@@ -66,35 +66,13 @@
 #include "dynamics/body_sim.h"
 #include "dynamics/contact.h"
 #include "dynamics/contact_rows.h"
+#include "dynamics/normal_block.h"
 #include "dynamics/solver_body.h"
 #include "jobs/job_pool.h"
 #include "talus/step_statistics.h"
 #include "talus/world_settings.h"
 
 namespace talus {
-
-/// The pseudo-inverse of a pair's normal block K (padded with the identity
-/// past `count` points): eigenvalues below 1e-9 of the largest count as
-/// zero, rows and columns past `count` zero. Shared with shock
-/// propagation's blocks with a held body.
-Eigen::Matrix4d BlockPseudoInverse(const Eigen::Matrix4d& k, int count);
-
-/// A pair's normal block K = J M^-1 J^T over its `count` points, the
-/// identity past them; `jacobian(i)` is point i's normal RowJacobian.
-/// Shared by the Sequential Impulses rows and the soft step's rows (shock
-/// propagation leaves a held body's terms out, so builds its own).
-template <class JacobianOf>
-Eigen::Matrix4d NormalBlock(int count, double invMassA, double invMassB, JacobianOf jacobian) {
-  Eigen::Matrix4d k = Eigen::Matrix4d::Identity();
-  for (int i = 0; i < count; ++i) {
-    for (int j = 0; j < count; ++j) {
-      const RowJacobian& ji = jacobian(i);
-      const RowJacobian& jj = jacobian(j);
-      k(i, j) = invMassA + invMassB + ji.angularA.dot(jj.imageA) + ji.angularB.dot(jj.imageB);
-    }
-  }
-  return k;
-}
 
 class ContactRowSet {
  public:

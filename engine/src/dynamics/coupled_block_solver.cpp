@@ -18,6 +18,7 @@
 #include <Eigen/Dense>
 
 #include "dynamics/pair_velocities.h"
+#include "dynamics/spd_inverse.h"
 
 namespace talus {
 
@@ -127,12 +128,10 @@ void FactorOperator(const PairRows& pair, const NormalRow* normals, const RowJac
   }
   coupled.blockTimesCoupling = blockInverse * knp;
   const Eigen::Matrix3d schur = kpp - knp.transpose() * coupled.blockTimesCoupling;
-  const Eigen::LDLT<Eigen::Matrix3d> factor(schur);
-  coupled.usable = factor.info() == Eigen::Success && factor.isPositive() && schur.allFinite();
-  if (coupled.usable) {
-    coupled.schurInverse = factor.solve(Eigen::Matrix3d::Identity());
-    coupled.usable = coupled.schurInverse.allFinite();
-  }
+  // Not positive definite (or not finite): SpdInverse returns NaNs and the
+  // pair keeps the per-point rows.
+  coupled.schurInverse = SpdInverse<3>(schur);
+  coupled.usable = coupled.schurInverse.allFinite();
 }
 
 // The block's velocity step: residuals r_n (normal targets) and r_p (zero

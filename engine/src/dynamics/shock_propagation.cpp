@@ -285,7 +285,9 @@ bool ShockPropagation::HeldBlock(ContactRowSet& rows, std::size_t order, const P
         k(i, j) = kij;
       }
     }
-    m_blocks[order] = BlockPseudoInverse(k, count);
+    NormalArms arms{};
+    for (int i = 0; i < count; ++i) arms[static_cast<std::size_t>(i)] = normals[i].j.angularA;
+    m_blocks[order] = BlockPseudoInverse(k, count, arms);
     m_blockBuilt[order] = 1;
   }
   Eigen::Vector4d rhs = Eigen::Vector4d::Zero();

@@ -212,16 +212,17 @@ void SoftStepSolver::PreparePair(std::span<const BodySim> bodies, const Contact&
   if (pair.block >= 0) PrepareBlock(pair);
 }
 
-// K+ of the pair's normal rows: K's eigen decomposition with the
-// eigenvalues below 1e-9 of the largest taken as zero (four coplanar points
-// give rank 3), zero rows and columns past the pair's points.
+// K+ of the pair's normal rows (dynamics/normal_block.h), zero rows and
+// columns past the pair's points.
 void SoftStepSolver::PrepareBlock(const SoftPair& pair) {
   const int count = pair.pointCount;
   const SoftPoint* points = &m_points[static_cast<std::size_t>(pair.firstPoint)];
   const Eigen::Matrix4d k = NormalBlock(count, pair.invMassA, pair.invMassB,
                                         [points](int i) -> const RowJacobian& { return points[i].normal; });
   // The same block and pseudo-inverse as the Sequential Impulses rows'.
-  m_blockInverses[static_cast<std::size_t>(pair.block)] = BlockPseudoInverse(k, count);
+  NormalArms arms{};
+  for (int i = 0; i < count; ++i) arms[static_cast<std::size_t>(i)] = points[i].normal.angularA;
+  m_blockInverses[static_cast<std::size_t>(pair.block)] = BlockPseudoInverse(k, count, arms);
 }
 
 // Greedy first fit in pair order (ColourPairs), then the pairs listed
