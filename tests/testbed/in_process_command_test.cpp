@@ -7,10 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
+#include "support/scratch_files.h"
 #include "testbed/testbed_command.h"
 
 namespace in_process_command_test {
@@ -20,31 +19,25 @@ namespace fs = std::filesystem;
 
 using Outcome = talus::testing_support::CommandOutcome;
 using talus::testing_support::Contains;
+using talus::testing_support::FreshScratchDir;
+using talus::testing_support::ReadWholeFile;
 using talus::testing_support::RunTestbed;
-
-std::string Read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // Two scenarios through Talus and a peer, at two jobs: once in child
 // processes (the default), once in process; every file of the set matches.
 TEST(TestbedCommand, InProcessJobsWriteTheSameResultsAsChildProcesses) {
   const std::string scenarios = std::string(TALUS_SCENARIO_DIR) + "/stacking/box_column_2.json " +
                                 std::string(TALUS_SCENARIO_DIR) + "/sliding/box_slide.json";
-  const fs::path base = fs::temp_directory_path() / ("talus_in_process_" + std::to_string(::getpid()));
-  fs::remove_all(base);
+  const fs::path base = FreshScratchDir("in_process_" + std::to_string(::getpid()));
   const std::string common = "run " + scenarios + " -q --deterministic -b talus,bullet -j 2 -o ";
   const Outcome children = RunTestbed(common + (base / "children").string());
   const Outcome inProcess = RunTestbed(common + (base / "in_process").string() + " --in-process");
   ASSERT_EQ(children.code, 0) << children.output;
   ASSERT_EQ(inProcess.code, 0) << inProcess.output;
   for (const char* name : {"results.json", "results.trajectories.json", "results.replays.json"}) {
-    const std::string expected = Read(base / "children" / name);
+    const std::string expected = ReadWholeFile(base / "children" / name);
     EXPECT_FALSE(expected.empty()) << name;
-    EXPECT_EQ(Read(base / "in_process" / name), expected) << name;
+    EXPECT_EQ(ReadWholeFile(base / "in_process" / name), expected) << name;
   }
   fs::remove_all(base);
 }

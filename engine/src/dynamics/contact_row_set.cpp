@@ -251,11 +251,10 @@ void ContactRowSet::PrepareFrictionRows(const Contact& contact, int i, const Vec
 void ContactRowSet::PrepareBlock(const PairRows& pair) {
   const int count = pair.pointCount;
   const NormalRow* rows = &m_normals[static_cast<std::size_t>(pair.firstPoint)];
-  const Eigen::Matrix4d k = NormalBlock(count, pair.invMassA, pair.invMassB,
-                                        [rows](int i) -> const RowJacobian& { return rows[i].j; });
-  NormalArms arms{};
-  for (int i = 0; i < count; ++i) arms[static_cast<std::size_t>(i)] = rows[i].j.angularA;
-  m_blockInverses[static_cast<std::size_t>(pair.block)] = BlockPseudoInverse(k, count, arms);
+  const auto jacobian = [rows](int i) -> const RowJacobian& { return rows[i].j; };
+  const Eigen::Matrix4d k = NormalBlock(count, pair.invMassA, pair.invMassB, jacobian);
+  m_blockInverses[static_cast<std::size_t>(pair.block)] =
+      BlockPseudoInverse(k, count, NormalArmsOf(count, jacobian));
 }
 
 void ContactRowSet::StoreImpulses(std::span<Contact> contacts) const {

@@ -3,13 +3,13 @@
 // the acceptance rule are in dynamics/normal_block.h).
 #include "dynamics/normal_block.h"
 
-#include "dynamics/spd_inverse.h"
-
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
 #include <Eigen/Eigenvalues>
+
+#include "dynamics/spd_inverse.h"
 
 namespace talus {
 namespace {

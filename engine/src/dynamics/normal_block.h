@@ -18,13 +18,16 @@
 //     (K + s z z^T)^-1 = K+ + z z^T / s, so K+ = (K + s z z^T)^-1 - z z^T / s.
 // Each is accepted only when the inverse it took is provably well
 // conditioned: 1 / ||M^-1||_F (a lower bound of M's least eigenvalue)
-// above 1e-9 times trace(K) (an upper bound of K's largest). Otherwise
+// above 1e-9 times an upper bound of the eigen path's largest eigenvalue,
+// trace(K) for four points and max(trace(K), 1) below four (the identity
+// padding's eigenvalue 1 is among the eigen path's). Otherwise
 // (collinear or coincident points, a body nothing moves) the eigen
 // decomposition of K decides the rank, its eigenvalues below 1e-9 of the
 // largest counted as zero. An accepted closed form is then the answer the
 // eigen decomposition gives, to round-off: every eigenvalue it inverted is
 // above the eigen path's threshold, and z's is at round-off. The cost
-// measured either way is in docs/dynamics.md, "Normal block".
+// measured either way is in docs/dynamics.md, "Normal block: the closed
+// form".
 #pragma once
 
 #include <array>
@@ -56,6 +59,15 @@ Eigen::Matrix4d NormalBlock(int count, double invMassA, double invMassB, Jacobia
 /// The angular parts rA_i x n of a pair's normal rows, points past the
 /// count unread: what the four-point closed form needs besides K.
 using NormalArms = std::array<Vec3, 4>;
+
+/// The arms of a pair's `count` points; `jacobian(i)` is point i's normal
+/// RowJacobian, as for NormalBlock.
+template <class JacobianOf>
+NormalArms NormalArmsOf(int count, JacobianOf jacobian) {
+  NormalArms arms{};
+  for (int i = 0; i < count; ++i) arms[static_cast<std::size_t>(i)] = jacobian(i).angularA;
+  return arms;
+}
 
 /// The pseudo-inverse of a pair's normal block K over `count` points
 /// (padded with the identity past them, as NormalBlock builds it): the

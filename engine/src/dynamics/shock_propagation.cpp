@@ -285,8 +285,8 @@ bool ShockPropagation::HeldBlock(ContactRowSet& rows, std::size_t order, const P
         k(i, j) = kij;
       }
     }
-    NormalArms arms{};
-    for (int i = 0; i < count; ++i) arms[static_cast<std::size_t>(i)] = normals[i].j.angularA;
+    const NormalArms arms =
+        NormalArmsOf(count, [normals](int i) -> const RowJacobian& { return normals[i].j; });
     m_blocks[order] = BlockPseudoInverse(k, count, arms);
     m_blockBuilt[order] = 1;
   }

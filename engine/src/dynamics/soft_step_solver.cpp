@@ -217,12 +217,11 @@ void SoftStepSolver::PreparePair(std::span<const BodySim> bodies, const Contact&
 void SoftStepSolver::PrepareBlock(const SoftPair& pair) {
   const int count = pair.pointCount;
   const SoftPoint* points = &m_points[static_cast<std::size_t>(pair.firstPoint)];
-  const Eigen::Matrix4d k = NormalBlock(count, pair.invMassA, pair.invMassB,
-                                        [points](int i) -> const RowJacobian& { return points[i].normal; });
+  const auto jacobian = [points](int i) -> const RowJacobian& { return points[i].normal; };
   // The same block and pseudo-inverse as the Sequential Impulses rows'.
-  NormalArms arms{};
-  for (int i = 0; i < count; ++i) arms[static_cast<std::size_t>(i)] = points[i].normal.angularA;
-  m_blockInverses[static_cast<std::size_t>(pair.block)] = BlockPseudoInverse(k, count, arms);
+  const Eigen::Matrix4d k = NormalBlock(count, pair.invMassA, pair.invMassB, jacobian);
+  m_blockInverses[static_cast<std::size_t>(pair.block)] =
+      BlockPseudoInverse(k, count, NormalArmsOf(count, jacobian));
 }
 
 // Greedy first fit in pair order (ColourPairs), then the pairs listed
