@@ -156,6 +156,9 @@ TEST(TalusRows, EachVariantDepartsFromTheTalusRowByItsListedSettingsOnly) {
     soft.methods.stepSolver = StepSolver::SoftStep;
     soft.methods.frictionSolve = FrictionSolve::PerPoint;
     EXPECT_TRUE(TalusRowSettings(run, "talus-soft").Value() == soft);
+    WorldSettings manifold = talus;
+    manifold.methods.frictionSolve = FrictionSolve::PerManifold;
+    EXPECT_TRUE(TalusRowSettings(run, "talus-manifold").Value() == manifold);
 
     WorldSettings writeUp = talus;
     if (run.scenario.world.gyroscopic) writeUp.methods.rotation = RotationIntegrator::MomentumSplitting;
@@ -206,6 +209,7 @@ TEST(TalusRows, EachRowsSettingsTextListsItsDepartures) {
   EXPECT_EQ(Departures("talus-split", run), std::set<std::string>{"position correction"});
   EXPECT_EQ(Departures("talus-coloured", run), (std::set<std::string>{"solver", "friction solve"}));
   EXPECT_EQ(Departures("talus-soft", run), (std::set<std::string>{"solver", "friction solve"}));
+  EXPECT_EQ(Departures("talus-manifold", run), std::set<std::string>{"friction solve"});
   EXPECT_EQ(
       Departures("talus-writeup", run),
       (std::set<std::string>{"integrator", "warm starting", "block solver (a pair's normal rows together)",

@@ -6,9 +6,9 @@
 // They are not tunables a user of the engine needs: the defaults are the
 // engine the testbed validates (its `talus` row runs WorldSettings{}
 // unchanged), and the testbed's named variants (talus-writeup, talus-split,
-// talus-coloured, talus-soft; docs/testbed-backends.md) are the ones that
-// change them. WorldSettings::methods holds one; combinations in which a
-// switch would do nothing are refused by World::Create.
+// talus-coloured, talus-soft, talus-manifold; docs/testbed-backends.md) are
+// the ones that change them. WorldSettings::methods holds one; combinations
+// in which a switch would do nothing are refused by World::Create.
 #pragma once
 
 #include "talus/narrow_phase.h"
@@ -141,6 +141,17 @@ enum class FrictionSolve {
   /// blockSolver on and contactOrder = PairByPair: World::Create
   /// refuses it with either of the others, where it would do nothing.
   CoupledBlock,
+  /// Three rows per pair instead of two per point: slip along t1 and t2 at
+  /// the manifold's centre, bounded together by a disc of radius mu times
+  /// the pair's total normal impulse (the round Coulomb cone), and spin
+  /// about n, bounded by mu times the sum of each point's normal impulse
+  /// times its distance from the centre. A pair that slides and spins at
+  /// once gets both bounds in full (per point they share one), so it is
+  /// braked harder. Stored per point like PerPoint, so warm starting and
+  /// StepStatistics read the same. Needs contactOrder = PairByPair
+  /// (World::Create refuses the coloured order, whose lanes hold per-point
+  /// rows). docs/dynamics.md, "Friction per manifold".
+  PerManifold,
 };
 
 /// Which step solver advances the bodies (the pipeline after the narrow
@@ -266,7 +277,9 @@ struct MethodSettings {
   /// accurate at 440 of 1,056 points and less at none, for about 1.2 times
   /// the step of a large pyramid (docs/dynamics.md, "Coupled block").
   /// PerPoint is the write-up's, and the only one the coloured solver and
-  /// the row-by-row normals (blockSolver off) have.
+  /// the row-by-row normals (blockSolver off) have. PerManifold makes the
+  /// sweeps about 30% cheaper but drops a 1000:1 load on light boxes and
+  /// the arch (docs/dynamics.md, "Friction per manifold").
   FrictionSolve frictionSolve = FrictionSolve::CoupledBlock;
   /// Run WorldSettings::broadPhase in every world, however small. Default false: worlds
   /// of at most 128 active bodies take brute force whatever is selected,

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "dynamics/bounce_timing.h"
+#include "dynamics/manifold_friction.h"
 
 namespace talus {
 namespace {
@@ -115,6 +116,7 @@ void ContactRowSet::Prepare(std::span<const BodySim> bodies, std::span<const Con
   // Every slot below is written by its pair before anything reads it.
   m_normals.resize(static_cast<std::size_t>(totals.points));
   m_frictions.resize(static_cast<std::size_t>(totals.frictions));
+  m_levers.resize(static_cast<std::size_t>(totals.points));  // read only where written
   m_cold.resize(static_cast<std::size_t>(totals.points));
   m_blockInverses.resize(static_cast<std::size_t>(totals.blocks));
   BuildPairsOnThreads(bodies, contacts, settings, h, runner, stats);
@@ -132,7 +134,9 @@ ContactRowSet::RowTotals ContactRowSet::AddPairHeaders(std::span<const BodySim> 
     if ((!a.IsSolverDynamic() && !b.IsSolverDynamic()) || contact.manifold.pointCount == 0) continue;
     const PairRows pair = MakePairHeader(bodies, contact, static_cast<int>(c), settings, totals);
     stats.contactPoints += pair.pointCount;
-    if (pair.hasFriction) {
+    if (pair.manifoldFriction) {
+      stats.frictionRows += ManifoldFrictionRowCount(pair.pointCount);
+    } else if (pair.hasFriction) {
       stats.frictionRows += 2 * pair.pointCount;
     } else {
       stats.frictionRowsSkipped += 2 * pair.pointCount;
@@ -155,12 +159,17 @@ PairRows ContactRowSet::MakePairHeader(std::span<const BodySim> bodies, const Co
   pair.normal = contact.manifold.normal;
   pair.friction = contact.friction;
   pair.hasFriction = contact.friction > 0.0;
+  pair.manifoldFriction = pair.hasFriction && settings.methods.frictionSolve == FrictionSolve::PerManifold;
   pair.persisted = contact.persisted && settings.methods.warmStarting;
   pair.invMassA = m_bodies.InvMass(pair.bodyA);
   pair.invMassB = m_bodies.InvMass(pair.bodyB);
   if (UsesNormalBlock(settings, pair.pointCount)) pair.block = totals.blocks++;
   totals.points += pair.pointCount;
-  if (pair.hasFriction) totals.frictions += 2 * pair.pointCount;
+  if (pair.manifoldFriction) {
+    totals.frictions += ManifoldFrictionRowCount(pair.pointCount);
+  } else if (pair.hasFriction) {
+    totals.frictions += 2 * pair.pointCount;
+  }
   return pair;
 }
 
@@ -191,6 +200,7 @@ void ContactRowSet::PreparePair(std::span<const BodySim> bodies, const Contact& 
   const BodySim& b = bodies[static_cast<std::size_t>(contact.bodyB)];
   if (pair.hasFriction) ChooseTangents(a, b, contact.manifold, pair);
   for (int i = 0; i < pair.pointCount; ++i) PreparePoint(a, b, contact, i, settings, h, pair, counts);
+  if (pair.manifoldFriction) PrepareManifoldFriction(a, b, contact, settings, pair);
   if (pair.block >= 0) PrepareBlock(pair);
 }
 
@@ -225,7 +235,7 @@ void ContactRowSet::PreparePoint(const BodySim& a, const BodySim& b, const Conta
     ++counts.restitutionSkipped;
   }
   if (settings.methods.warmStarting) row.impulse = contact.normalImpulse[pi];
-  if (pair.hasFriction) PrepareFrictionRows(contact, i, rA, rB, settings, pair);
+  if (pair.hasFriction && !pair.manifoldFriction) PrepareFrictionRows(contact, i, rA, rB, settings, pair);
   m_normals[static_cast<std::size_t>(pair.firstPoint + i)] = row;
   m_cold[static_cast<std::size_t>(pair.firstPoint + i)] = cold;
 }
@@ -242,6 +252,49 @@ void ContactRowSet::PrepareFrictionRows(const Contact& contact, int i, const Vec
     }
     m_frictions[static_cast<std::size_t>(pair.firstFriction + 2 * i + k)] = friction;
   }
+}
+
+// The slip rows at the manifold's centre, the spin row about n, the levers,
+// and the warm start summed from the stored per-point vectors
+// (dynamics/manifold_friction.h).
+void ContactRowSet::PrepareManifoldFriction(const BodySim& a, const BodySim& b, const Contact& contact,
+                                            const WorldSettings& settings, const PairRows& pair) {
+  const Vec3& n = pair.normal;
+  const ContactManifold& manifold = contact.manifold;
+  std::array<Vec3, kMaxManifoldPoints> offsets;
+  const std::span<Vec3> offsetSpan(offsets.data(), static_cast<std::size_t>(pair.pointCount));
+  const Vec3 centre = ManifoldOffsets(
+      pair.pointCount, n,
+      [&manifold](int i) { return manifold.points[static_cast<std::size_t>(i)].position; }, offsetSpan);
+  for (int i = 0; i < pair.pointCount; ++i) {
+    m_levers[static_cast<std::size_t>(pair.firstPoint + i)] = offsets[static_cast<std::size_t>(i)].norm();
+  }
+  const Mat3& invInertiaA = m_bodies.InvInertia(pair.bodyA);
+  const Mat3& invInertiaB = m_bodies.InvInertia(pair.bodyB);
+  FrictionRow* rows = &m_frictions[static_cast<std::size_t>(pair.firstFriction)];
+  for (int k = 0; k < 2; ++k) {
+    rows[k] = FrictionRow{};
+    rows[k].j =
+        MakeRowJacobian(pair.tangent[k], centre - a.center, centre - b.center, invInertiaA, invInertiaB);
+    rows[k].mass = RowEffectiveMass(rows[k].j, pair.invMassA, pair.invMassB);
+  }
+  const bool spin = pair.pointCount >= 2;
+  if (spin) {
+    FrictionRow& row = rows[2];
+    row = FrictionRow{};
+    row.j.angularA = n;
+    row.j.angularB = n;
+    row.j.imageA = invInertiaA * n;
+    row.j.imageB = invInertiaB * n;
+    const double k = n.dot(row.j.imageA) + n.dot(row.j.imageB);
+    row.mass = k > 0.0 ? 1.0 / k : 0.0;
+  }
+  if (!settings.methods.warmStarting) return;
+  const ManifoldFrictionImpulses loaded = SumManifoldFriction(
+      std::span<const Vec3>(contact.frictionImpulse.data(), offsetSpan.size()), offsetSpan, n, pair.tangent);
+  rows[0].impulse = loaded.slip[0];
+  rows[1].impulse = loaded.slip[1];
+  if (spin) rows[2].impulse = loaded.spin;
 }
 
 // K = J M^-1 J^T of the pair's normal rows, from the rows' precomputed
@@ -270,6 +323,7 @@ void ContactRowSet::StoreImpulses(std::span<Contact> contacts) const {
         continue;
       }
       contact.normalImpulse[pi] = m_normals[static_cast<std::size_t>(pair.firstPoint + i)].impulse;
+      if (pair.manifoldFriction) continue;  // StoreManifoldFriction below
       if (pair.hasFriction) {
         const std::size_t f = static_cast<std::size_t>(pair.firstFriction + 2 * i);
         contact.frictionImpulse[pi] =
@@ -278,6 +332,29 @@ void ContactRowSet::StoreImpulses(std::span<Contact> contacts) const {
         contact.frictionImpulse[pi] = Vec3::Zero();
       }
     }
+    if (pair.manifoldFriction) StoreManifoldFriction(pair, contact);
+  }
+}
+
+// Shared out over the points (dynamics/manifold_friction.h), their offsets
+// from the arms kept in the cold data (an arm differs from the point's
+// position by the body's centre, which the mean removes). A timed bounce's
+// point keeps no friction, as with per-point rows.
+void ContactRowSet::StoreManifoldFriction(const PairRows& pair, Contact& contact) const {
+  const PointCold* cold = &m_cold[static_cast<std::size_t>(pair.firstPoint)];
+  const FrictionRow* rows = &m_frictions[static_cast<std::size_t>(pair.firstFriction)];
+  std::array<Vec3, kMaxManifoldPoints> offsets;
+  const std::span<Vec3> offsetSpan(offsets.data(), static_cast<std::size_t>(pair.pointCount));
+  ManifoldOffsets(
+      pair.pointCount, pair.normal, [cold](int i) { return cold[i].armA; }, offsetSpan);
+  ManifoldFrictionImpulses impulses;
+  impulses.slip[0] = rows[0].impulse;
+  impulses.slip[1] = rows[1].impulse;
+  if (pair.pointCount >= 2) impulses.spin = rows[2].impulse;
+  const std::span<Vec3> perPoint(contact.frictionImpulse.data(), offsetSpan.size());
+  ShareManifoldFriction(impulses, offsetSpan, pair.normal, pair.tangent, perPoint);
+  for (int i = 0; i < pair.pointCount; ++i) {
+    if (cold[i].timedBounce) perPoint[static_cast<std::size_t>(i)] = Vec3::Zero();
   }
 }
 

@@ -45,7 +45,8 @@
 //   * one PairRows header per touching pair (solver-body indices, normal,
 //     tangents, inverse masses, friction, flags);
 //   * one NormalRow per point and two FrictionRows per point (one per
-//     tangent), each with its Jacobian's angular parts r x d precomputed
+//     tangent; with FrictionSolve::PerManifold three per pair instead,
+//     dynamics/manifold_friction.h), each with its Jacobian's angular parts r x d precomputed
 //     together with their images under the inverse inertia, IA^-1 (rA x d)
 //     and IB^-1 (rB x d). A row is then
 //       Cdot = d.(vA - vB) + (rA x d).wA - (rB x d).wB     (two dot products)
@@ -95,6 +96,10 @@ class ContactRowSet {
   [[nodiscard]] const std::vector<FrictionRow>& Frictions() const { return m_frictions; }
   std::vector<PointCold>& Cold() { return m_cold; }
   [[nodiscard]] const std::vector<PointCold>& Cold() const { return m_cold; }
+  /// Per point of a pair with manifold friction: its offset's length from
+  /// the manifold's centre in the contact plane, metres (the spin row's
+  /// lever, dynamics/manifold_friction.h); unset for other pairs.
+  [[nodiscard]] const std::vector<double>& Levers() const { return m_levers; }
   [[nodiscard]] std::span<const Eigen::Matrix4d> BlockInverses() const { return m_blockInverses; }
   /// Normal blocks of the last Prepare (PairRows::block indexes them).
   [[nodiscard]] int BlockCount() const { return static_cast<int>(m_blockInverses.size()); }
@@ -139,13 +144,22 @@ class ContactRowSet {
   /// The two friction rows of point `i` at arms rA, rB.
   void PrepareFrictionRows(const Contact& contact, int i, const Vec3& rA, const Vec3& rB,
                            const WorldSettings& settings, const PairRows& pair);
+  /// The manifold friction rows of a pair (PairRows::manifoldFriction) and
+  /// its points' levers.
+  void PrepareManifoldFriction(const BodySim& a, const BodySim& b, const Contact& contact,
+                               const WorldSettings& settings, const PairRows& pair);
+  /// A manifold-friction pair's impulses back as per-point vectors.
+  void StoreManifoldFriction(const PairRows& pair, Contact& contact) const;
   void PrepareBlock(const PairRows& pair);
 
   SolverBodies m_bodies;
   std::vector<PairRows> m_pairs;
-  std::vector<NormalRow> m_normals;      ///< one per point
-  std::vector<FrictionRow> m_frictions;  ///< two per point (t1, t2) of the pairs with friction
-  std::vector<PointCold> m_cold;         ///< one per point
+  std::vector<NormalRow> m_normals;  ///< one per point
+  /// Two per point (t1, t2) of the pairs with friction, or the manifold's
+  /// rows (ManifoldFrictionRowCount) of a pair with manifold friction.
+  std::vector<FrictionRow> m_frictions;
+  std::vector<double> m_levers;   ///< one per point; written for manifold-friction pairs only
+  std::vector<PointCold> m_cold;  ///< one per point
   std::vector<Eigen::Matrix4d> m_blockInverses;
   int m_newPairs = 0;      ///< pairs that did not persist
   int m_timedBounces = 0;  ///< points with a timed bounce (PointCold::timedBounce)

@@ -127,18 +127,23 @@ static_assert(sizeof(CoupledBlockRows) <= 384, "CoupledBlockRows: six cache line
 struct PairRows {
   int bodyA = -1, bodyB = -1;  ///< solver-body indices
   int firstPoint = 0, pointCount = 0;
-  int firstFriction = 0;  ///< index into the friction rows of point 0's t1 row (t2 follows)
-  int block = -1;         ///< index into the block inverses, -1 when solved row by row
-  int contact = -1;       ///< index into the contacts handed to Prepare
+  /// Index into the friction rows: point 0's t1 row (t2 follows, then the
+  /// next point's), or with manifoldFriction the manifold's rows
+  /// (dynamics/manifold_friction.h).
+  int firstFriction = 0;
+  int block = -1;    ///< index into the block inverses, -1 when solved row by row
+  int contact = -1;  ///< index into the contacts handed to Prepare
   Vec3 normal = Vec3::Zero();
   Vec3 tangent[2] = {Vec3::Zero(), Vec3::Zero()};
   double invMassA = 0.0, invMassB = 0.0;  ///< 1/kg; zero for bodies contacts cannot move
   double friction = 0.0;
   bool hasFriction = false;
   bool persisted = false;  ///< the pair touched last step (see Contact::persisted)
+  /// Friction as the manifold's rows (FrictionSolve::PerManifold), not per point.
+  bool manifoldFriction = false;
 };
 // Every pass over a pair reads its header first: 136 bytes, just over two
-// cache lines (the wide solver's bundle header is compared against this
+// cache lines (the flags sit in the tail padding) (the wide solver's bundle header is compared against this
 // figure, wide_contact_solver.h). The Mat3s and the block inverse it once
 // carried (~450 bytes) live apart (docs/dynamics.md, "Compact headers").
 static_assert(sizeof(PairRows) <= 136, "PairRows: 136 bytes, about two cache lines per pair");

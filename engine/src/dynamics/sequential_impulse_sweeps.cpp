@@ -21,6 +21,7 @@
 
 #include <Eigen/Core>
 
+#include "dynamics/manifold_friction.h"
 #include "dynamics/pair_velocities.h"
 
 namespace talus {
@@ -37,7 +38,7 @@ void SequentialImpulseSweeps::WarmStartPair(ContactRowSet& rows, const PairRows&
     Vec3 impulse = row.impulse * pair.normal;
     Vec3 turnA = row.impulse * row.j.imageA;
     Vec3 turnB = row.impulse * row.j.imageB;
-    if (pair.hasFriction) {
+    if (pair.hasFriction && !pair.manifoldFriction) {
       for (int k = 0; k < 2; ++k) {
         const FrictionRow& f = rows.Frictions()[static_cast<std::size_t>(pair.firstFriction + 2 * i + k)];
         impulse += f.impulse * pair.tangent[k];
@@ -50,7 +51,37 @@ void SequentialImpulseSweeps::WarmStartPair(ContactRowSet& rows, const PairRows&
     b.v -= pair.invMassB * impulse;
     b.w -= turnB;
   }
+  if (!pair.manifoldFriction) return;
+  // The manifold's rows: slip at the centre, spin (no linear part).
+  const FrictionRow* rowsOfPair = &rows.Frictions()[static_cast<std::size_t>(pair.firstFriction)];
+  for (int k = 0; k < ManifoldFrictionRowCount(pair.pointCount); ++k) {
+    const FrictionRow& f = rowsOfPair[k];
+    if (k < 2) {
+      a.v += pair.invMassA * f.impulse * pair.tangent[k];
+      b.v -= pair.invMassB * f.impulse * pair.tangent[k];
+    }
+    a.w += f.impulse * f.j.imageA;
+    b.w -= f.impulse * f.j.imageB;
+  }
 }
+
+namespace {
+
+// The sweeps' side of SolveManifoldFrictionRows: the rows' own masses, both
+// bodies free, the change noted for the extra sweeps' stop test.
+struct FreeBodiesPolicy {
+  const PairRows& pair;
+  ChangeTracker& change;
+  [[nodiscard]] double Mass(const FrictionRow& row, bool /*linear*/) const { return row.mass; }
+  void Apply(PairVelocities& v, double delta, const Vec3& d, const FrictionRow& row) const {
+    v.Apply(delta, d, row.j, pair.invMassA, pair.invMassB);
+  }
+  void Note(double velocityChange) const {
+    if (change.active) change.largest = std::max(change.largest, velocityChange);
+  }
+};
+
+}  // namespace
 
 template <bool kTrack>
 bool SequentialImpulseSweeps::SolveNormalBlock(ContactRowSet& rows, const PairRows& pair) {
@@ -123,6 +154,14 @@ void SequentialImpulseSweeps::SolveFriction(ContactRowSet& rows, const CoupledBl
   const NormalRow* normals = &rows.Normals()[static_cast<std::size_t>(pair.firstPoint)];
   FrictionRow* frictions = &rows.Frictions()[static_cast<std::size_t>(pair.firstFriction)];
   ChangeTracker change(pair);
+  if (pair.manifoldFriction) {
+    FreeBodiesPolicy policy{pair, change};
+    SolveManifoldFrictionRows(pair, normals, &rows.Levers()[static_cast<std::size_t>(pair.firstPoint)],
+                              frictions, v, policy);
+    v.Store(a, b);
+    if constexpr (kTrack) m_largestChange = std::max(m_largestChange, change.largest);
+    return;
+  }
   for (int i = 0; i < pair.pointCount; ++i) {
     const double bound = pair.friction * normals[i].impulse;
     for (int k = 0; k < 2; ++k) {

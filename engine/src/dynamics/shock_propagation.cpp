@@ -40,6 +40,7 @@
 #include <cmath>
 #include <limits>
 
+#include "dynamics/manifold_friction.h"
 #include "dynamics/pair_velocities.h"
 
 namespace talus {
@@ -68,6 +69,25 @@ void ApplyHeld(PairVelocities& v, double delta, const Vec3& d, const Row& row, c
     v.wB -= delta * row.j.imageB;
   }
 }
+
+// Shock propagation's side of SolveManifoldFrictionRows: masses and impulses
+// with the held body left out; the spin row has no linear part, so its
+// mass has no inverse-mass term.
+template <typename Sides>
+struct HeldBodyPolicy {
+  const Sides& sides;
+  double& largest;
+  [[nodiscard]] double Mass(const FrictionRow& row, bool linear) const {
+    double k = linear ? sides.invMassA + sides.invMassB : 0.0;
+    if (sides.moveA) k += row.j.angularA.dot(row.j.imageA);
+    if (sides.moveB) k += row.j.angularB.dot(row.j.imageB);
+    return k > 0.0 ? 1.0 / k : 0.0;
+  }
+  void Apply(PairVelocities& v, double delta, const Vec3& d, const FrictionRow& row) const {
+    ApplyHeld(v, delta, d, row, sides);
+  }
+  void Note(double velocityChange) const { largest = std::max(largest, velocityChange); }
+};
 
 // Whether a pair carries load now (the levels): some point within one slop
 // of touching, the band the solver treats as resting. A speculative pair
@@ -325,6 +345,12 @@ void ShockPropagation::HeldFriction(ContactRowSet& rows, const PairRows& pair, c
                                     PairVelocities& v, double& largest) {
   const NormalRow* normals = &rows.Normals()[static_cast<std::size_t>(pair.firstPoint)];
   FrictionRow* frictions = &rows.Frictions()[static_cast<std::size_t>(pair.firstFriction)];
+  if (pair.manifoldFriction) {
+    HeldBodyPolicy<Sides> policy{sides, largest};
+    SolveManifoldFrictionRows(pair, normals, &rows.Levers()[static_cast<std::size_t>(pair.firstPoint)],
+                              frictions, v, policy);
+    return;
+  }
   for (int i = 0; i < pair.pointCount; ++i) {
     const double bound = pair.friction * normals[i].impulse;
     for (int k = 0; k < 2; ++k) {

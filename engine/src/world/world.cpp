@@ -119,7 +119,8 @@ std::string CheckMethodEnums(const MethodSettings& m) {
   if (m.contactOrder != ContactOrder::PairByPair && m.contactOrder != ContactOrder::ByColour) {
     return NotAnEnum("contactOrder", m.contactOrder, "ContactOrder");
   }
-  if (m.frictionSolve != FrictionSolve::PerPoint && m.frictionSolve != FrictionSolve::CoupledBlock) {
+  if (m.frictionSolve != FrictionSolve::PerPoint && m.frictionSolve != FrictionSolve::CoupledBlock &&
+      m.frictionSolve != FrictionSolve::PerManifold) {
     return NotAnEnum("frictionSolve", m.frictionSolve, "FrictionSolve");
   }
   if (m.translation != TranslationIntegrator::SymplecticEuler &&
@@ -149,6 +150,10 @@ std::string CheckMethodCombinations(const MethodSettings& m) {
     return "WorldSettings.methods.frictionSolve = CoupledBlock (the default) needs blockSolver = true: the "
            "coupled block extends a pair's normal block, which blockSolver = false turns off; select "
            "frictionSolve = PerPoint with it";
+  }
+  if (m.frictionSolve == FrictionSolve::PerManifold && m.contactOrder != ContactOrder::PairByPair) {
+    return "WorldSettings.methods.frictionSolve = PerManifold needs contactOrder = PairByPair: the coloured "
+           "order's lanes hold per-point friction rows; select frictionSolve = PerPoint with it";
   }
   return {};
 }

@@ -291,6 +291,12 @@ void RegisterTalusBackends(harness::BackendRegistry& registry, TalusBackendOptio
                     "restitution; Box2D v3's) instead of Sequential Impulses",
                     independent,
                     [options](const Run& run) { return TalusBackend::Create(run, Variant::Soft, options); });
+  registry.Register("talus-manifold",
+                    "Talus (double): engine defaults with friction per manifold (slip at the centre "
+                    "and a spin row) instead of the coupled block and per-point rows",
+                    independent, [options](const Run& run) {
+                      return TalusBackend::Create(run, Variant::ManifoldFriction, options);
+                    });
 }
 
 }  // namespace talus::reference

@@ -39,10 +39,16 @@ std::string ContactSolverText(ContactOrder solver) {
 }
 
 std::string FrictionSolveText(FrictionSolve friction) {
-  return friction == FrictionSolve::PerPoint
-             ? "per point (two rows a point, one after another)"
-             : "coupled block: a sticking pair's normals and friction (slip and spin patterns) solved "
-               "together, else per point";
+  switch (friction) {
+    case FrictionSolve::PerPoint:
+      return "per point (two rows a point, one after another)";
+    case FrictionSolve::CoupledBlock:
+      return "coupled block: a sticking pair's normals and friction (slip and spin patterns) solved "
+             "together, else per point";
+    case FrictionSolve::PerManifold:
+      return "per manifold: slip at the centre inside a disc, and spin about the normal";
+  }
+  return "unknown";
 }
 
 std::string BounceTimingText(BounceTiming timing) {

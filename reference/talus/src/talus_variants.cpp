@@ -149,6 +149,11 @@ WorldSettings MakeSettings(const WorldSettings& base, const Run& run, Variant va
       settings.methods.stepSolver = StepSolver::SoftStep;
       settings.methods.frictionSolve = FrictionSolve::PerPoint;
       break;
+    case Variant::ManifoldFriction:
+      // Friction as the manifold's three rows (docs/dynamics.md, "Friction
+      // per manifold") in place of the coupled block and per-point rows.
+      settings.methods.frictionSolve = FrictionSolve::PerManifold;
+      break;
   }
   return settings;
 }
@@ -167,6 +172,8 @@ const char* VariantName(Variant variant) {
       return "talus-coloured";
     case Variant::Soft:
       return "talus-soft";
+    case Variant::ManifoldFriction:
+      return "talus-manifold";
   }
   return "talus";
 }
@@ -195,7 +202,9 @@ Result<WorldSettings> TalusRowSettings(const harness::Run& run, std::string_view
   // on "..." + std::string(row) here.
   std::string message = "\"";
   message += row;
-  message += "\" is not a Talus row (talus, talus-writeup, talus-split, talus-coloured, talus-soft)";
+  message +=
+      "\" is not a Talus row (talus, talus-writeup, talus-split, talus-coloured, talus-soft, "
+      "talus-manifold)";
   return Error{message};
 }
 

@@ -16,11 +16,12 @@
 namespace talus::reference {
 
 /// Which engine options a variant uses.
-enum class Variant { Defaults, WriteUp, SplitImpulses, Coloured, Soft };
+enum class Variant { Defaults, WriteUp, SplitImpulses, Coloured, Soft, ManifoldFriction };
 
 /// Every variant, in the order the rows are registered.
-inline constexpr std::array<Variant, 5> kVariants = {
-    Variant::Defaults, Variant::WriteUp, Variant::SplitImpulses, Variant::Coloured, Variant::Soft};
+inline constexpr std::array<Variant, 6> kVariants = {Variant::Defaults,      Variant::WriteUp,
+                                                     Variant::SplitImpulses, Variant::Coloured,
+                                                     Variant::Soft,          Variant::ManifoldFriction};
 
 /// The row's backend name ("talus", "talus-writeup", ...).
 const char* VariantName(Variant variant);

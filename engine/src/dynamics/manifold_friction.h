@@ -1,0 +1,152 @@
+// FrictionSolve::PerManifold: a pair's friction as three rows of the whole
+// manifold instead of two rows per point (the form Gregorius's manifold
+// friction, Jolt and Box3D's predecessors use; docs/dynamics.md, "Friction
+// per manifold").
+//
+// Rows (at PairRows::firstFriction, ManifoldFrictionRowCount of them):
+//   0, 1  slip along t1 and t2 at the manifold's centre c (the mean of its
+//         points): J = [ t, (c - cA) x t, -t, -(c - cB) x t ];
+//   2     spin about n (pairs of two or more points): J = [ 0, n, 0, -n ],
+//         m = 1 / (n.IA^-1 n + n.IB^-1 n).
+// Bounds, from the points' current normal impulses lambda_i:
+//   slip  |(lambda_1, lambda_2)| <= mu sum lambda_i, a disc (the Coulomb
+//         cone is round; the per-point rows clamp each tangent alone, a
+//         square);
+//   spin  |lambda_s| <= mu sum lambda_i |d_i|, d_i the point's offset from
+//         c in the contact plane: the most torque the points' own Coulomb
+//         bounds can give when the pair only spins, so a spinning box stops
+//         as it does with per-point rows. A pair that slides and spins at
+//         once gets each bound in full, where per-point friction shares
+//         one bound between the two: the manifold rows brake such a pair
+//         harder (measured in docs/dynamics.md).
+// The two slip rows are solved from the same velocities and their sum
+// projected onto the disc; the spin row follows.
+//
+// Warm start. The Contact keeps friction per point (a world vector per
+// point, as PerPoint stores it), so the warm start survives manifold
+// changes, feature matching and a switch of FrictionSolve. The manifold's
+// impulses are written as f_i = F / N + lambda_s (n x d_i) / sum |d_j|^2:
+// their sum is F and, because sum d_i = 0, their torque about c along n is
+// lambda_s. Reading sums them back, so a pair whose points persist gets its
+// impulses back to round-off.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+
+#include "dynamics/contact_rows.h"
+#include "dynamics/pair_velocities.h"
+#include "talus/math.h"
+
+namespace talus {
+
+/// Rows of a pair with `pointCount` points under PerManifold: two slip
+/// rows, and the spin row when there are two or more points.
+inline int ManifoldFrictionRowCount(int pointCount) { return pointCount >= 2 ? 3 : 2; }
+
+/// The offsets d_i of points from their mean, in the plane normal to the
+/// unit `n` (metres); `points` yields point i's position (or any vector
+/// that differs from it by one constant, such as its arm from a body's
+/// centre). Returns the mean.
+template <typename PointOf>
+Vec3 ManifoldOffsets(int count, const Vec3& n, PointOf points, std::span<Vec3> offsets) {
+  Vec3 centre = Vec3::Zero();
+  for (int i = 0; i < count; ++i) centre += points(i);
+  centre /= static_cast<double>(count);
+  for (int i = 0; i < count; ++i) {
+    const Vec3 d = points(i) - centre;
+    offsets[static_cast<std::size_t>(i)] = d - n * n.dot(d);
+  }
+  return centre;
+}
+
+/// A manifold's friction impulses: slip along the pair's t1, t2 (N s) and
+/// spin about n (N m s).
+struct ManifoldFrictionImpulses {
+  double slip[2] = {0.0, 0.0};
+  double spin = 0.0;
+};
+
+/// The manifold impulses that per-point friction vectors `perPoint` add up
+/// to: their sum along each tangent, their torque about the centre along n.
+inline ManifoldFrictionImpulses SumManifoldFriction(std::span<const Vec3> perPoint,
+                                                    std::span<const Vec3> offsets, const Vec3& n,
+                                                    const Vec3 (&tangent)[2]) {
+  ManifoldFrictionImpulses sum;
+  Vec3 total = Vec3::Zero();
+  for (std::size_t i = 0; i < offsets.size(); ++i) {
+    total += perPoint[i];
+    sum.spin += n.dot(offsets[i].cross(perPoint[i]));
+  }
+  sum.slip[0] = total.dot(tangent[0]);
+  sum.slip[1] = total.dot(tangent[1]);
+  return sum;
+}
+
+/// Per-point friction vectors that add up to `impulses` (see the header):
+/// the slip shared equally, the spin as tangential impulses in proportion
+/// to each point's offset. With all offsets zero the spin is dropped (such a
+/// pair has no spin row).
+inline void ShareManifoldFriction(const ManifoldFrictionImpulses& impulses, std::span<const Vec3> offsets,
+                                  const Vec3& n, const Vec3 (&tangent)[2], std::span<Vec3> perPoint) {
+  const Vec3 slip =
+      (impulses.slip[0] * tangent[0] + impulses.slip[1] * tangent[1]) / static_cast<double>(offsets.size());
+  double spread = 0.0;
+  for (const Vec3& d : offsets) spread += d.squaredNorm();
+  const double spinShare = spread > 0.0 ? impulses.spin / spread : 0.0;
+  for (std::size_t i = 0; i < offsets.size(); ++i) perPoint[i] = slip + spinShare * n.cross(offsets[i]);
+}
+
+/// One pass over a pair's manifold friction rows. `rows` are its
+/// ManifoldFrictionRowCount rows, `normals` its points' normal rows,
+/// `levers` the points' |d_i|. The policy gives each row's effective mass
+/// (`Mass(row, linear)`: linear is false for the spin row, which has no
+/// linear part), applies an impulse (`Apply(v, delta, d, row)`, d zero for
+/// the spin row) and notes the velocity change (`Note(change)`, m/s; the
+/// spin row's at the mean lever). The sweeps and shock propagation (with a
+/// held body) share it.
+template <typename Policy>
+void SolveManifoldFrictionRows(const PairRows& pair, const NormalRow* normals, const double* levers,
+                               FrictionRow* rows, PairVelocities& v, Policy& policy) {
+  double load = 0.0;
+  double spinLoad = 0.0;
+  double meanLever = 0.0;
+  for (int i = 0; i < pair.pointCount; ++i) {
+    load += normals[i].impulse;
+    spinLoad += normals[i].impulse * levers[i];
+    meanLever += levers[i];
+  }
+  meanLever /= static_cast<double>(pair.pointCount);
+  const double bound = pair.friction * load;
+  double mass[2];
+  double next[2];
+  for (int k = 0; k < 2; ++k) {
+    mass[k] = policy.Mass(rows[k], true);
+    next[k] = rows[k].impulse - mass[k] * v.Along(pair.tangent[k], rows[k].j);
+  }
+  const double length = std::hypot(next[0], next[1]);
+  if (length > bound) {
+    const double scale = bound / length;
+    next[0] *= scale;
+    next[1] *= scale;
+  }
+  for (int k = 0; k < 2; ++k) {
+    const double delta = next[k] - rows[k].impulse;
+    rows[k].impulse = next[k];
+    if (mass[k] > 0.0) policy.Note(std::abs(delta) / mass[k]);
+    policy.Apply(v, delta, pair.tangent[k], rows[k]);
+  }
+  if (pair.pointCount < 2) return;
+  FrictionRow& spin = rows[2];
+  const double spinMass = policy.Mass(spin, false);
+  const double spinRate = spin.j.angularA.dot(v.wA) - spin.j.angularB.dot(v.wB);
+  const double spinBound = pair.friction * spinLoad;
+  const double old = spin.impulse;
+  spin.impulse = std::clamp(old - spinMass * spinRate, -spinBound, spinBound);
+  const double delta = spin.impulse - old;
+  if (spinMass > 0.0) policy.Note(std::abs(delta) / spinMass * meanLever);
+  policy.Apply(v, delta, Vec3::Zero(), spin);
+}
+
+}  // namespace talus

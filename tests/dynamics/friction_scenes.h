@@ -1,0 +1,110 @@
+// Friction scenes the friction solvers' tests share (coupled_block_test.cpp,
+// manifold_friction_test.cpp): a cube sliding to a stop on static ground, a
+// cube on a slope, and the discrete Coulomb stop distance they are judged by.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "talus/world.h"
+
+namespace talus::friction_scenes {
+
+constexpr double kG = 9.81;
+
+inline WorldSettings Settings(FrictionSolve friction, int iterations) {
+  WorldSettings settings;
+  settings.sleeping = false;
+  settings.velocityIterations = iterations;
+  settings.positionIterations = iterations;
+  settings.methods.frictionSolve = friction;
+  return settings;
+}
+
+inline Shape Box(const Vec3& half) { return Shape::CreateBox(half).Value(); }
+
+// The static ground the scenes stand on, its top face at y = 0.
+inline void AddGround(World& world, double mu) {
+  EXPECT_TRUE(world.CreateBody(
+      {.type = BodyType::Static, .position = {0, -0.5, 0}, .shape = Box({20, 0.5, 20}), .friction = mu}));
+}
+
+// A 0.5 m cube of 500 kg/m^3 (62.5 kg) at `position`, moving.
+inline BodyId AddCube(World& world, const Vec3& position, const Vec3& velocity, const Vec3& spin, double mu) {
+  return world
+      .CreateBody({.type = BodyType::Dynamic,
+                   .position = position,
+                   .linearVelocity = velocity,
+                   .angularVelocity = spin,
+                   .shape = Box(Vec3::Constant(0.25)),
+                   .density = 500.0,
+                   .friction = mu})
+      .Value();
+}
+
+struct Stop {
+  double distance = 0.0;   ///< m along x when the box first stops
+  double lateral = 0.0;    ///< m, |z| then
+  double restSpeed = 0.0;  ///< m/s, |v| + |w| ten steps after the stop
+};
+
+// A 0.5 m cube launched along +x on the ground, stepped until it first
+// stops (|vx| < 1e-6 m/s), then ten steps more.
+inline Stop SlideAndStop(const WorldSettings& settings, double v0, double mu, double h) {
+  World world = World::Create(settings).Value();
+  AddGround(world, mu);
+  const BodyId box = AddCube(world, {0, 0.25, 0}, {v0, 0, 0}, Vec3::Zero(), mu);
+  Stop stop;
+  for (int n = 0; n < 1000; ++n) {
+    EXPECT_TRUE(world.Step(h));
+    const BodyState s = world.GetBodyState(box).Value();
+    if (std::abs(s.linearVelocity.x()) < 1e-6) {
+      stop.distance = s.position.x();
+      stop.lateral = std::abs(s.position.z());
+      break;
+    }
+  }
+  for (int n = 0; n < 10; ++n) EXPECT_TRUE(world.Step(h));
+  const BodyState s = world.GetBodyState(box).Value();
+  stop.restSpeed = s.linearVelocity.norm() + s.angularVelocity.norm();
+  return stop;
+}
+
+// The discrete Coulomb stop: each step friction removes mu g h of speed and
+// a body contact impulses act on moves by h v(n+1), so the box stops after
+// K = floor(v0 / (mu g h)) moving steps at x = h sum_{k=1..K} (v0 - k mu g h)
+// (the exact sum the testbed's sliding_stop truth compares with).
+inline double DiscreteStopDistance(double v0, double mu, double h) {
+  const double loss = mu * kG * h;
+  const int steps = static_cast<int>(std::floor(v0 / loss));
+  double x = 0.0;
+  for (int k = 1; k <= steps; ++k) x += h * (v0 - k * loss);
+  return x;
+}
+
+// A cube released at rest on a static slope of `angle` (rad) with friction
+// mu; returns its displacement along the slope after `steps` steps of h.
+inline double SlopeDisplacement(const WorldSettings& settings, double angle, double mu, double h, int steps) {
+  World world = World::Create(settings).Value();
+  const Quat tilt(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
+  EXPECT_TRUE(world.CreateBody({.type = BodyType::Static,
+                                .position = tilt * Vec3(0, -0.5, 0),
+                                .orientation = tilt,
+                                .shape = Box({20, 0.5, 20}),
+                                .friction = mu}));
+  const Vec3 start = tilt * Vec3(0, 0.25, 0);
+  const BodyId box = world
+                         .CreateBody({.type = BodyType::Dynamic,
+                                      .position = start,
+                                      .orientation = tilt,
+                                      .shape = Box(Vec3::Constant(0.25)),
+                                      .density = 500.0,
+                                      .friction = mu})
+                         .Value();
+  for (int n = 0; n < steps; ++n) EXPECT_TRUE(world.Step(h));
+  const Vec3 moved = world.GetBodyState(box).Value().position - start;
+  return moved.dot(tilt * Vec3(-1, 0, 0));  // down the slope (it rises along +x)
+}
+
+}  // namespace talus::friction_scenes
