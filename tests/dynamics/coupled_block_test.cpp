@@ -204,21 +204,10 @@ TEST(CoupledBlock, StoredImpulsesAreTheOnesThatMovedTheBody) {
     const double h = 1.0 / 60.0;
     scene.Step(h);
     const BodySim& after = scene.Body(box);
-    Vec3 force = Vec3::Zero();
-    Vec3 moment = Vec3::Zero();
-    int points = 0;
-    for (const Contact& contact : scene.Contacts()) {
-      const double sign = contact.bodyA == box ? 1.0 : (contact.bodyB == box ? -1.0 : 0.0);
-      for (int i = 0; i < contact.manifold.pointCount; ++i) {
-        const std::size_t si = static_cast<std::size_t>(i);
-        const Vec3 impulse =
-            sign * (contact.normalImpulse[si] * contact.manifold.normal + contact.frictionImpulse[si]);
-        force += impulse;
-        moment += (contact.manifold.points[si].position - c0).cross(impulse);
-        ++points;
-      }
-    }
-    ASSERT_EQ(points, 4) << "plane first " << planeFirst;
+    const StoredImpulses stored = SumStoredImpulses(scene, box, c0);
+    const Vec3& force = stored.force;
+    const Vec3& moment = stored.moment;
+    ASSERT_EQ(stored.points, 4) << "plane first " << planeFirst;
     // Stopped by the block (1e-12: round-off of one solve) ...
     EXPECT_LT(after.linearVelocity.norm() + after.angularVelocity.norm(), 1e-12)
         << "plane first " << planeFirst;
@@ -279,27 +268,7 @@ TEST(CoupledBlock, BitIdenticalForAnyThreadCount) {
   for (const int threads : {1, 2, 3}) {
     WorldSettings settings = Settings(FrictionSolve::CoupledBlock, 10);
     settings.threads = threads;
-    World world = World::Create(settings).Value();
-    AddGround(world, 0.6);
-    std::vector<BodyId> boxes;
-    for (int i = 0; i < 16; ++i) {
-      const double x = (i % 4) * 0.7;
-      const double z = (i / 4) * 0.7;
-      boxes.push_back(
-          AddCube(world, {x, 0.25 + 0.6 * (i % 2), z}, {1.5 - x, 0, 1.0 - z}, {0, 0.5 * (i % 3), 0}, 0.6));
-    }
-    for (int n = 0; n < 120; ++n) EXPECT_TRUE(world.Step(1.0 / 60.0));
-    std::vector<double> state;
-    for (const BodyId id : boxes) {
-      const BodyState s = world.GetBodyState(id).Value();
-      for (int k = 0; k < 3; ++k) {
-        state.push_back(s.position[k]);
-        state.push_back(s.linearVelocity[k]);
-        state.push_back(s.angularVelocity[k]);
-      }
-      state.push_back(s.orientation.w());
-    }
-    runs.push_back(state);
+    runs.push_back(SixteenCubesFinalState(settings));
   }
   for (std::size_t r = 1; r < runs.size(); ++r) {
     ASSERT_EQ(runs[r].size(), runs[0].size());

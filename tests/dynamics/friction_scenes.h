@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
+#include "contact_scene.h"
 #include "talus/world.h"
 
 namespace talus::friction_scenes {
@@ -105,6 +107,58 @@ inline double SlopeDisplacement(const WorldSettings& settings, double angle, dou
   for (int n = 0; n < steps; ++n) EXPECT_TRUE(world.Step(h));
   const Vec3 moved = world.GetBodyState(box).Value().position - start;
   return moved.dot(tilt * Vec3(-1, 0, 0));  // down the slope (it rises along +x)
+}
+
+// The impulses a step stored on `body`'s contacts (what next step warm
+// starts from), summed: their force (N s), their moment about `centre`
+// (N m s) and the number of points.
+struct StoredImpulses {
+  Vec3 force = Vec3::Zero();
+  Vec3 moment = Vec3::Zero();
+  int points = 0;
+};
+
+inline StoredImpulses SumStoredImpulses(const testing::ContactScene& scene, int body, const Vec3& centre) {
+  StoredImpulses sum;
+  for (const Contact& contact : scene.Contacts()) {
+    const double sign = contact.bodyA == body ? 1.0 : (contact.bodyB == body ? -1.0 : 0.0);
+    for (int i = 0; i < contact.manifold.pointCount; ++i) {
+      const std::size_t si = static_cast<std::size_t>(i);
+      const Vec3 impulse =
+          sign * (contact.normalImpulse[si] * contact.manifold.normal + contact.frictionImpulse[si]);
+      sum.force += impulse;
+      sum.moment += (contact.manifold.points[si].position - centre).cross(impulse);
+      ++sum.points;
+    }
+  }
+  return sum;
+}
+
+// Sixteen cubes sliding and spinning into each other and to rest on the
+// ground, two seconds at 60 Hz; every cube's final position and velocities
+// in one list (for bit-identity over thread counts).
+inline std::vector<double> SixteenCubesFinalState(const WorldSettings& settings) {
+  World world = World::Create(settings).Value();
+  AddGround(world, 0.6);
+  std::vector<BodyId> boxes;
+  for (int i = 0; i < 16; ++i) {
+    const double x = (i % 4) * 0.7;
+    const double z = (i / 4) * 0.7;
+    boxes.push_back(
+        AddCube(world, {x, 0.25 + 0.6 * (i % 2), z}, {1.5 - x, 0, 1.0 - z}, {0, 0.5 * (i % 3), 0}, 0.6));
+  }
+  for (int n = 0; n < 120; ++n) EXPECT_TRUE(world.Step(1.0 / 60.0));
+  std::vector<double> state;
+  for (const BodyId id : boxes) {
+    const BodyState s = world.GetBodyState(id).Value();
+    for (int k = 0; k < 3; ++k) {
+      state.push_back(s.position[k]);
+      state.push_back(s.linearVelocity[k]);
+      state.push_back(s.angularVelocity[k]);
+    }
+    state.push_back(s.orientation.w());
+  }
+  return state;
 }
 
 }  // namespace talus::friction_scenes
