@@ -116,7 +116,9 @@ void ContactRowSet::Prepare(std::span<const BodySim> bodies, std::span<const Con
   // Every slot below is written by its pair before anything reads it.
   m_normals.resize(static_cast<std::size_t>(totals.points));
   m_frictions.resize(static_cast<std::size_t>(totals.frictions));
-  m_levers.resize(static_cast<std::size_t>(totals.points));  // read only where written
+  // Read only where written; the default mode never touches it.
+  const bool manifold = settings.methods.frictionSolve == FrictionSolve::PerManifold;
+  m_levers.resize(manifold ? static_cast<std::size_t>(totals.points) : 0);
   m_cold.resize(static_cast<std::size_t>(totals.points));
   m_blockInverses.resize(static_cast<std::size_t>(totals.blocks));
   BuildPairsOnThreads(bodies, contacts, settings, h, runner, stats);

@@ -46,8 +46,8 @@
 //     tangents, inverse masses, friction, flags);
 //   * one NormalRow per point and two FrictionRows per point (one per
 //     tangent; with FrictionSolve::PerManifold three per pair instead,
-//     dynamics/manifold_friction.h), each with its Jacobian's angular parts r x d precomputed
-//     together with their images under the inverse inertia, IA^-1 (rA x d)
+//     dynamics/manifold_friction.h), each with its Jacobian's angular
+//     parts r x d precomputed together with their images under the inverse inertia, IA^-1 (rA x d)
 //     and IB^-1 (rB x d). A row is then
 //       Cdot = d.(vA - vB) + (rA x d).wA - (rB x d).wB     (two dot products)
 //       vA += mA^-1 dl d, wA += dl IA^-1 (rA x d), B the opposite (axpys),
@@ -158,7 +158,9 @@ class ContactRowSet {
   /// Two per point (t1, t2) of the pairs with friction, or the manifold's
   /// rows (ManifoldFrictionRowCount) of a pair with manifold friction.
   std::vector<FrictionRow> m_frictions;
-  std::vector<double> m_levers;   ///< one per point; written for manifold-friction pairs only
+  /// One per point under FrictionSolve::PerManifold (empty otherwise);
+  /// written for manifold-friction pairs only.
+  std::vector<double> m_levers;
   std::vector<PointCold> m_cold;  ///< one per point
   std::vector<Eigen::Matrix4d> m_blockInverses;
   int m_newPairs = 0;      ///< pairs that did not persist

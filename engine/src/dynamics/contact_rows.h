@@ -143,8 +143,8 @@ struct PairRows {
   bool manifoldFriction = false;
 };
 // Every pass over a pair reads its header first: 136 bytes, just over two
-// cache lines (the flags sit in the tail padding) (the wide solver's bundle header is compared against this
-// figure, wide_contact_solver.h). The Mat3s and the block inverse it once
+// cache lines, the flags in the tail padding (the wide solver's bundle
+// header is compared against this figure, wide_contact_solver.h). The Mat3s and the block inverse it once
 // carried (~450 bytes) live apart (docs/dynamics.md, "Compact headers").
 static_assert(sizeof(PairRows) <= 136, "PairRows: 136 bytes, about two cache lines per pair");
 

@@ -49,9 +49,11 @@ namespace {
 
 constexpr int kNoLevel = std::numeric_limits<int>::max();
 
+// The row's effective mass with the held body left out; `linear` false for
+// a row with no linear part (the manifold's spin row).
 template <typename Row, typename Sides>
-double HeldRowMass(const Row& row, const Sides& s) {
-  double k = s.invMassA + s.invMassB;
+double HeldRowMass(const Row& row, const Sides& s, bool linear = true) {
+  double k = linear ? s.invMassA + s.invMassB : 0.0;
   if (s.moveA) k += row.j.angularA.dot(row.j.imageA);
   if (s.moveB) k += row.j.angularB.dot(row.j.imageB);
   return k > 0.0 ? 1.0 / k : 0.0;
@@ -78,10 +80,7 @@ struct HeldBodyPolicy {
   const Sides& sides;
   double& largest;
   [[nodiscard]] double Mass(const FrictionRow& row, bool linear) const {
-    double k = linear ? sides.invMassA + sides.invMassB : 0.0;
-    if (sides.moveA) k += row.j.angularA.dot(row.j.imageA);
-    if (sides.moveB) k += row.j.angularB.dot(row.j.imageB);
-    return k > 0.0 ? 1.0 / k : 0.0;
+    return HeldRowMass(row, sides, linear);
   }
   void Apply(PairVelocities& v, double delta, const Vec3& d, const FrictionRow& row) const {
     ApplyHeld(v, delta, d, row, sides);
