@@ -280,7 +280,9 @@ TEST(ContactSolver, FrictionAndRestitutionRowsAreBuiltWhenUsed) {
   scene.AddPlane({.friction = 0.5, .restitution = 0.5});
   scene.AddBox({0, 0.5, 0}, Vec3::Constant(0.5), 1.0);
   scene.Step(kH);
-  EXPECT_EQ(scene.LastStats().frictionRows, 8);
+  // The default (Adaptive) gives a lightly loaded face the manifold's three
+  // rows; per point it would be eight.
+  EXPECT_EQ(scene.LastStats().frictionRows, 3);
   EXPECT_EQ(scene.LastStats().frictionRowsSkipped, 0);
   EXPECT_EQ(scene.LastStats().restitutionSkipped, 0);
   scene.Step(kH);

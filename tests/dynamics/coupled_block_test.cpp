@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <numbers>
 #include <vector>
 
@@ -264,17 +263,7 @@ TEST(CoupledBlock, IsRefusedWhereItWouldDoNothingAndOutOfRange) {
 // Sixteen cubes sliding and spinning into each other and to rest: the same
 // bits at 1, 2 and 3 threads (Prepare builds the rows on the pool).
 TEST(CoupledBlock, BitIdenticalForAnyThreadCount) {
-  std::vector<std::vector<double>> runs;
-  for (const int threads : {1, 2, 3}) {
-    WorldSettings settings = Settings(FrictionSolve::CoupledBlock, 10);
-    settings.threads = threads;
-    runs.push_back(SixteenCubesFinalState(settings));
-  }
-  for (std::size_t r = 1; r < runs.size(); ++r) {
-    ASSERT_EQ(runs[r].size(), runs[0].size());
-    EXPECT_EQ(std::memcmp(runs[r].data(), runs[0].data(), runs[0].size() * sizeof(double)), 0)
-        << "threads run " << r;
-  }
+  ExpectSixteenCubesBitIdenticalForAnyThreadCount(Settings(FrictionSolve::CoupledBlock, 10));
 }
 
 }  // namespace coupled_block_test

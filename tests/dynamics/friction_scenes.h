@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <initializer_list>
+#include <string>
 #include <vector>
 
 #include "contact_scene.h"
@@ -159,6 +162,46 @@ inline std::vector<double> SixteenCubesFinalState(const WorldSettings& settings)
     state.push_back(s.orientation.w());
   }
   return state;
+}
+
+// Kinetic plus potential energy of `bodies` (J; height along +y, the
+// scenes' gravity).
+inline double TotalEnergy(const World& world, const std::vector<BodyId>& bodies) {
+  double e = 0.0;
+  for (const BodyId id : bodies) {
+    const BodyState s = world.GetBodyState(id).Value();
+    const Mat3 rotation = s.orientation.toRotationMatrix();
+    const Mat3 inertia = rotation * s.localInertia * rotation.transpose();
+    e += 0.5 * s.mass * s.linearVelocity.squaredNorm() +
+         0.5 * s.angularVelocity.dot(inertia * s.angularVelocity) + s.mass * kG * s.position.y();
+  }
+  return e;
+}
+
+// World::Create refuses `settings` with a message that names every one of
+// `parts` (the settings involved).
+inline void ExpectRefusedNaming(const WorldSettings& settings, std::initializer_list<const char*> parts) {
+  const auto refused = World::Create(settings);
+  ASSERT_FALSE(refused);
+  for (const char* part : parts) {
+    EXPECT_NE(refused.GetError().message.find(part), std::string::npos) << refused.GetError().message;
+  }
+}
+
+// SixteenCubesFinalState under `settings` at 1, 2 and 3 threads: the same
+// bits (Prepare builds the rows on the pool).
+inline void ExpectSixteenCubesBitIdenticalForAnyThreadCount(const WorldSettings& settings) {
+  std::vector<std::vector<double>> runs;
+  for (const int threads : {1, 2, 3}) {
+    WorldSettings threaded = settings;
+    threaded.threads = threads;
+    runs.push_back(SixteenCubesFinalState(threaded));
+  }
+  for (std::size_t r = 1; r < runs.size(); ++r) {
+    ASSERT_EQ(runs[r].size(), runs[0].size());
+    EXPECT_EQ(std::memcmp(runs[r].data(), runs[0].data(), runs[0].size() * sizeof(double)), 0)
+        << "threads run " << r;
+  }
 }
 
 }  // namespace talus::friction_scenes

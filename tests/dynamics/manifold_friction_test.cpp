@@ -1,5 +1,5 @@
-// FrictionSolve::PerManifold: a pair's friction as slip rows at the
-// manifold's centre and a spin row. Analytic answers first (the discrete
+// FrictionSolve::PerManifold: a pair's friction as slip rows at its
+// centre of pressure and a spin row. Analytic answers first (the discrete
 // Coulomb stop, a box held on a slope and one sliding down it, the spin-down
 // of a cube on its four corners), then properties over random launches
 // (friction only takes energy; the stored impulses are the ones that moved
@@ -7,9 +7,9 @@
 // refusals and determinism.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <numbers>
 #include <utility>
 #include <vector>
@@ -107,7 +107,10 @@ TEST(ManifoldFriction, SpinningCubeSlowsAtTheFourCornersCoulombRate) {
 // Friction only removes energy: cubes launched with random slide and spin,
 // on the ground and on a dynamic slab (so both bodies of a pair turn), lose
 // kinetic plus potential energy every step (a wrong-signed or unbounded row
-// would feed it) and end at rest.
+// would feed it) and end at rest. At 20 sweeps: the property is friction's,
+// not convergence's, and at 10 the warm start of a slip point that moves
+// with a spinning cube's pressure leaves up to 3.4e-6 J unworked in a step
+// (measured), the order of what ten sweeps leave of a 150 J launch.
 TEST(ManifoldFriction, NeverAddsEnergyAndBringsRandomLaunchesToRest) {
   Draw draw{777u};
   for (int trial = 0; trial < 12; ++trial) {
@@ -115,7 +118,7 @@ TEST(ManifoldFriction, NeverAddsEnergyAndBringsRandomLaunchesToRest) {
     const Vec3 velocity(draw(-2, 2), 0, draw(-2, 2));
     const Vec3 spin(0, draw(-8, 8), 0);
     const double mu = draw(0.2, 0.9);
-    World world = World::Create(Manifold(10)).Value();
+    World world = World::Create(Manifold(20)).Value();
     AddGround(world, mu);
     std::vector<BodyId> bodies;
     double base = 0.0;
@@ -130,17 +133,7 @@ TEST(ManifoldFriction, NeverAddsEnergyAndBringsRandomLaunchesToRest) {
       base = 0.2;
     }
     bodies.push_back(AddCube(world, {0, base + 0.25, 0}, velocity, spin, mu));
-    const auto energy = [&world, &bodies] {
-      double e = 0.0;
-      for (const BodyId id : bodies) {
-        const BodyState s = world.GetBodyState(id).Value();
-        const Mat3 rotation = s.orientation.toRotationMatrix();
-        const Mat3 inertia = rotation * s.localInertia * rotation.transpose();
-        e += 0.5 * s.mass * s.linearVelocity.squaredNorm() +
-             0.5 * s.angularVelocity.dot(inertia * s.angularVelocity) + s.mass * kG * s.position.y();
-      }
-      return e;
-    };
+    const auto energy = [&world, &bodies] { return TotalEnergy(world, bodies); };
     double before = energy();
     for (int n = 0; n < 240; ++n) {
       ASSERT_TRUE(world.Step(1.0 / 60.0));
@@ -156,33 +149,54 @@ TEST(ManifoldFriction, NeverAddsEnergyAndBringsRandomLaunchesToRest) {
 }
 
 // The per-point storage is exact for the manifold's impulses: sharing them
-// out and summing them back gives the slip and the spin again (1e-12 of
-// their scale: round-off), for random manifolds of 2-8 points.
+// out with slip shares and summing them back with the same shares gives
+// the slip and the spin again (1e-12 of their scale: round-off), for random
+// manifolds of 2-8 points and random loads on them (some points unloaded,
+// or none: equal shares). The shared vectors lie in the contact plane and
+// their moment about the points' mean is the slip's at the centre of
+// pressure plus the spin.
 TEST(ManifoldFriction, SharedImpulsesSumBackToTheManifoldsOwn) {
   Draw draw{4242u};
   for (int trial = 0; trial < 200; ++trial) {
     const int count = 2 + trial % 7;
+    const auto size = static_cast<std::size_t>(count);
     const Vec3 n = Vec3(draw(-1, 1), draw(-1, 1), draw(-1, 1)).normalized();
     const Vec3 tangent[2] = {AnyPerpendicular(n), n.cross(AnyPerpendicular(n))};
     std::array<Vec3, kMaxManifoldPoints> points{};
-    for (int i = 0; i < count; ++i)
-      points[static_cast<std::size_t>(i)] = Vec3(draw(-1, 1), draw(-1, 1), draw(-1, 1));
+    std::array<double, kMaxManifoldPoints> load{};
+    for (std::size_t i = 0; i < size; ++i) {
+      const Vec3 p(draw(-1, 1), draw(-1, 1), draw(-1, 1));
+      points[i] = p - n * n.dot(p);  // a face: the points in one plane
+      load[i] = trial % 5 == 0 ? 0.0 : std::max(draw(-0.5, 2.0), 0.0);
+    }
+    const auto position = [&points](int i) { return points[static_cast<std::size_t>(i)]; };
     std::array<Vec3, kMaxManifoldPoints> offsets{};
-    const std::span<Vec3> offsetSpan(offsets.data(), static_cast<std::size_t>(count));
-    ManifoldOffsets(
-        count, n, [&points](int i) { return points[static_cast<std::size_t>(i)]; }, offsetSpan);
+    const std::span<Vec3> offsetSpan(offsets.data(), size);
+    const Vec3 mean = ManifoldOffsets(count, n, position, offsetSpan);
+    std::array<double, kMaxManifoldPoints> shares{};
+    const std::span<double> shareSpan(shares.data(), size);
+    const Vec3 pressure =
+        ManifoldSlipShares(count, std::span<const double>(load.data(), size), position, shareSpan);
     ManifoldFrictionImpulses impulses;
     impulses.slip[0] = draw(-10, 10);
     impulses.slip[1] = draw(-10, 10);
     impulses.spin = draw(-5, 5);
     std::array<Vec3, kMaxManifoldPoints> perPoint{};
-    const std::span<Vec3> perPointSpan(perPoint.data(), offsetSpan.size());
-    ShareManifoldFriction(impulses, offsetSpan, n, tangent, perPointSpan);
-    for (const Vec3& f : perPointSpan) EXPECT_LT(std::abs(f.dot(n)), 1e-12) << "trial " << trial;
-    const ManifoldFrictionImpulses back = SumManifoldFriction(perPointSpan, offsetSpan, n, tangent);
+    const std::span<Vec3> perPointSpan(perPoint.data(), size);
+    ShareManifoldFriction(impulses, offsetSpan, shareSpan, n, tangent, perPointSpan);
+    Vec3 moment = Vec3::Zero();
+    for (std::size_t i = 0; i < size; ++i) {
+      EXPECT_LT(std::abs(perPoint[i].dot(n)), 1e-12) << "trial " << trial;
+      moment += (points[i] - mean).cross(perPoint[i]);
+    }
+    const Vec3 slip = impulses.slip[0] * tangent[0] + impulses.slip[1] * tangent[1];
+    const Vec3 expectedMoment = (pressure - mean).cross(slip) + impulses.spin * n;
+    EXPECT_LT((moment - expectedMoment).norm(), 1e-12 * 20) << "trial " << trial;
+    const ManifoldFrictionImpulses back =
+        SumManifoldFriction(perPointSpan, offsetSpan, shareSpan, n, tangent);
     EXPECT_NEAR(back.slip[0], impulses.slip[0], 1e-12 * 10) << "trial " << trial;
     EXPECT_NEAR(back.slip[1], impulses.slip[1], 1e-12 * 10) << "trial " << trial;
-    EXPECT_NEAR(back.spin, impulses.spin, 1e-12 * 10) << "trial " << trial;
+    EXPECT_NEAR(back.spin, impulses.spin, 1e-12 * 20) << "trial " << trial;
   }
 }
 
@@ -229,12 +243,7 @@ TEST(ManifoldFriction, StoredImpulsesAreTheOnesThatMovedTheBody) {
 TEST(ManifoldFriction, IsRefusedWithTheColouredOrder) {
   WorldSettings coloured = Manifold(10);
   coloured.methods.contactOrder = ContactOrder::ByColour;
-  const auto refused = World::Create(coloured);
-  ASSERT_FALSE(refused);
-  EXPECT_NE(refused.GetError().message.find("frictionSolve = PerManifold"), std::string::npos)
-      << refused.GetError().message;
-  EXPECT_NE(refused.GetError().message.find("contactOrder = PairByPair"), std::string::npos)
-      << refused.GetError().message;
+  ExpectRefusedNaming(coloured, {"frictionSolve = PerManifold", "contactOrder = PairByPair"});
   // Without the normal block it has nothing to need: accepted.
   WorldSettings rowByRow = Manifold(10);
   rowByRow.methods.blockSolver = false;
@@ -244,17 +253,7 @@ TEST(ManifoldFriction, IsRefusedWithTheColouredOrder) {
 // Sixteen cubes sliding and spinning into each other and to rest: the same
 // bits at 1, 2 and 3 threads.
 TEST(ManifoldFriction, BitIdenticalForAnyThreadCount) {
-  std::vector<std::vector<double>> runs;
-  for (const int threads : {1, 2, 3}) {
-    WorldSettings settings = Manifold(10);
-    settings.threads = threads;
-    runs.push_back(SixteenCubesFinalState(settings));
-  }
-  for (std::size_t r = 1; r < runs.size(); ++r) {
-    ASSERT_EQ(runs[r].size(), runs[0].size());
-    EXPECT_EQ(std::memcmp(runs[r].data(), runs[0].data(), runs[0].size() * sizeof(double)), 0)
-        << "threads run " << r;
-  }
+  ExpectSixteenCubesBitIdenticalForAnyThreadCount(Manifold(10));
 }
 
 }  // namespace manifold_friction_test

@@ -159,6 +159,9 @@ TEST(TalusRows, EachVariantDepartsFromTheTalusRowByItsListedSettingsOnly) {
     WorldSettings manifold = talus;
     manifold.methods.frictionSolve = FrictionSolve::PerManifold;
     EXPECT_TRUE(TalusRowSettings(run, "talus-manifold").Value() == manifold);
+    WorldSettings coupled = talus;
+    coupled.methods.frictionSolve = FrictionSolve::CoupledBlock;
+    EXPECT_TRUE(TalusRowSettings(run, "talus-coupled").Value() == coupled);
 
     WorldSettings writeUp = talus;
     if (run.scenario.world.gyroscopic) writeUp.methods.rotation = RotationIntegrator::MomentumSplitting;
@@ -210,6 +213,7 @@ TEST(TalusRows, EachRowsSettingsTextListsItsDepartures) {
   EXPECT_EQ(Departures("talus-coloured", run), (std::set<std::string>{"solver", "friction solve"}));
   EXPECT_EQ(Departures("talus-soft", run), (std::set<std::string>{"solver", "friction solve"}));
   EXPECT_EQ(Departures("talus-manifold", run), std::set<std::string>{"friction solve"});
+  EXPECT_EQ(Departures("talus-coupled", run), std::set<std::string>{"friction solve"});
   EXPECT_EQ(
       Departures("talus-writeup", run),
       (std::set<std::string>{"integrator", "warm starting", "block solver (a pair's normal rows together)",

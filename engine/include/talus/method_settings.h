@@ -142,16 +142,26 @@ enum class FrictionSolve {
   /// refuses it with either of the others, where it would do nothing.
   CoupledBlock,
   /// Three rows per pair instead of two per point: slip along t1 and t2 at
-  /// the manifold's centre, bounded together by a disc of radius mu times
-  /// the pair's total normal impulse (the round Coulomb cone), and spin
-  /// about n, bounded by mu times the sum of each point's normal impulse
-  /// times its distance from the centre. A pair that slides and spins at
-  /// once gets both bounds in full (per point they share one), so it is
-  /// braked harder. Stored per point like PerPoint, so warm starting and
-  /// StepStatistics read the same. Needs contactOrder = PairByPair
-  /// (World::Create refuses the coloured order, whose lanes hold per-point
-  /// rows). docs/dynamics.md, "Friction per manifold".
+  /// the pair's centre of pressure (its points weighted by the normal
+  /// impulses the step starts from), bounded together by a disc of radius
+  /// mu times the pair's total normal impulse (the round Coulomb cone), and
+  /// spin about n, bounded by mu times the sum of each point's normal
+  /// impulse times its distance from the points' mean. A pair that slides
+  /// and spins at once gets both bounds in full (per point they share one),
+  /// so it is braked harder. Stored per point like PerPoint, so warm
+  /// starting and StepStatistics read the same. Drops a light body under a
+  /// heavy load (measured: 150:1 at 10 sweeps), which Adaptive catches.
+  /// Needs contactOrder = PairByPair (World::Create refuses the coloured
+  /// order, whose lanes hold per-point rows). docs/dynamics.md, "Friction
+  /// per manifold".
   PerManifold,
+  /// PerManifold's rows on every pair, except a pair whose load at the end
+  /// of the last step exceeds 50 weights of its lighter moving body (m g h
+  /// each), which is solved as under CoupledBlock: the cheaper rows where
+  /// they converge, the exact stick solve where a light body carries a
+  /// heavy load. Needs blockSolver on and contactOrder = PairByPair, as
+  /// CoupledBlock. docs/dynamics.md, "Adaptive friction".
+  Adaptive,
 };
 
 /// Which step solver advances the bodies (the pipeline after the narrow
@@ -271,16 +281,14 @@ struct MethodSettings {
   /// measured it better or equal on every truth (docs/dynamics.md).
   /// SymplecticEuler is the write-up's.
   TranslationIntegrator translation = TranslationIntegrator::ExactConstantAcceleration;
-  /// How friction rows are solved (see FrictionSolve). Default CoupledBlock:
-  /// a sticking face contact stops in one sweep instead of keeping about 0.6
-  /// of its slip per sweep; over the testbed's time-step sweep it was more
-  /// accurate at 440 of 1,056 points and less at none, for about 1.2 times
-  /// the step of a large pyramid (docs/dynamics.md, "Coupled block").
-  /// PerPoint is the write-up's, and the only one the coloured solver and
-  /// the row-by-row normals (blockSolver off) have. PerManifold makes the
-  /// sweeps about 30% cheaper but drops a 1000:1 load on light boxes and
-  /// the arch (docs/dynamics.md, "Friction per manifold").
-  FrictionSolve frictionSolve = FrictionSolve::CoupledBlock;
+  /// How friction rows are solved (see FrictionSolve). Default Adaptive:
+  /// the manifold's rows with the coupled block on heavily loaded pairs,
+  /// measured against CoupledBlock everywhere (the default before) on the
+  /// whole suite and its time-step sweep, with the benchmark pyramids'
+  /// steps cheaper (docs/dynamics.md, "Adaptive friction"). PerPoint is
+  /// the write-up's, and the only one the coloured solver and the
+  /// row-by-row normals (blockSolver off) have.
+  FrictionSolve frictionSolve = FrictionSolve::Adaptive;
   /// Run WorldSettings::broadPhase in every world, however small. Default false: worlds
   /// of at most 128 active bodies take brute force whatever is selected,
   /// because it is measured faster there (docs/collision-broad-phase.md).

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "dynamics/adaptive_friction.h"
 #include "dynamics/bounce_timing.h"
 #include "dynamics/manifold_friction.h"
 
@@ -98,6 +99,31 @@ bool UsesNormalBlock(const WorldSettings& settings, int pointCount) {
   return settings.methods.blockSolver && pointCount >= 2 && pointCount <= 4;
 }
 
+// Whether a pair with friction gets the manifold's rows: always under
+// PerManifold; under Adaptive unless a body of it is under load
+// (MarkBodiesUnderLoad, dynamics/adaptive_friction.h).
+bool UsesManifoldFriction(const WorldSettings& settings, const Contact& contact,
+                          std::span<const unsigned char> underLoad) {
+  switch (settings.methods.frictionSolve) {
+    case FrictionSolve::PerManifold:
+      return true;
+    case FrictionSolve::Adaptive:
+      return underLoad[static_cast<std::size_t>(contact.bodyA)] == 0 &&
+             underLoad[static_cast<std::size_t>(contact.bodyB)] == 0;
+    default:
+      return false;
+  }
+}
+
+// The inverse mass contact impulses see: zero for a body they cannot move.
+double SolverInvMass(const BodySim& body) { return body.IsSolverDynamic() ? body.invMass : 0.0; }
+
+// Whether any pair may get the manifold's rows (their levers are stored).
+bool MayUseManifoldFriction(const WorldSettings& settings) {
+  return settings.methods.frictionSolve == FrictionSolve::PerManifold ||
+         settings.methods.frictionSolve == FrictionSolve::Adaptive;
+}
+
 }  // namespace
 
 // Two passes. The serial one decides which contacts get rows, numbers their
@@ -112,16 +138,71 @@ void ContactRowSet::Prepare(std::span<const BodySim> bodies, std::span<const Con
   m_pairs.clear();
   m_newPairs = 0;
   m_timedBounces = 0;
+  if (settings.methods.frictionSolve == FrictionSolve::Adaptive)
+    MarkBodiesUnderLoad(bodies, contacts, settings, h);
   const RowTotals totals = AddPairHeaders(bodies, contacts, settings, stats);
   // Every slot below is written by its pair before anything reads it.
   m_normals.resize(static_cast<std::size_t>(totals.points));
   m_frictions.resize(static_cast<std::size_t>(totals.frictions));
   // Read only where written; the default mode never touches it.
-  const bool manifold = settings.methods.frictionSolve == FrictionSolve::PerManifold;
-  m_levers.resize(manifold ? static_cast<std::size_t>(totals.points) : 0);
+  m_levers.resize(MayUseManifoldFriction(settings) ? static_cast<std::size_t>(totals.points) : 0);
   m_cold.resize(static_cast<std::size_t>(totals.points));
   m_blockInverses.resize(static_cast<std::size_t>(totals.blocks));
   BuildPairsOnThreads(bodies, contacts, settings, h, runner, stats);
+}
+
+// The bodies whose pairs take the coupled block under Adaptive: every body
+// of a group that contact joins (moving bodies touching, directly or
+// through others; immovable bodies join nothing) in which some pair's load
+// calls for it (AdaptiveNeedsCoupledBlock). A heavy load's weight passes
+// through every support under it down to the ground, so the whole group
+// is solved one way: measured, a 1-10-100-1000 kg column at 5 sweeps
+// with only its loaded pairs on the coupled block lost its top box, and a
+// 1000:1 load on a pyramid at 1/960 s, with the pairs that had not yet
+// felt it on manifold rows, collapsed after 2.8 s; both held with the
+// group on either kind (docs/dynamics.md, "Adaptive friction").
+void ContactRowSet::MarkBodiesUnderLoad(std::span<const BodySim> bodies, std::span<const Contact> contacts,
+                                        const WorldSettings& settings, double h) {
+  const std::size_t count = bodies.size();
+  m_group.resize(count);
+  for (std::size_t i = 0; i < count; ++i) m_group[i] = static_cast<int>(i);
+  const auto root = [this](int i) {
+    while (m_group[static_cast<std::size_t>(i)] != i) {
+      // Path halving: each visited body points two up.
+      const int up = m_group[static_cast<std::size_t>(m_group[static_cast<std::size_t>(i)])];
+      m_group[static_cast<std::size_t>(i)] = up;
+      i = up;
+    }
+    return i;
+  };
+  for (const Contact& contact : contacts) {
+    if (!bodies[static_cast<std::size_t>(contact.bodyA)].IsSolverDynamic() ||
+        !bodies[static_cast<std::size_t>(contact.bodyB)].IsSolverDynamic() ||
+        contact.manifold.pointCount == 0) {
+      continue;
+    }
+    const int a = root(contact.bodyA);
+    const int b = root(contact.bodyB);
+    // The lower index becomes the root: the grouping depends on the
+    // contacts only, never on a thread.
+    if (a != b) m_group[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+  }
+  m_underLoad.assign(count, 0);
+  const double gravity = settings.gravity.norm();
+  for (const Contact& contact : contacts) {
+    const BodySim& a = bodies[static_cast<std::size_t>(contact.bodyA)];
+    const BodySim& b = bodies[static_cast<std::size_t>(contact.bodyB)];
+    const double invMassA = SolverInvMass(a);
+    const double invMassB = SolverInvMass(b);
+    if ((invMassA == 0.0 && invMassB == 0.0) || contact.manifold.pointCount == 0 || contact.friction <= 0.0) {
+      continue;
+    }
+    if (!AdaptiveNeedsCoupledBlock(contact, invMassA, invMassB, gravity, h)) continue;
+    m_underLoad[static_cast<std::size_t>(root(invMassA > 0.0 ? contact.bodyA : contact.bodyB))] = 1;
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    m_underLoad[i] = m_underLoad[static_cast<std::size_t>(root(static_cast<int>(i)))];
+  }
 }
 
 ContactRowSet::RowTotals ContactRowSet::AddPairHeaders(std::span<const BodySim> bodies,
@@ -161,10 +242,10 @@ PairRows ContactRowSet::MakePairHeader(std::span<const BodySim> bodies, const Co
   pair.normal = contact.manifold.normal;
   pair.friction = contact.friction;
   pair.hasFriction = contact.friction > 0.0;
-  pair.manifoldFriction = pair.hasFriction && settings.methods.frictionSolve == FrictionSolve::PerManifold;
-  pair.persisted = contact.persisted && settings.methods.warmStarting;
   pair.invMassA = m_bodies.InvMass(pair.bodyA);
   pair.invMassB = m_bodies.InvMass(pair.bodyB);
+  pair.manifoldFriction = pair.hasFriction && UsesManifoldFriction(settings, contact, m_underLoad);
+  pair.persisted = contact.persisted && settings.methods.warmStarting;
   if (UsesNormalBlock(settings, pair.pointCount)) pair.block = totals.blocks++;
   totals.points += pair.pointCount;
   if (pair.manifoldFriction) {
@@ -256,28 +337,35 @@ void ContactRowSet::PrepareFrictionRows(const Contact& contact, int i, const Vec
   }
 }
 
-// The slip rows at the manifold's centre, the spin row about n, the levers,
-// and the warm start summed from the stored per-point vectors
-// (dynamics/manifold_friction.h).
+// The slip rows at the pair's centre of pressure, the spin row about n, the
+// levers, and the warm start summed from the stored
+// per-point vectors (dynamics/manifold_friction.h).
 void ContactRowSet::PrepareManifoldFriction(const BodySim& a, const BodySim& b, const Contact& contact,
                                             const WorldSettings& settings, const PairRows& pair) {
   const Vec3& n = pair.normal;
   const ContactManifold& manifold = contact.manifold;
+  const auto count = static_cast<std::size_t>(pair.pointCount);
+  const auto first = static_cast<std::size_t>(pair.firstPoint);
+  const auto position = [&manifold](int i) { return manifold.points[static_cast<std::size_t>(i)].position; };
   std::array<Vec3, kMaxManifoldPoints> offsets;
-  const std::span<Vec3> offsetSpan(offsets.data(), static_cast<std::size_t>(pair.pointCount));
-  const Vec3 centre = ManifoldOffsets(
-      pair.pointCount, n,
-      [&manifold](int i) { return manifold.points[static_cast<std::size_t>(i)].position; }, offsetSpan);
-  for (int i = 0; i < pair.pointCount; ++i) {
-    m_levers[static_cast<std::size_t>(pair.firstPoint + i)] = offsets[static_cast<std::size_t>(i)].norm();
-  }
+  const std::span<Vec3> offsetSpan(offsets.data(), count);
+  ManifoldOffsets(pair.pointCount, n, position, offsetSpan);
+  for (std::size_t i = 0; i < count; ++i) m_levers[first + i] = offsets[i].norm();
+  // Weighted by the impulses the step starts from (none without warm
+  // starting: the mean).
+  static constexpr std::array<double, kMaxManifoldPoints> kNoLoad{};
+  const std::span<const double> load(
+      settings.methods.warmStarting ? contact.normalImpulse.data() : kNoLoad.data(), count);
+  std::array<double, kMaxManifoldPoints> shareStore;
+  const std::span<double> shares(shareStore.data(), count);
+  const Vec3 pressure = ManifoldSlipShares(pair.pointCount, load, position, shares);
   const Mat3& invInertiaA = m_bodies.InvInertia(pair.bodyA);
   const Mat3& invInertiaB = m_bodies.InvInertia(pair.bodyB);
   FrictionRow* rows = &m_frictions[static_cast<std::size_t>(pair.firstFriction)];
   for (int k = 0; k < 2; ++k) {
     rows[k] = FrictionRow{};
     rows[k].j =
-        MakeRowJacobian(pair.tangent[k], centre - a.center, centre - b.center, invInertiaA, invInertiaB);
+        MakeRowJacobian(pair.tangent[k], pressure - a.center, pressure - b.center, invInertiaA, invInertiaB);
     rows[k].mass = RowEffectiveMass(rows[k].j, pair.invMassA, pair.invMassB);
   }
   const bool spin = pair.pointCount >= 2;
@@ -293,7 +381,7 @@ void ContactRowSet::PrepareManifoldFriction(const BodySim& a, const BodySim& b, 
   }
   if (!settings.methods.warmStarting) return;
   const ManifoldFrictionImpulses loaded = SumManifoldFriction(
-      std::span<const Vec3>(contact.frictionImpulse.data(), offsetSpan.size()), offsetSpan, n, pair.tangent);
+      std::span<const Vec3>(contact.frictionImpulse.data(), count), offsetSpan, shares, n, pair.tangent);
   rows[0].impulse = loaded.slip[0];
   rows[1].impulse = loaded.slip[1];
   if (spin) rows[2].impulse = loaded.spin;
@@ -338,10 +426,11 @@ void ContactRowSet::StoreImpulses(std::span<Contact> contacts) const {
   }
 }
 
-// Shared out over the points (dynamics/manifold_friction.h), their offsets
-// from the arms kept in the cold data (an arm differs from the point's
-// position by the body's centre, which the mean removes). A timed bounce's
-// point keeps no friction, as with per-point rows.
+// Shared out over the points with the slip shares of the normal impulses
+// stored beside them (dynamics/manifold_friction.h), their offsets from the arms kept in the
+// cold data (an arm differs from the point's position by the body's centre,
+// which the mean removes). A timed bounce's point keeps no friction, as
+// with per-point rows.
 void ContactRowSet::StoreManifoldFriction(const PairRows& pair, Contact& contact) const {
   const PointCold* cold = &m_cold[static_cast<std::size_t>(pair.firstPoint)];
   const FrictionRow* rows = &m_frictions[static_cast<std::size_t>(pair.firstFriction)];
@@ -354,7 +443,14 @@ void ContactRowSet::StoreManifoldFriction(const PairRows& pair, Contact& contact
   impulses.slip[1] = rows[1].impulse;
   if (pair.pointCount >= 2) impulses.spin = rows[2].impulse;
   const std::span<Vec3> perPoint(contact.frictionImpulse.data(), offsetSpan.size());
-  ShareManifoldFriction(impulses, offsetSpan, pair.normal, pair.tangent, perPoint);
+  // The shares the next step's rows will read back with: its weights are
+  // the normal impulses stored here.
+  std::array<double, kMaxManifoldPoints> shares;
+  const std::span<double> shareSpan(shares.data(), offsetSpan.size());
+  ManifoldSlipShares(
+      pair.pointCount, std::span<const double>(contact.normalImpulse.data(), offsetSpan.size()),
+      [cold](int i) { return cold[i].armA; }, shareSpan);
+  ShareManifoldFriction(impulses, offsetSpan, shareSpan, pair.normal, pair.tangent, perPoint);
   for (int i = 0; i < pair.pointCount; ++i) {
     if (cold[i].timedBounce) perPoint[static_cast<std::size_t>(i)] = Vec3::Zero();
   }

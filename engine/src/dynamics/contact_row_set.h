@@ -126,6 +126,11 @@ class ContactRowSet {
   /// pair's header with its rows' places.
   RowTotals AddPairHeaders(std::span<const BodySim> bodies, std::span<const Contact> contacts,
                            const WorldSettings& settings, StepStatistics& stats);
+  /// FrictionSolve::Adaptive: which bodies' pairs take the coupled block
+  /// this step (m_underLoad): the groups of touching moving bodies with a
+  /// heavily loaded pair.
+  void MarkBodiesUnderLoad(std::span<const BodySim> bodies, std::span<const Contact> contacts,
+                           const WorldSettings& settings, double h);
   /// The header of `contact` (index `c`) with its rows starting at `totals`.
   PairRows MakePairHeader(std::span<const BodySim> bodies, const Contact& contact, int c,
                           const WorldSettings& settings, RowTotals& totals);
@@ -158,10 +163,15 @@ class ContactRowSet {
   /// Two per point (t1, t2) of the pairs with friction, or the manifold's
   /// rows (ManifoldFrictionRowCount) of a pair with manifold friction.
   std::vector<FrictionRow> m_frictions;
-  /// One per point under FrictionSolve::PerManifold (empty otherwise);
-  /// written for manifold-friction pairs only.
+  /// One per point under FrictionSolve::PerManifold or Adaptive (empty
+  /// otherwise); written for manifold-friction pairs only.
   std::vector<double> m_levers;
   std::vector<PointCold> m_cold;  ///< one per point
+  /// Per body (world index), under Adaptive: 1 when its group carries a
+  /// load that calls for the coupled block (MarkBodiesUnderLoad).
+  std::vector<unsigned char> m_underLoad;
+  /// MarkBodiesUnderLoad's union-find parents, per body (world index).
+  std::vector<int> m_group;
   std::vector<Eigen::Matrix4d> m_blockInverses;
   int m_newPairs = 0;      ///< pairs that did not persist
   int m_timedBounces = 0;  ///< points with a timed bounce (PointCold::timedBounce)

@@ -12,7 +12,9 @@ void ContactSolver::Prepare(std::span<const BodySim> bodies, std::span<const Con
   m_shockOn = settings.methods.shockPropagation;
   m_useWide = settings.methods.contactOrder == ContactOrder::ByColour;
   m_rows.Prepare(bodies, contacts, settings, h, m_runner, stats);
-  m_coupled.Reset(settings.methods.frictionSolve == FrictionSolve::CoupledBlock, m_rows.BlockCount());
+  m_coupled.Reset(settings.methods.frictionSolve == FrictionSolve::CoupledBlock ||
+                      settings.methods.frictionSolve == FrictionSolve::Adaptive,
+                  m_rows.BlockCount());
   if (m_shockOn) m_shock.Prepare(bodies, contacts, m_rows, settings.slop);
   if (m_useWide) m_coloured.Build(m_rows, m_runner, stats);
 }

@@ -43,18 +43,19 @@ class CoupledBlockSolver {
     std::int64_t refused = 0;   ///< a pulling normal, a friction past its bound, or no lever for the twist
   };
 
-  /// Forgets the last step: `enabled` (FrictionSolve::CoupledBlock selected)
+  /// Forgets the last step: `enabled` (FrictionSolve::CoupledBlock or Adaptive selected)
   /// for the `blocks` normal blocks of this step's rows.
   void Reset(bool enabled, int blocks);
   /// Whether the block applies to `pair`: selected, a normal block,
-  /// friction, and at least three points (a face). Edge contacts (two
+  /// friction not on the manifold's rows (Adaptive gives those to lightly
+  /// loaded faces), and at least three points (a face). Edge contacts (two
   /// points) keep the per-point rows: measured, the block on them changed
   /// how boxes tip over an edge (box_toss at 1/120 s, 5 sweeps, settled on
   /// another face, 36 cm from its converged run; tall_box_tipping's tip
   /// further from its truth), for no accuracy gained anywhere in the sweep
   /// (docs/dynamics.md).
   [[nodiscard]] bool Applies(const PairRows& pair) const {
-    return m_enabled && pair.block >= 0 && pair.hasFriction && pair.pointCount >= 3;
+    return m_enabled && pair.block >= 0 && pair.hasFriction && !pair.manifoldFriction && pair.pointCount >= 3;
   }
   /// The block on `pair` (Applies): true when accepted (normals and
   /// friction written and applied). Builds the operator at the step's

@@ -120,7 +120,7 @@ std::string CheckMethodEnums(const MethodSettings& m) {
     return NotAnEnum("contactOrder", m.contactOrder, "ContactOrder");
   }
   if (m.frictionSolve != FrictionSolve::PerPoint && m.frictionSolve != FrictionSolve::CoupledBlock &&
-      m.frictionSolve != FrictionSolve::PerManifold) {
+      m.frictionSolve != FrictionSolve::PerManifold && m.frictionSolve != FrictionSolve::Adaptive) {
     return NotAnEnum("frictionSolve", m.frictionSolve, "FrictionSolve");
   }
   if (m.translation != TranslationIntegrator::SymplecticEuler &&
@@ -143,13 +143,25 @@ std::string CheckMethodCombinations(const MethodSettings& m) {
   // The coupled block is a pair's normal block with its friction: without
   // either it would silently be the per-point rows.
   if (m.frictionSolve == FrictionSolve::CoupledBlock && m.contactOrder != ContactOrder::PairByPair) {
-    return "WorldSettings.methods.frictionSolve = CoupledBlock (the default) needs contactOrder = "
+    return "WorldSettings.methods.frictionSolve = CoupledBlock needs contactOrder = "
            "PairByPair: the coloured order has no coupled block; select frictionSolve = PerPoint with it";
   }
   if (m.frictionSolve == FrictionSolve::CoupledBlock && !m.blockSolver) {
-    return "WorldSettings.methods.frictionSolve = CoupledBlock (the default) needs blockSolver = true: the "
+    return "WorldSettings.methods.frictionSolve = CoupledBlock needs blockSolver = true: the "
            "coupled block extends a pair's normal block, which blockSolver = false turns off; select "
            "frictionSolve = PerPoint with it";
+  }
+  if (m.frictionSolve == FrictionSolve::Adaptive && m.contactOrder != ContactOrder::PairByPair) {
+    return "WorldSettings.methods.frictionSolve = Adaptive needs contactOrder = PairByPair: the coloured "
+           "order has neither the coupled block nor the manifold's rows; select frictionSolve = PerPoint "
+           "with it";
+  }
+  if (m.frictionSolve == FrictionSolve::Adaptive && !m.blockSolver) {
+    return "WorldSettings.methods.frictionSolve = Adaptive needs blockSolver = true: its loaded pairs take "
+           "the "
+           "coupled block, which extends a pair's normal block; select frictionSolve = PerPoint or "
+           "PerManifold "
+           "with it";
   }
   if (m.frictionSolve == FrictionSolve::PerManifold && m.contactOrder != ContactOrder::PairByPair) {
     return "WorldSettings.methods.frictionSolve = PerManifold needs contactOrder = PairByPair: the coloured "

@@ -297,6 +297,12 @@ void RegisterTalusBackends(harness::BackendRegistry& registry, TalusBackendOptio
                     independent, [options](const Run& run) {
                       return TalusBackend::Create(run, Variant::ManifoldFriction, options);
                     });
+  registry.Register("talus-coupled",
+                    "Talus (double): engine defaults with the coupled block on every face pair (the "
+                    "default before adaptive friction) instead of manifold rows on the lightly loaded ones",
+                    independent, [options](const Run& run) {
+                      return TalusBackend::Create(run, Variant::CoupledFriction, options);
+                    });
 }
 
 }  // namespace talus::reference

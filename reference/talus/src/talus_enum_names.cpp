@@ -46,7 +46,10 @@ std::string FrictionSolveText(FrictionSolve friction) {
       return "coupled block: a sticking pair's normals and friction (slip and spin patterns) solved "
              "together, else per point";
     case FrictionSolve::PerManifold:
-      return "per manifold: slip at the centre inside a disc, and spin about the normal";
+      return "per manifold: slip at the centre of pressure inside a disc, and spin about the normal";
+    case FrictionSolve::Adaptive:
+      return "adaptive: per manifold, and the coupled block on pairs carrying over 50 weights of their "
+             "lighter body";
   }
   return "unknown";
 }

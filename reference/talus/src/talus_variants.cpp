@@ -154,6 +154,11 @@ WorldSettings MakeSettings(const WorldSettings& base, const Run& run, Variant va
       // per manifold") in place of the coupled block and per-point rows.
       settings.methods.frictionSolve = FrictionSolve::PerManifold;
       break;
+    case Variant::CoupledFriction:
+      // The coupled block on every face, the default before Adaptive
+      // (docs/dynamics.md, "Adaptive friction"): Adaptive's other half.
+      settings.methods.frictionSolve = FrictionSolve::CoupledBlock;
+      break;
   }
   return settings;
 }
@@ -174,6 +179,8 @@ const char* VariantName(Variant variant) {
       return "talus-soft";
     case Variant::ManifoldFriction:
       return "talus-manifold";
+    case Variant::CoupledFriction:
+      return "talus-coupled";
   }
   return "talus";
 }
@@ -204,7 +211,7 @@ Result<WorldSettings> TalusRowSettings(const harness::Run& run, std::string_view
   message += row;
   message +=
       "\" is not a Talus row (talus, talus-writeup, talus-split, talus-coloured, talus-soft, "
-      "talus-manifold)";
+      "talus-manifold, talus-coupled)";
   return Error{message};
 }
 

@@ -16,12 +16,12 @@
 namespace talus::reference {
 
 /// Which engine options a variant uses.
-enum class Variant { Defaults, WriteUp, SplitImpulses, Coloured, Soft, ManifoldFriction };
+enum class Variant { Defaults, WriteUp, SplitImpulses, Coloured, Soft, ManifoldFriction, CoupledFriction };
 
 /// Every variant, in the order the rows are registered.
-inline constexpr std::array<Variant, 6> kVariants = {Variant::Defaults,      Variant::WriteUp,
-                                                     Variant::SplitImpulses, Variant::Coloured,
-                                                     Variant::Soft,          Variant::ManifoldFriction};
+inline constexpr std::array<Variant, 7> kVariants = {
+    Variant::Defaults, Variant::WriteUp,          Variant::SplitImpulses,  Variant::Coloured,
+    Variant::Soft,     Variant::ManifoldFriction, Variant::CoupledFriction};
 
 /// The row's backend name ("talus", "talus-writeup", ...).
 const char* VariantName(Variant variant);
