@@ -20,9 +20,12 @@
 //                    per SIMD bundle) and the per-point friction it has.
 //   "talus-soft"     the defaults with the soft step (MethodSettings::
 //                    stepSolver = SoftStep: sub-stepped soft contacts).
-//   "talus-manifold" the defaults with friction per manifold
-//                    (FrictionSolve::PerManifold: slip at the centre and a
-//                    spin row, no coupled block).
+//   "talus-manifold" the defaults with friction per manifold on every
+//                    pair (FrictionSolve::PerManifold: slip at the centre
+//                    of pressure and a spin row, no coupled block).
+//   "talus-coupled"  the defaults with the coupled block on every face
+//                    (FrictionSolve::CoupledBlock, the default before
+//                    Adaptive).
 //
 // Every departure is a method switch (WorldSettings::methods).
 //
@@ -57,12 +60,13 @@ struct TalusBackendOptions {
 };
 
 /// Registers "talus", "talus-writeup", "talus-split", "talus-coloured",
-/// "talus-soft" and "talus-manifold". A thread count
+/// "talus-soft", "talus-manifold" and "talus-coupled". A thread count
 /// outside [1, kMaxThreads] is refused by every backend's Create, naming it.
 void RegisterTalusBackends(harness::BackendRegistry& registry, TalusBackendOptions options = {});
 
 /// The WorldSettings the Talus row named `row` ("talus", "talus-writeup",
-/// "talus-split", "talus-coloured", "talus-soft", "talus-manifold") runs `run` with, as its backend hands
+/// "talus-split", "talus-coloured", "talus-soft", "talus-manifold", "talus-coupled") runs `run` with, as
+/// its backend hands
 /// them to World::Create; an Error naming an unknown row, or a scenario the
 /// engine cannot pose (a restitution combine rule it lacks).
 Result<WorldSettings> TalusRowSettings(const harness::Run& run, std::string_view row,
