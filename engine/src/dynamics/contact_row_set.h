@@ -45,8 +45,9 @@
 //   * one PairRows header per touching pair (solver-body indices, normal,
 //     tangents, inverse masses, friction, flags);
 //   * one NormalRow per point and two FrictionRows per point (one per
-//     tangent; with FrictionSolve::PerManifold three per pair instead,
-//     dynamics/manifold_friction.h), each with its Jacobian's angular
+//     tangent; on manifold rows, PerManifold's pairs and Adaptive's
+//     unloaded ones, three per pair instead, dynamics/manifold_friction.h
+//     and adaptive_friction.h), each with its Jacobian's angular
 //     parts r x d precomputed together with their images under the inverse inertia, IA^-1 (rA x d)
 //     and IB^-1 (rB x d). A row is then
 //       Cdot = d.(vA - vB) + (rA x d).wA - (rB x d).wB     (two dot products)

@@ -139,7 +139,8 @@ struct PairRows {
   double friction = 0.0;
   bool hasFriction = false;
   bool persisted = false;  ///< the pair touched last step (see Contact::persisted)
-  /// Friction as the manifold's rows (FrictionSolve::PerManifold), not per point.
+  /// Friction as the manifold's rows (FrictionSolve::PerManifold, and
+  /// Adaptive's pairs outside loaded groups), not per point.
   bool manifoldFriction = false;
 };
 // Every pass over a pair reads its header first: 136 bytes, just over two

@@ -9,7 +9,8 @@
 //   * SequentialImpulseSweeps (dynamics/sequential_impulse_sweeps.h): the
 //     scalar Gauss-Seidel sweeps and warm start;
 //   * CoupledBlockSolver (dynamics/coupled_block_solver.h): FrictionSolve::
-//     CoupledBlock, a face pair's normals and friction as one block;
+//     CoupledBlock (and Adaptive's loaded groups), a face pair's normals
+//     and friction as one block;
 //   * ColouredContactDispatch (dynamics/coloured_contact_dispatch.h):
 //     ContactOrder::ByColour's packed bundles and threads;
 //   * ShockPropagation (dynamics/shock_propagation.h);
@@ -98,7 +99,8 @@ class ContactSolver {
   /// The coloured solver of the last Prepare (empty unless ByColour).
   [[nodiscard]] const WideContactSolver& Wide() const { return m_coloured.Wide(); }
 
-  /// FrictionSolve::CoupledBlock's tries in the last step's sweeps.
+  /// The coupled block's tries in the last step's sweeps (CoupledBlock, or
+  /// Adaptive's loaded groups).
   using CoupledBlockCounts = CoupledBlockSolver::Counts;
   [[nodiscard]] const CoupledBlockCounts& LastCoupledBlockCounts() const { return m_coupled.LastCounts(); }
 

@@ -12,9 +12,9 @@
 //   together: dlambda = K+ (target - J v), K = J M^-1 J^T (its
 //   pseudo-inverse from ContactRowSet), accepted when every accumulated
 //   impulse stays >= 0, else row by row. Box2D v2.4's two-point block
-//   solver extended to four points. With FrictionSolve::CoupledBlock a face
-//   pair's normals and friction are tried as one block first
-//   (dynamics/coupled_block_solver.h).
+//   solver extended to four points. With FrictionSolve::CoupledBlock (and
+//   Adaptive's loaded groups) a face pair's normals and friction are tried
+//   as one block first (dynamics/coupled_block_solver.h).
 //
 // Friction. Accumulated impulse clamped to [-mu lambda_n, mu lambda_n]
 //   with the point's current lambda_n, re-read every time after the normal
