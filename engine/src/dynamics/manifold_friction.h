@@ -171,9 +171,12 @@ void SolveManifoldFrictionRows(const PairRows& pair, const NormalRow* normals, c
     mass[k] = policy.Mass(rows[k], true);
     next[k] = rows[k].impulse - mass[k] * v.Along(pair.tangent[k], rows[k].j);
   }
-  const double length = std::hypot(next[0], next[1]);
-  if (length > bound) {
-    const double scale = bound / length;
+  // The disc clamp compares squared lengths and takes the root only when it
+  // clamps: std::hypot's overflow-safe scaling was a tenth of a pyramid
+  // step, and impulses are nowhere near the range where squares overflow.
+  const double squaredLength = next[0] * next[0] + next[1] * next[1];
+  if (squaredLength > bound * bound) {
+    const double scale = bound / std::sqrt(squaredLength);
     next[0] *= scale;
     next[1] *= scale;
   }
