@@ -95,6 +95,16 @@ void ResetContact(int bodyA, int bodyB, const ContactManifold& manifold, double 
 /// step, well below the spacing of the points of a manifold.
 inline constexpr double kWarmStartMatchDistance = 0.01;
 
+/// Warm starting of one pair: copies into `fresh` the accumulated impulses
+/// of each point from the point of `before` (last step's contact of the
+/// same pair) with the same feature id or, failing that, the nearest
+/// unclaimed old point within kWarmStartMatchDistance. Each old point is
+/// used once. Marks `fresh` persisted. Returns the points that found their
+/// old impulses. A manifold matched against itself (same points in the same
+/// order, as a kept or rebuilt manifold is) takes every point's own
+/// impulses back.
+int CarryPairImpulses(const Contact& before, Contact& fresh);
+
 /// Warm starting: for every contact in `current` whose pair is also in
 /// `previous`, copies the accumulated impulses of each point from the old
 /// point with the same feature id or, failing that, the nearest unclaimed

@@ -382,7 +382,6 @@ Status World::DestroyBody(BodyId id) {
     if (c.bodyB == id.index) WakeBody(d, static_cast<std::size_t>(c.bodyA));
   }
   EraseContactsOf(d.contacts, d.contactAnchors, id.index);
-  EraseContactsOf(d.previousContacts, d.previousContactAnchors, id.index);
   // The SAT caches of its pairs name its hull: a new body in the slot must
   // not inherit them.
   const auto involves = [index = id.index](const PairSatCache& c) {

@@ -58,12 +58,12 @@ double RadiusAboutOrigin(const Shape& shape) {
   return sphere.center.norm() + sphere.radius;
 }
 
-// Rebuilds last step's manifold of the pair from its anchors when reuse is
-// on, neither shape is a sphere, the narrow phase recorded the manifold,
-// and neither body has moved relative to the other by reuseDistance or more
-// since then. Returns false (nothing written) otherwise.
-bool ReuseManifold(const WorldData& d, const Contact& before, const ManifoldAnchors& anchors, std::size_t a,
-                   std::size_t b, const Transform& xfA, const Transform& xfB, ContactManifold* manifold) {
+// Whether last step's manifold of the pair can be rebuilt from its anchors:
+// reuse is on, neither shape is a sphere, the narrow phase recorded the
+// manifold, and neither body has moved relative to the other by
+// reuseDistance or more since then.
+bool CanReuseManifold(const WorldData& d, const ManifoldAnchors& anchors, std::size_t a, std::size_t b,
+                      const Transform& xfA, const Transform& xfB) {
   const double reuseDistance = d.settings.methods.narrowPhase.reuseDistance;
   const Shape& shapeA = *d.shapes[a];
   const Shape& shapeB = *d.shapes[b];
@@ -73,10 +73,21 @@ bool ReuseManifold(const WorldData& d, const Contact& before, const ManifoldAnch
   }
   const double moved =
       RelativeMotionBound(anchors, xfA, xfB, RadiusAboutOrigin(shapeA), RadiusAboutOrigin(shapeB));
-  if (!(moved < reuseDistance)) return false;
-  *manifold = before.manifold;
-  RebuildManifold(anchors, xfA, xfB, manifold);
-  return true;
+  return moved < reuseDistance;
+}
+
+// A kept or rebuilt contact under warm starting keeps its own impulses:
+// matched against itself, every point takes its own back (CarryPairImpulses),
+// so nothing is copied. Without warm starting a rebuilt one starts from zero,
+// as a fresh contact does.
+void CarryInPlace(bool warmStarting, Contact& contact) {
+  if (warmStarting) {
+    contact.persisted = true;
+    return;
+  }
+  contact.normalImpulse.fill(0.0);
+  for (Vec3& impulse : contact.frictionImpulse) impulse.setZero();
+  contact.persisted = false;
 }
 
 // The farthest point of the body's shape from its centre of mass, metres:
@@ -111,13 +122,15 @@ double PairReach(const WorldData& d, const BodySim& simA, const BodySim& simB, s
 }
 
 // One pair through the narrow phase: reads the world (bodies, shapes, last
-// step's contacts, anchors and caches) and writes only `out`, so pairs can
-// run on any thread in any order. `out.oldContact` and `out.oldCache` are
-// already set. The contact is built in place in `out.contact`; a Reused
-// pair's anchors stay in last step's list (the gather copies them once).
-// `scratch` is the running thread's working memory.
-void CollidePair(const WorldData& d, const BroadPhasePair& pair, double h, NarrowPhaseScratch& scratch,
-                 PairOutcome& out) {
+// step's contacts, anchors and caches) and writes only `out` and the pair's
+// own entry of last step's contacts (`lastContacts[out.oldContact]`), so
+// pairs can run on any thread in any order. `out.oldContact` and
+// `out.oldCache` are already set. A Kept or Reused pair's contact stays in
+// its entry (a Reused manifold is rebuilt there); a Tested pair's is built
+// in `out.contact`, last step's impulses carried into it. `scratch` is the
+// running thread's working memory.
+void CollidePair(const WorldData& d, std::span<Contact> lastContacts, const BroadPhasePair& pair, double h,
+                 NarrowPhaseScratch& scratch, PairOutcome& out) {
   const auto a = static_cast<std::size_t>(pair.a);
   const auto b = static_cast<std::size_t>(pair.b);
   const BodySim& simA = d.sims[a];
@@ -125,11 +138,15 @@ void CollidePair(const WorldData& d, const BroadPhasePair& pair, double h, Narro
   out.touching = false;
   out.wakeA = false;
   out.wakeB = false;
+  out.warmStartedPoints = 0;
+  const bool warmStarting = d.settings.methods.warmStarting;
 
   // Nothing on either side can move or disturb the other: keep what was
   // there.
   if (!Disturbs(simA) && !Disturbs(simB)) {
     out.kind = PairOutcome::Kind::Kept;
+    if (warmStarting && out.oldContact >= 0)
+      lastContacts[static_cast<std::size_t>(out.oldContact)].persisted = true;
     return;
   }
 
@@ -137,26 +154,32 @@ void CollidePair(const WorldData& d, const BroadPhasePair& pair, double h, Narro
   const Transform xfB = BodyTransform(simB);
   const BodyRecord& ra = d.records[a];
   const BodyRecord& rb = d.records[b];
-  const auto setContact = [&](const ContactManifold& manifold) {
+  const double friction = MixFriction(ra.friction, rb.friction, d.settings.frictionCombine);
+  const double restitution = MixRestitution(ra.restitution, rb.restitution, d.settings.restitutionCombine);
+  const auto markTouching = [&] {
     out.touching = true;
     out.wakeA = ShouldWake(simA, simB);
     out.wakeB = ShouldWake(simB, simA);
-    ResetContact(pair.a, pair.b, manifold, MixFriction(ra.friction, rb.friction, d.settings.frictionCombine),
-                 MixRestitution(ra.restitution, rb.restitution, d.settings.restitutionCombine), &out.contact);
   };
-  ContactManifold manifold{};
 
   // The pair barely moved since the narrow phase last saw it: rebuild that
-  // manifold and keep the anchors (and the SAT cache) as they were, so the
-  // reference pose stays the narrow phase's.
+  // manifold where it is and keep the anchors (and the SAT cache) as they
+  // were, so the reference pose stays the narrow phase's.
   if (out.oldContact >= 0) {
     const auto old = static_cast<std::size_t>(out.oldContact);
-    if (ReuseManifold(d, d.previousContacts[old], d.previousContactAnchors[old], a, b, xfA, xfB, &manifold)) {
+    const ManifoldAnchors& anchors = d.contactAnchors[old];
+    if (CanReuseManifold(d, anchors, a, b, xfA, xfB)) {
+      Contact& contact = lastContacts[old];
+      RebuildManifold(anchors, xfA, xfB, &contact.manifold);
+      contact.friction = friction;
+      contact.restitution = restitution;
+      CarryInPlace(warmStarting, contact);
       out.kind = PairOutcome::Kind::Reused;
-      setContact(manifold);
+      markTouching();
       return;
     }
   }
+  ContactManifold manifold{};
 
   out.kind = PairOutcome::Kind::Tested;
   out.stats = NarrowPhaseStats{};
@@ -188,17 +211,25 @@ void CollidePair(const WorldData& d, const BroadPhasePair& pair, double h, Narro
         PersistentBreakDistance(narrow.persistenceDistance, d.shapes[a]->LocalBoundingSphere().radius,
                                 d.shapes[b]->LocalBoundingSphere().radius);
     out.persistentPoints =
-        MergePersistentPoints(d.previousContacts[old].manifold, d.previousContactAnchors[old], xfA, xfB,
-                              breakDistance, kPersistentFreshPoints, &manifold, &out.anchors);
+        MergePersistentPoints(d.contacts[old].manifold, d.contactAnchors[old], xfA, xfB, breakDistance,
+                              kPersistentFreshPoints, &manifold, &out.anchors);
   }
-  setContact(manifold);
+  ResetContact(pair.a, pair.b, manifold, friction, restitution, &out.contact);
+  markTouching();
+  if (warmStarting && out.oldContact >= 0) {
+    out.warmStartedPoints =
+        CarryPairImpulses(d.contacts[static_cast<std::size_t>(out.oldContact)], out.contact);
+  }
 }
 
-// Copies one pair's outcome into the places the serial pass of the gather
-// gave it (contactSlot, cacheSlot): last step's contact, anchors and cache
-// for a kept pair; the new contact with last step's anchors and cache for a
-// reused one; the new contact, anchors and cache for a tested one.
-void GatherPair(WorldData& d, const PairOutcome& outcome) {
+// Puts one pair's outcome into the places the serial pass of the gather
+// gave it (contactSlot, cacheSlot). In place (`inPlace`: every pair's slot
+// is its entry of last step) only a tested pair's new contact and anchors
+// are written; otherwise the step's lists are built in the spare buffers:
+// a kept or reused pair's contact and anchors copied from its entry, a
+// tested pair's from its outcome. The SAT caches: a tested pair's new one,
+// else last step's.
+void GatherPair(WorldData& d, const PairOutcome& outcome, bool inPlace) {
   if (outcome.cacheSlot >= 0) {
     d.satCaches[static_cast<std::size_t>(outcome.cacheSlot)] =
         outcome.kind == PairOutcome::Kind::Tested
@@ -207,21 +238,17 @@ void GatherPair(WorldData& d, const PairOutcome& outcome) {
   }
   if (outcome.contactSlot < 0) return;
   const auto slot = static_cast<std::size_t>(outcome.contactSlot);
-  const auto old = static_cast<std::size_t>(outcome.oldContact);
-  switch (outcome.kind) {
-    case PairOutcome::Kind::Kept:
-      d.contacts[slot] = d.previousContacts[old];
-      d.contactAnchors[slot] = d.previousContactAnchors[old];
-      return;
-    case PairOutcome::Kind::Reused:
-      d.contacts[slot] = outcome.contact;
-      d.contactAnchors[slot] = d.previousContactAnchors[old];
-      return;
-    case PairOutcome::Kind::Tested:
-      d.contacts[slot] = outcome.contact;
-      d.contactAnchors[slot] = outcome.anchors;
-      return;
+  std::vector<Contact>& contacts = inPlace ? d.contacts : d.spareContacts;
+  std::vector<ManifoldAnchors>& anchors = inPlace ? d.contactAnchors : d.spareContactAnchors;
+  if (outcome.kind == PairOutcome::Kind::Tested) {
+    contacts[slot] = outcome.contact;
+    anchors[slot] = outcome.anchors;
+    return;
   }
+  if (inPlace) return;
+  const auto old = static_cast<std::size_t>(outcome.oldContact);
+  contacts[slot] = d.contacts[old];
+  anchors[slot] = d.contactAnchors[old];
 }
 
 // Last step's contact and cache of every pair into its outcome. Pairs come
@@ -233,12 +260,10 @@ void FindPreviousEntries(WorldData& d) {
   std::size_t oldCache = 0;
   for (std::size_t p = 0; p < d.pairs.size(); ++p) {
     const std::uint64_t key = PairKey(d.pairs[p].a, d.pairs[p].b);
-    while (oldContact < d.previousContacts.size() && d.previousContacts[oldContact].PairKey() < key)
-      ++oldContact;
+    while (oldContact < d.contacts.size() && d.contacts[oldContact].PairKey() < key) ++oldContact;
     while (oldCache < d.previousSatCaches.size() && d.previousSatCaches[oldCache].pairKey < key) ++oldCache;
     PairOutcome& outcome = d.pairOutcomes[p];
-    const bool hadContact =
-        oldContact < d.previousContacts.size() && d.previousContacts[oldContact].PairKey() == key;
+    const bool hadContact = oldContact < d.contacts.size() && d.contacts[oldContact].PairKey() == key;
     const bool hadCache =
         oldCache < d.previousSatCaches.size() && d.previousSatCaches[oldCache].pairKey == key;
     outcome.oldContact = hadContact ? static_cast<std::int32_t>(oldContact) : -1;
@@ -251,23 +276,34 @@ void FindPreviousEntries(WorldData& d) {
 void CollidePairs(WorldData& d, double h) {
   const int pairCount = static_cast<int>(d.pairs.size());
   const std::span<NarrowPhaseScratch> scratch = d.jobs->ThreadScratch<NarrowPhaseScratch>();
+  const std::span<Contact> lastContacts(d.contacts);
   d.jobs->ParallelForOnThreads(pairCount, kNarrowPhaseGrain,
-                               [&d, h, scratch](int thread, int begin, int end) {
+                               [&d, h, scratch, lastContacts](int thread, int begin, int end) {
                                  NarrowPhaseScratch& mine = scratch[static_cast<std::size_t>(thread)];
                                  for (int p = begin; p < end; ++p) {
-                                   CollidePair(d, d.pairs[static_cast<std::size_t>(p)], h, mine,
+                                   CollidePair(d, lastContacts, d.pairs[static_cast<std::size_t>(p)], h, mine,
                                                d.pairOutcomes[static_cast<std::size_t>(p)]);
                                  }
                                });
 }
 
 // The serial half of the gather, in pair order: each pair's places in the
-// new lists (contactSlot, cacheSlot), the counts and the wakes. Resizes the
-// new lists to the counts (capacity is kept; GatherPair overwrites every
-// element up to the new size).
-void AssignGatherSlots(WorldData& d, StepStatistics& stats) {
+// new lists (contactSlot, cacheSlot), the counts (warm-started points
+// included) and the wakes. Returns whether the contacts stay in place:
+// every pair with a contact this step has its slot at its entry of last
+// step, which holds while no pair begins touching or stops touching before
+// the last one (the steady state of a resting or sliding scene). Resizes
+// the lists the gather writes to the counts (capacity is kept; GatherPair
+// overwrites every element up to the new size that is not already there).
+bool AssignGatherSlots(WorldData& d, StepStatistics& stats) {
+  const bool warmStarting = d.settings.methods.warmStarting;
   std::int32_t contactCount = 0;
   std::int32_t cacheCount = 0;
+  bool inPlace = true;
+  std::int64_t warmStarted = 0;
+  const auto ownPoints = [&d](const PairOutcome& outcome) {
+    return d.contacts[static_cast<std::size_t>(outcome.oldContact)].manifold.pointCount;
+  };
   for (std::size_t p = 0; p < d.pairs.size(); ++p) {
     PairOutcome& outcome = d.pairOutcomes[p];
     outcome.contactSlot = -1;
@@ -275,17 +311,23 @@ void AssignGatherSlots(WorldData& d, StepStatistics& stats) {
     switch (outcome.kind) {
       case PairOutcome::Kind::Kept:
         ++stats.sleepingPairsSkipped;
-        if (outcome.oldContact >= 0) outcome.contactSlot = contactCount++;
+        if (outcome.oldContact >= 0) {
+          if (warmStarting) warmStarted += ownPoints(outcome);
+          outcome.contactSlot = contactCount++;
+          inPlace = inPlace && outcome.contactSlot == outcome.oldContact;
+        }
         if (outcome.oldCache >= 0) outcome.cacheSlot = cacheCount++;
         continue;
       case PairOutcome::Kind::Reused:
         ++stats.manifoldsReused;
-        stats.reusedContactPoints += outcome.contact.manifold.pointCount;
+        stats.reusedContactPoints += ownPoints(outcome);
+        if (warmStarting) warmStarted += ownPoints(outcome);
         if (outcome.oldCache >= 0) outcome.cacheSlot = cacheCount++;
         break;
       case PairOutcome::Kind::Tested:
         stats.narrowPhase += outcome.stats;
         stats.persistentPoints += outcome.persistentPoints;
+        warmStarted += outcome.warmStartedPoints;
         outcome.cacheSlot = cacheCount++;
         break;
     }
@@ -293,10 +335,19 @@ void AssignGatherSlots(WorldData& d, StepStatistics& stats) {
     if (outcome.wakeA) Wake(d, static_cast<std::size_t>(d.pairs[p].a));
     if (outcome.wakeB) Wake(d, static_cast<std::size_t>(d.pairs[p].b));
     outcome.contactSlot = contactCount++;
+    inPlace = inPlace && outcome.contactSlot == outcome.oldContact;
   }
-  d.contacts.resize(static_cast<std::size_t>(contactCount));
-  d.contactAnchors.resize(static_cast<std::size_t>(contactCount));
+  if (warmStarting) stats.warmStartedPoints = warmStarted;
+  const auto count = static_cast<std::size_t>(contactCount);
+  // In place the list only loses entries past its last contact.
+  d.contacts.resize(inPlace ? count : d.contacts.size());
+  d.contactAnchors.resize(inPlace ? count : d.contactAnchors.size());
+  if (!inPlace) {
+    d.spareContacts.resize(count);
+    d.spareContactAnchors.resize(count);
+  }
   d.satCaches.resize(static_cast<std::size_t>(cacheCount));
+  return inPlace;
 }
 
 }  // namespace
@@ -342,10 +393,9 @@ Result<int> UpdateBroadPhase(WorldData& d, double h) {
 }
 
 void FindContacts(WorldData& d, double h, StepStatistics& stats) {
-  // The swapped-in lists are resized (not cleared) at the gather, which
-  // overwrites every element it keeps.
-  d.previousContacts.swap(d.contacts);
-  d.previousContactAnchors.swap(d.contactAnchors);
+  // The swapped-in cache list is resized (not cleared) at the gather, which
+  // overwrites every element it keeps. The contacts stay where they are
+  // (the store is updated in place, see AssignGatherSlots).
   d.previousSatCaches.swap(d.satCaches);
   d.broadPhase.FindPairs(d.pairs, stats.broadPhase);
   stats.spherePairs = static_cast<std::int64_t>(d.pairs.size());
@@ -357,11 +407,17 @@ void FindContacts(WorldData& d, double h, StepStatistics& stats) {
   // nothing depends on which thread ran which pair. First, serially, each
   // pair's places in the new lists, the counts and the wakes; then the
   // copies (a contact is hundreds of bytes) on every thread, each pair into
-  // its own places.
-  AssignGatherSlots(d, stats);
-  d.jobs->ParallelFor(static_cast<int>(d.pairs.size()), kGatherGrain, [&d](int begin, int end) {
-    for (int p = begin; p < end; ++p) GatherPair(d, d.pairOutcomes[static_cast<std::size_t>(p)]);
+  // its own places: in place only the tested pairs' (a kept or reused
+  // contact is already in its slot), else every contact into the spare
+  // lists, which are then swapped in.
+  const bool inPlace = AssignGatherSlots(d, stats);
+  d.jobs->ParallelFor(static_cast<int>(d.pairs.size()), kGatherGrain, [&d, inPlace](int begin, int end) {
+    for (int p = begin; p < end; ++p) GatherPair(d, d.pairOutcomes[static_cast<std::size_t>(p)], inPlace);
   });
+  if (!inPlace) {
+    d.contacts.swap(d.spareContacts);
+    d.contactAnchors.swap(d.spareContactAnchors);
+  }
   stats.manifolds = static_cast<std::int64_t>(d.contacts.size());
 }
 

@@ -8,9 +8,16 @@
 // refuse (a body beyond the broad phase's coordinate range), so a refusal
 // leaves the world unchanged.
 //
-// FindContacts moves last step's contacts to `previousContacts` (for warm
-// starting) and fills `contacts` with one Contact per touching pair, in the
-// broad phase's (a, b) order, which is pair-key order. Pairs whose bodies
+// FindContacts updates the persistent contact store, `contacts` (with its
+// anchors beside it), to one Contact per touching pair, in the broad
+// phase's (a, b) order, which is pair-key order, last step's impulses
+// carried into each (warm starting: CarryPairImpulses). The store is updated
+// in place: a pair whose manifold is kept or rebuilt stays in its entry with
+// its impulses (matched against itself, a manifold takes every point's own
+// impulses back, so nothing needs copying), and only a tested pair's new
+// record is written, into its entry. In a step where some pair begins or
+// stops touching before the last one, the entries move, and the step's
+// list is built in the spare buffers and swapped in. Pairs whose bodies
 // are all asleep (or asleep against static or kinematic) skip the narrow
 // phase and keep last step's contact, so a sleeping island stays connected
 // and costs nothing. A polyhedron pair that barely moved relative to the

@@ -74,9 +74,12 @@ static_assert(sizeof(PairSatCache) == 40, "PairSatCache: pair key and a 32-byte 
 // The anchors lead (under AVX Eigen aligns their quaternion to 32 bytes,
 // and behind the 20 bytes of flags and indices they were padded to 1,312).
 struct PairOutcome {
-  /// Tested and touching: the new manifold's anchors (Reused keeps last
-  /// step's, copied straight from WorldData::previousContactAnchors).
+  /// Tested and touching: the new manifold's anchors (Kept and Reused pairs
+  /// keep theirs where they are in WorldData::contactAnchors).
   ManifoldAnchors anchors;
+  /// Tested and touching: this step's contact, last step's impulses carried
+  /// over (Kept and Reused pairs keep theirs in WorldData::contacts, where
+  /// a Reused pair's manifold is rebuilt in place).
   Contact contact;
   PairSatCache cache;      ///< Tested: the pair's new SAT cache
   NarrowPhaseStats stats;  ///< Tested: the narrow phase's counts for this pair
@@ -86,14 +89,15 @@ struct PairOutcome {
     Tested,  ///< the narrow phase ran; `cache` is its new SAT cache
   };
   Kind kind = Kind::Tested;
-  bool touching = false;              ///< Reused or Tested: `contact` is this step's contact
-  bool wakeA = false;                 ///< touching, and body a sleeps while b disturbs it
-  bool wakeB = false;                 ///< the same for body b
-  std::int32_t oldContact = -1;       ///< index of last step's contact of the pair, or -1
-  std::int32_t oldCache = -1;         ///< index of last step's SAT cache of the pair, or -1
-  std::int32_t contactSlot = -1;      ///< the gather's: index in this step's contacts, or -1
-  std::int32_t cacheSlot = -1;        ///< the gather's: index in this step's SAT caches, or -1
-  std::int32_t persistentPoints = 0;  ///< Tested: last step's points merged back (manifold_persistence.h)
+  bool touching = false;               ///< Reused or Tested: the pair has a contact this step
+  bool wakeA = false;                  ///< touching, and body a sleeps while b disturbs it
+  bool wakeB = false;                  ///< the same for body b
+  std::int32_t oldContact = -1;        ///< index of last step's contact of the pair, or -1
+  std::int32_t oldCache = -1;          ///< index of last step's SAT cache of the pair, or -1
+  std::int32_t contactSlot = -1;       ///< the gather's: index in this step's contacts, or -1
+  std::int32_t cacheSlot = -1;         ///< the gather's: index in this step's SAT caches, or -1
+  std::int32_t persistentPoints = 0;   ///< Tested: last step's points merged back (manifold_persistence.h)
+  std::int32_t warmStartedPoints = 0;  ///< Tested: points that found last step's impulses (CarryPairImpulses)
 };
 // One per broad-phase pair every step, written by a worker and read by the
 // gather: mostly the Contact and ManifoldAnchors budgeted in
@@ -115,11 +119,18 @@ struct WorldData {
   std::vector<PairSatCache> satCaches;
   std::vector<PairSatCache> previousSatCaches;
 
-  std::vector<Contact> contacts;          ///< this step's, sorted by pair key
-  std::vector<Contact> previousContacts;  ///< last step's, for warm starting
+  /// The persistent contact store (world/world_collide.h): one contact per
+  /// touching pair, sorted by pair key, updated in place while the pair set
+  /// holds its order.
+  std::vector<Contact> contacts;
   /// Each contact's manifold in its bodies' frames, same index as `contacts`.
   std::vector<ManifoldAnchors> contactAnchors;
-  std::vector<ManifoldAnchors> previousContactAnchors;  ///< same index as `previousContacts`
+  /// The gather's other buffers, used only in a step whose pairs moved in
+  /// the list (some pair began or stopped touching): the step's contacts
+  /// are built there and swapped in. Kept for their capacity; between steps
+  /// they hold nothing anyone reads.
+  std::vector<Contact> spareContacts;
+  std::vector<ManifoldAnchors> spareContactAnchors;
   ContactSolver solver;
   SoftStepSolver softSolver;  ///< MethodSettings::stepSolver = SoftStep
   SleepManager sleepManager;

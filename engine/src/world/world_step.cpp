@@ -62,15 +62,13 @@ void CountBodies(const WorldData& d, StepStatistics& stats) {
   }
 }
 
-// Warm starting pairs this step's contacts with last step's by feature id;
-// then the solver's rows are built from the contacts.
+// The solver's rows are built from the contacts (FindContacts has already
+// carried last step's impulses into them: world/world_collide.h).
 // The coloured solver hands each colour's bundles to the world's pool; the
 // scalar solver ignores the runner. With one thread no runner is set, so a
 // colour runs as one range on the caller (the results are the same bits
 // either way: tests/threads, tests/dynamics/coloured_solver_test.cpp).
 void PrepareContacts(WorldData& d, double h, StepStatistics& stats) {
-  if (d.settings.methods.warmStarting)
-    stats.warmStartedPoints = CarryImpulses(d.previousContacts, d.contacts);
   if (d.jobs->ThreadCount() > 1) {
     d.solver.SetPhaseRunner(
         [&d](std::span<const JobPhase> phases, const std::function<void(int, int, int)>& fn) {
@@ -140,8 +138,6 @@ void UpdateSleep(WorldData& d, double h, StepStatistics& stats) {
 }
 
 void SoftPrepareContacts(WorldData& d, double dt, StepStatistics& stats) {
-  if (d.settings.methods.warmStarting)
-    stats.warmStartedPoints = CarryImpulses(d.previousContacts, d.contacts);
   if (d.jobs->ThreadCount() > 1) {
     d.softSolver.SetPhaseRunner(
         [&d](std::span<const JobPhase> phases, const std::function<void(int, int, int)>& fn) {
