@@ -144,27 +144,39 @@ inline void ShareManifoldFriction(const ManifoldFrictionImpulses& impulses, std:
   }
 }
 
+/// What a pair's manifold friction rows read of its normal rows: the
+/// bounds' loads, from the points' current normal impulses.
+struct ManifoldLoad {
+  double load = 0.0;       ///< N s, sum of the normal impulses lambda_i
+  double spinLoad = 0.0;   ///< N m s, sum of lambda_i |d_i|
+  double meanLever = 0.0;  ///< m, mean of the |d_i|
+};
+
+/// The ManifoldLoad of a pair's `pointCount` (>= 1) normal rows `normals`,
+/// `levers` the points' |d_i|.
+inline ManifoldLoad SumManifoldLoad(int pointCount, const NormalRow* normals, const double* levers) {
+  ManifoldLoad sum;
+  for (int i = 0; i < pointCount; ++i) {
+    sum.load += normals[i].impulse;
+    sum.spinLoad += normals[i].impulse * levers[i];
+    sum.meanLever += levers[i];
+  }
+  sum.meanLever /= static_cast<double>(pointCount);
+  return sum;
+}
+
 /// One pass over a pair's manifold friction rows. `rows` are its
-/// ManifoldFrictionRowCount rows, `normals` its points' normal rows,
-/// `levers` the points' |d_i|. The policy gives each row's effective mass
+/// ManifoldFrictionRowCount rows, `loads` what its normal rows hold now
+/// (SumManifoldLoad). The policy gives each row's effective mass
 /// (`Mass(row, linear)`: linear is false for the spin row, which has no
 /// linear part), applies an impulse (`Apply(v, delta, d, row)`, d zero for
 /// the spin row) and notes the velocity change (`Note(change)`, m/s; the
 /// spin row's at the mean lever). The sweeps and shock propagation (with a
 /// held body) share it.
 template <typename Policy>
-void SolveManifoldFrictionRows(const PairRows& pair, const NormalRow* normals, const double* levers,
-                               FrictionRow* rows, PairVelocities& v, Policy& policy) {
-  double load = 0.0;
-  double spinLoad = 0.0;
-  double meanLever = 0.0;
-  for (int i = 0; i < pair.pointCount; ++i) {
-    load += normals[i].impulse;
-    spinLoad += normals[i].impulse * levers[i];
-    meanLever += levers[i];
-  }
-  meanLever /= static_cast<double>(pair.pointCount);
-  const double bound = pair.friction * load;
+void SolveManifoldFrictionRows(const PairRows& pair, const ManifoldLoad& loads, FrictionRow* rows,
+                               PairVelocities& v, Policy& policy) {
+  const double bound = pair.friction * loads.load;
   double mass[2];
   double next[2];
   for (int k = 0; k < 2; ++k) {
@@ -172,8 +184,9 @@ void SolveManifoldFrictionRows(const PairRows& pair, const NormalRow* normals, c
     next[k] = rows[k].impulse - mass[k] * v.Along(pair.tangent[k], rows[k].j);
   }
   // The disc clamp compares squared lengths and takes the root only when it
-  // clamps: std::hypot's overflow-safe scaling was a tenth of a pyramid
-  // step, and impulses are nowhere near the range where squares overflow.
+  // clamps: std::hypot's overflow-safe scaling was measured a large share of
+  // a pyramid step (docs/bench-scenes.md, "the disc clamp"), and impulses are
+  // nowhere near the range where squares overflow.
   const double squaredLength = next[0] * next[0] + next[1] * next[1];
   if (squaredLength > bound * bound) {
     const double scale = bound / std::sqrt(squaredLength);
@@ -190,11 +203,11 @@ void SolveManifoldFrictionRows(const PairRows& pair, const NormalRow* normals, c
   FrictionRow& spin = rows[2];
   const double spinMass = policy.Mass(spin, false);
   const double spinRate = spin.j.angularA.dot(v.wA) - spin.j.angularB.dot(v.wB);
-  const double spinBound = pair.friction * spinLoad;
+  const double spinBound = pair.friction * loads.spinLoad;
   const double old = spin.impulse;
   spin.impulse = std::clamp(old - spinMass * spinRate, -spinBound, spinBound);
   const double delta = spin.impulse - old;
-  if (spinMass > 0.0) policy.Note(std::abs(delta) / spinMass * meanLever);
+  if (spinMass > 0.0) policy.Note(std::abs(delta) / spinMass * loads.meanLever);
   policy.Apply(v, delta, Vec3::Zero(), spin);
 }
 

@@ -115,12 +115,30 @@ bool SequentialImpulseSweeps::SolveNormalBlock(ContactRowSet& rows, const PairRo
   return true;
 }
 
+// The normal rows of one pair (SolvePairNormals), then, for a pair with
+// manifold friction, the loads its friction rows will read: summed here,
+// from the rows this pass has just written (still in cache), instead of by
+// the friction pass, which would fetch every point's normal row again
+// (measured: those loads were a fifth of SolveManifoldFrictionRows' time on
+// the pyramid, docs/bench-scenes.md). The friction pass of the same sweep
+// follows every pair's normal pass and nothing between them changes a
+// pair's normal impulses, so the loads are the same bits it would sum.
+template <bool kTrack>
+void SequentialImpulseSweeps::SolveNormals(ContactRowSet& rows, CoupledBlockSolver& coupled,
+                                           const PairRows& pair) {
+  SolvePairNormals<kTrack>(rows, coupled, pair);
+  if (!pair.manifoldFriction || !pair.hasFriction) return;
+  const auto first = static_cast<std::size_t>(pair.firstPoint);
+  m_loads[PairIndex(rows, pair)] =
+      SumManifoldLoad(pair.pointCount, &rows.Normals()[first], &rows.Levers()[first]);
+}
+
 // The normal rows of one pair: the coupled block or the normal block when
 // they apply and accept, else row by row, accumulated impulse clamped to
 // [0, inf).
 template <bool kTrack>
-void SequentialImpulseSweeps::SolveNormals(ContactRowSet& rows, CoupledBlockSolver& coupled,
-                                           const PairRows& pair) {
+void SequentialImpulseSweeps::SolvePairNormals(ContactRowSet& rows, CoupledBlockSolver& coupled,
+                                               const PairRows& pair) {
   if (coupled.Applies(pair) && coupled.Solve<kTrack>(rows, pair, m_largestChange)) return;
   if (pair.block >= 0 && SolveNormalBlock<kTrack>(rows, pair)) return;
   SolverVelocity& a = rows.Bodies().Velocity(pair.bodyA);
@@ -156,8 +174,7 @@ void SequentialImpulseSweeps::SolveFriction(ContactRowSet& rows, const CoupledBl
   ChangeTracker change(pair);
   if (pair.manifoldFriction) {
     FreeBodiesPolicy policy{pair, change};
-    SolveManifoldFrictionRows(pair, normals, &rows.Levers()[static_cast<std::size_t>(pair.firstPoint)],
-                              frictions, v, policy);
+    SolveManifoldFrictionRows(pair, m_loads[PairIndex(rows, pair)], frictions, v, policy);
     v.Store(a, b);
     if constexpr (kTrack) m_largestChange = std::max(m_largestChange, change.largest);
     return;
@@ -189,6 +206,7 @@ void SequentialImpulseSweeps::SweepAll(ContactRowSet& rows, CoupledBlockSolver& 
 
 double SequentialImpulseSweeps::Sweep(ContactRowSet& rows, CoupledBlockSolver& coupled, bool track) {
   m_largestChange = 0.0;
+  m_loads.resize(rows.Pairs().size());
   if (track) {
     SweepAll<true>(rows, coupled);
   } else {
@@ -213,6 +231,7 @@ void SequentialImpulseSweeps::SolvePairList(ContactRowSet& rows, CoupledBlockSol
 double SequentialImpulseSweeps::SolvePairs(ContactRowSet& rows, CoupledBlockSolver& coupled,
                                            std::span<const int> pairs, bool friction, bool track) {
   m_largestChange = 0.0;
+  m_loads.resize(rows.Pairs().size());
   if (track) {
     SolvePairList<true>(rows, coupled, pairs, friction);
   } else {

@@ -23,11 +23,14 @@
 // Order. Each sweep visits all normal rows, then all friction rows.
 #pragma once
 
+#include <cstddef>
 #include <span>
+#include <vector>
 
 #include "dynamics/contact_row_set.h"
 #include "dynamics/contact_rows.h"
 #include "dynamics/coupled_block_solver.h"
+#include "dynamics/manifold_friction.h"
 
 namespace talus {
 
@@ -57,11 +60,22 @@ class SequentialImpulseSweeps {
   template <bool kTrack>
   void SolveNormals(ContactRowSet& rows, CoupledBlockSolver& coupled, const PairRows& pair);
   template <bool kTrack>
+  void SolvePairNormals(ContactRowSet& rows, CoupledBlockSolver& coupled, const PairRows& pair);
+  template <bool kTrack>
   bool SolveNormalBlock(ContactRowSet& rows, const PairRows& pair);
   template <bool kTrack>
   void SolveFriction(ContactRowSet& rows, const CoupledBlockSolver& coupled, const PairRows& pair);
 
+  /// The index of `pair` in the rows' pairs.
+  static std::size_t PairIndex(const ContactRowSet& rows, const PairRows& pair) {
+    return static_cast<std::size_t>(&pair - rows.Pairs().data());
+  }
+
   double m_largestChange = 0.0;  ///< m/s, the largest row velocity change of this sweep
+  /// Per pair, the loads of its manifold friction rows, written by its
+  /// normal pass and read by its friction pass of the same sweep (entries
+  /// of other pairs are left as they are).
+  std::vector<ManifoldLoad> m_loads;
 };
 
 }  // namespace talus

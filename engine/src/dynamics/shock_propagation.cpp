@@ -346,8 +346,9 @@ void ShockPropagation::HeldFriction(ContactRowSet& rows, const PairRows& pair, c
   FrictionRow* frictions = &rows.Frictions()[static_cast<std::size_t>(pair.firstFriction)];
   if (pair.manifoldFriction) {
     HeldBodyPolicy<Sides> policy{sides, largest};
-    SolveManifoldFrictionRows(pair, normals, &rows.Levers()[static_cast<std::size_t>(pair.firstPoint)],
-                              frictions, v, policy);
+    const ManifoldLoad loads =
+        SumManifoldLoad(pair.pointCount, normals, &rows.Levers()[static_cast<std::size_t>(pair.firstPoint)]);
+    SolveManifoldFrictionRows(pair, loads, frictions, v, policy);
     return;
   }
   for (int i = 0; i < pair.pointCount; ++i) {
