@@ -23,6 +23,7 @@
 #include <typeinfo>
 #include <vector>
 
+#include "run/worker_signals.h"
 #include "support/text_util.h"
 
 namespace talus::harness {
@@ -249,6 +250,7 @@ class Reaper {
     for (Worker& worker : m_workers) {
       if (worker.pid > 0) {
         ::kill(worker.pid, SIGKILL);
+        ForgetWorker(worker.pid);
         int status = 0;
         while (::waitpid(worker.pid, &status, 0) < 0 && errno == EINTR) {
         }
@@ -317,7 +319,8 @@ using Done = std::function<void(std::size_t, JobOutcome)>;
 // index order as workers come free, each outcome passed to `done` as its
 // answer or its worker's death arrives. Members are declared in the order
 // they must be built and torn down: SIGPIPE ignored first and restored
-// last, the Reaper after the workers it kills.
+// last, then the terminating signals' handler (worker_signals.h: no worker
+// outlives a SIGTERM to the parent), the Reaper after the workers it kills.
 class WorkerPool {
  public:
   WorkerPool(std::size_t count, std::size_t slots, const ProcessLimits& limits, const Work& work,
@@ -364,6 +367,7 @@ class WorkerPool {
   const Work& m_work;
   const Done& m_done;
   const IgnoreSigpipe m_sigpipe;
+  const WorkerSignalGuard m_signals;
   StepSlots m_steps;
   std::vector<Worker> m_workers;
   const Reaper m_reaper;
@@ -391,8 +395,13 @@ std::string WorkerPool::StartWorker(std::size_t slot) {
     for (int fd : {command[0], command[1], answer[0], answer[1]}) ::close(fd);
     return reason;
   }
+  // No terminating signal between the fork and the new pid's record, so
+  // the handler never misses a worker (worker_signals.h).
+  BlockTerminatingSignals blocked;
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid == 0) {
+    BecomeWorkerProcess(parent, blocked.Old());
     // The other workers' pipe ends must not stay open here: a worker
     // holding another's command pipe would keep it from ever seeing its end.
     for (Worker& other : m_workers) {
@@ -405,6 +414,7 @@ std::string WorkerPool::StartWorker(std::size_t slot) {
     ::close(err[0]);
     BeWorker(m_limits, m_work, command[0], answer[1], err[1], &m_steps[slot]);
   }
+  if (pid > 0) RecordWorker(pid);
   ::close(command[0]);
   ::close(answer[1]);
   ::close(err[1]);
@@ -474,6 +484,7 @@ void WorkerPool::Bury(std::size_t slot) {
     worker.stderrLine.clear();
   }
   int status = 0;
+  ForgetWorker(worker.pid);  // before the pid is freed for reuse
   while (::waitpid(worker.pid, &status, 0) < 0 && errno == EINTR) {
   }
   CloseFd(worker.commandFd);

@@ -81,7 +81,10 @@ inline constexpr int kJobPastSteps = -2;
 /// is called on the calling thread as each job ends (in the order they
 /// end). A std::exception escaping work(i) ends that job with the
 /// exception's type and what() as the failure. SIGPIPE is ignored while
-/// this runs. Nothing is left running when this returns or throws.
+/// this runs, and SIGTERM, SIGINT or SIGHUP kill and reap every worker
+/// before the program dies of the signal (worker_signals.h; a worker also
+/// dies with a SIGKILLed parent). Nothing is left running when this
+/// returns or throws.
 void RunInChildProcesses(std::size_t count, int parallel, const ProcessLimits& limits,
                          const std::function<std::string(std::size_t)>& work,
                          const std::function<void(std::size_t, JobOutcome)>& done);
