@@ -177,7 +177,7 @@ TEST(Runner, SteppingExpansionKeepsTheDurationAndNamesTheRuns) {
   ASSERT_TRUE(expanded) << expanded.GetError().message;
   ASSERT_EQ(expanded.Value().size(), 24u);
   const ScenarioRun& run = expanded.Value()[3];  // first sweep point, h = 0.004, 5 iterations
-  EXPECT_EQ(run.id, "box_slide[mu=0.3,v0=1,h=0.0040000000000000001,iterations=5]");
+  EXPECT_EQ(run.id, "box_slide[mu=0.3,v0=1,h=0.004,iterations=5]");
   EXPECT_EQ(run.steps, 625);
   EXPECT_EQ(run.iterations, 5);
   EXPECT_EQ(expanded.Value()[0].iterations, 0);
@@ -188,6 +188,23 @@ TEST(Runner, SteppingExpansionKeepsTheDurationAndNamesTheRuns) {
   EXPECT_EQ(same.Value()[0].id, runs[0].id);
   EXPECT_FALSE(ExpandStepping(runs, {0.0}, {}));
   EXPECT_FALSE(ExpandStepping(runs, {}, {-1}));
+}
+
+TEST(Runner, SteppingExpansionWritesTheTimeStepShortest) {
+  // The shortest text that reads back as the same double (issue 39), not
+  // 17 digits ("h=0.0050000000000000001"); a step with no short form
+  // keeps all the digits it needs.
+  const std::vector<ScenarioRun> runs = Load("tumbling/box_free_fall.json");
+  auto expanded = ExpandStepping(runs, {0.005, 1.0 / 3.0}, {});
+  ASSERT_TRUE(expanded) << expanded.GetError().message;
+  ASSERT_EQ(expanded.Value().size(), 2u);
+  const ScenarioRun& run = expanded.Value()[0];
+  EXPECT_NE(run.id.find("[h=0.005]"), std::string::npos) << run.id;
+  ASSERT_FALSE(run.sweepValues.empty());
+  EXPECT_EQ(run.sweepValues.back().value, "0.005");
+  EXPECT_NE(expanded.Value()[1].id.find("[h=0.3333333333333333]"), std::string::npos)
+      << expanded.Value()[1].id;
+  EXPECT_EQ(std::stod(expanded.Value()[1].sweepValues.back().value), 1.0 / 3.0);
 }
 
 TEST(Runner, ConvergedReferenceMeasuresTheIntegratorLagOfFreeFall) {

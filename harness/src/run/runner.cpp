@@ -201,8 +201,10 @@ Result<std::vector<Run>> ExpandStepping(const std::vector<Run>& runs, const std:
                         FormatNumber(steps), " steps, more than the limit of ", std::to_string(kMaxSteps)})};
           }
           copy.steps = static_cast<int>(steps);
-          copy.sweepValues.push_back({"h", FormatNumber(h, 17)});
-          suffix = Concat({"h=", FormatNumber(h, 17)});
+          // Shortest round trip: exact, and "h=0.005" rather than
+          // "h=0.0050000000000000001".
+          copy.sweepValues.push_back({"h", FormatShortest(h)});
+          suffix = Concat({"h=", FormatShortest(h)});
         }
         if (!iterations.empty()) {
           copy.iterations = n;

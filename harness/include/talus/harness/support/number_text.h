@@ -4,6 +4,7 @@
 // (talus/reference/setting_text.h).
 #pragma once
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -17,6 +18,18 @@ inline std::string FormatNumber(double value, int digits = 6) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;
+}
+
+/// `value` as the shortest text that reads back as the same double
+/// (std::to_chars' shortest round trip): 0.005 is "0.005", where
+/// FormatNumber(value, 17) writes "0.0050000000000000001". For a value
+/// that must read back exactly but is read by people too (the time step
+/// in a run id). NaN is written "n/a".
+inline std::string FormatShortest(double value) {
+  if (std::isnan(value)) return "n/a";
+  char buffer[64];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
+  return std::string(buffer, end);
 }
 
 /// `value` through a printf conversion of one double (`format` such as
