@@ -113,6 +113,23 @@ TEST(ParseShard, AcceptsIOverNAndNamesBadText) {
   }
 }
 
+TEST(ParseShard, AnIndexOutOfRangeSaysShardsNumberFromZero) {
+  // "--shard 2/2" is a natural first guess at the second of two shards
+  // (issue 39): the refusal says how they are numbered.
+  auto parsed = ParseShard("2/2");
+  ASSERT_FALSE(parsed);
+  EXPECT_NE(
+      parsed.GetError().message.find("shard index 2 out of range for 2 shards (shards are numbered 0 to 1)"),
+      std::string::npos)
+      << parsed.GetError().message;
+  auto negative = ParseShard("-1/3");
+  ASSERT_FALSE(negative);
+  EXPECT_NE(negative.GetError().message.find(
+                "shard index -1 out of range for 3 shards (shards are numbered 0 to 2)"),
+            std::string::npos)
+      << negative.GetError().message;
+}
+
 TEST(ShardRuns, ThePartitionCoversEveryRunExactlyOnce) {
   for (int runs : {0, 1, 7, 48, 101}) {
     for (int count : {1, 2, 3, 8, 200}) {

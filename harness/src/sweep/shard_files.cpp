@@ -56,8 +56,15 @@ Result<Shard> ParseShard(std::string_view text) {
   if (!index) return index.GetError();
   auto count = ParseInt(text.substr(slash + 1), text);
   if (!count) return count.GetError();
-  if (count.Value() < 1 || index.Value() < 0 || index.Value() >= count.Value()) {
-    return Error{Concat({"shard \"", text, "\": need 0 <= i < n"})};
+  if (count.Value() < 1)
+    return Error{Concat({"shard \"", text, "\": need at least 1 shard (i/n with n >= 1)"})};
+  if (index.Value() < 0 || index.Value() >= count.Value()) {
+    // "--shard 2/2" is a natural guess at the second of two: say how they
+    // are numbered.
+    const int n = count.Value();
+    return Error{Concat({"shard \"", text, "\": shard index ", std::to_string(index.Value()),
+                         " out of range for ", std::to_string(n), n == 1 ? " shard" : " shards",
+                         " (shards are numbered 0 to ", std::to_string(n - 1), ")"})};
   }
   return Shard{index.Value(), count.Value()};
 }
