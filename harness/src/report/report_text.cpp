@@ -154,12 +154,14 @@ std::string OverviewTable(const ResultsFile& file, bool linkFails) {
       Row(out, row);
     }
   }
+  // No run finished by every backend (each run's scenario lists its own
+  // backends, or each run failed somewhere): nothing to sum, so no row of
+  // dashes.
+  if (finishedByAll == 0) return out.str();
   std::vector<std::string> timeRow = {
       Concat({"the ", std::to_string(finishedByAll), " runs every backend finished"}), "total wall time (s)",
       "-"};
-  for (const std::string& b : file.backends) {
-    timeRow.push_back(finishedByAll == 0 ? "-" : FormatNumber(totals[b], 3));
-  }
+  for (const std::string& b : file.backends) timeRow.push_back(FormatNumber(totals[b], 3));
   Row(out, timeRow);
   return out.str();
 }
