@@ -5,12 +5,14 @@
 // without it, at any --jobs; the in-process path gives the same bytes.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "support/one_body_run.h"
@@ -36,7 +38,7 @@ using Runs = std::vector<harness::Run>;  // gtest's Test::Run hides harness::Run
 
 bool Has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
-enum class Misdeed { None, Abort, Segfault, Hang, NaN, Allocate };
+enum class Misdeed { None, Abort, Segfault, Hang, NaN, Allocate, Slow };
 
 // One body falling at 1 m/s that misbehaves at step `at` as asked.
 class MisbehavingBackend final : public Backend {
@@ -48,9 +50,13 @@ class MisbehavingBackend final : public Backend {
     ++m_step;
     m_state.origin.y() -= 0.01;
     m_state.centerOfMass = m_state.origin;
+    // 5 ms every step: a large scene's cost, 10 times the hard kill's
+    // grace over 1024 steps.
+    if (m_misdeed == Misdeed::Slow) std::this_thread::sleep_for(std::chrono::milliseconds(5));
     if (m_step != m_at) return;
     switch (m_misdeed) {
       case Misdeed::None:
+      case Misdeed::Slow:
         break;
       case Misdeed::Abort:
         std::fprintf(stderr, "fake engine: internal assertion \"x > 0\" failed\n");
@@ -103,6 +109,7 @@ BackendRegistry MisbehavingRegistry() {
   add("hangs", Misdeed::Hang, 4);
   add("diverges", Misdeed::NaN, 5);
   add("allocates", Misdeed::Allocate, 6);
+  add("slow", Misdeed::Slow, 0);
   return registry;
 }
 
@@ -170,8 +177,8 @@ TEST(Isolation, CrashingAndDivergingEnginesStopOnlyTheirOwnCellsNamingTheCause) 
 
 TEST(Isolation, AHangIsKilledAtTheBudgetAndTheOthersFinish) {
   RunnerOptions options = Options({"fine", "hangs"}, 2);
-  // The hang is inside one step, where the job's own budget check (every
-  // 1024 steps) never comes: the runner kills it kBudgetKillGraceSeconds
+  // The hang is inside one step, where the job's own budget check (after
+  // every step) never comes: the runner kills it kBudgetKillGraceSeconds
   // after the budget.
   options.budgetSeconds = 0.5;
   auto results = RunAll(MisbehavingRegistry(), {OneBodyRun("first", 20)}, options);
@@ -182,6 +189,32 @@ TEST(Isolation, AHangIsKilledAtTheBudgetAndTheOthersFinish) {
   EXPECT_EQ(r[0].series.time.size(), 21u);
   EXPECT_EQ(r[1].error,
             "step 4: hangs: wall-clock budget spent: the runner killed the job's process after 2.5 s");
+}
+
+TEST(Isolation, SlowStepsStopSoftlyAtTheBudgetKeepingTheirPlot) {
+  // 5 ms a step: the budget is checked after every step (issue 39), so the
+  // job stops itself at the first step past 0.5 s, with its partial plot,
+  // instead of running on to a check 1024 steps later (5 s) and being
+  // killed by the runner at 2.5 s with nothing kept.
+  RunnerOptions options = Options({"fine", "slow"}, 2);
+  options.budgetSeconds = 0.5;
+  auto results = RunAll(MisbehavingRegistry(), {OneBodyRun("first", 100000)}, options);
+  ASSERT_TRUE(results) << results.GetError().message;
+  const std::vector<RunResult>& r = results.Value();
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].error, "");
+  const std::string& stopped = r[1].error;
+  EXPECT_EQ(stopped.rfind("step ", 0), 0u) << stopped;
+  EXPECT_TRUE(Has(stopped, ": slow: wall-clock budget of 0.5 s spent")) << stopped;
+  EXPECT_FALSE(Has(stopped, "killed")) << stopped;
+  // Stopped at at most 100 steps (0.5 s / 5 ms), the plot up to there kept,
+  // ending at the step it stopped at (the samples, every 500th step of
+  // 100000, would otherwise hold step 0 alone).
+  const int step = std::stoi(stopped.substr(5));
+  EXPECT_GE(step, 10);   // a loaded machine sleeps longer than asked: fewer steps
+  EXPECT_LE(step, 101);  // never more: each step sleeps at least 5 ms
+  ASSERT_GE(r[1].series.time.size(), 2u);
+  EXPECT_NEAR(r[1].series.time.back(), step * 0.01, 1e-9);
 }
 
 TEST(Isolation, AJobPastItsMemoryLimitStopsNamingTheLimit) {

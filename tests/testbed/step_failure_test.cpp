@@ -181,19 +181,22 @@ TEST(StepFailure, LongJobsReportTheirProgress) {
   RunnerOptions options = Options({"fake"});
   std::vector<std::string> lines;
   options.progress = [&](const std::string& line) { lines.push_back(line); };
-  options.progressSeconds = 0.0;  // every 1024 steps
+  options.progressSeconds = 0.0;  // after every step (the job's tick runs after each)
   const RunResult result = RunOne(FakeRegistry(), OneBodyRun("long", 5000), "fake", options);
   EXPECT_EQ(result.error, "");
-  ASSERT_EQ(lines.size(), 4u);  // steps 1024, 2048, 3072, 4096
-  EXPECT_EQ(lines[0].rfind("long fake: step 1024 of 5000 (20%), ", 0), 0u) << lines[0];
-  EXPECT_EQ(lines[3].rfind("long fake: step 4096 of 5000 (82%), ", 0), 0u) << lines[3];
+  ASSERT_EQ(lines.size(), 5000u);
+  EXPECT_EQ(lines[0].rfind("long fake: step 1 of 5000 (0%), ", 0), 0u) << lines[0];
+  EXPECT_EQ(lines[4095].rfind("long fake: step 4096 of 5000 (82%), ", 0), 0u) << lines[4095];
 }
 
 TEST(StepFailure, AJobPastItsWallClockBudgetStopsWithTheReason) {
   RunnerOptions options = Options({"fake"});
-  options.budgetSeconds = 1e-9;  // spent before step 1024 is reached
+  options.budgetSeconds = 1e-9;  // spent by the end of the first step, where it is checked
   const RunResult result = RunOne(FakeRegistry(), OneBodyRun("long", 5000), "fake", options);
-  EXPECT_EQ(result.error, "step 1024: fake: wall-clock budget of 1e-09 s spent");
+  EXPECT_EQ(result.error, "step 1: fake: wall-clock budget of 1e-09 s spent");
+  // The plot keeps the steps up to the stop: steps 0 and 1.
+  ASSERT_EQ(result.series.time.size(), 2u);
+  EXPECT_EQ(result.series.time.back(), OneBodyRun("long", 5000).timeStep);
   options.budgetSeconds = -1.0;
   auto refused = RunAll(FakeRegistry(), {OneBodyRun("long", 5)}, options);
   ASSERT_FALSE(refused);

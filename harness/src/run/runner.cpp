@@ -260,11 +260,13 @@ void KeepStepTime(std::vector<double>& stepSeconds, double seconds, int& timedEv
 
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
                   const std::function<bool(int)>& record, std::vector<double>* stepSeconds, bool detail,
-                  const std::function<std::string(int)>& tick, StepWallTimes* wall, bool reportSteps) {
+                  const std::function<std::string(int, std::chrono::steady_clock::time_point)>& tick,
+                  StepWallTimes* wall, bool reportSteps) {
   Trajectory trajectory;
   trajectory.timeStep = timeStep;
   trajectory.samples.push_back(TakeSample(backend, run, 0, timeStep, detail));
   int timedEvery = 1;  // the spacing of the timed steps (KeepStepTime)
+  int stoppedAt = 0;   // the step `tick` stopped the recording at
   for (int step = 1; step <= steps; ++step) {
     if (reportSteps) ReportJobStep(step);
     const auto start = std::chrono::steady_clock::now();
@@ -287,27 +289,40 @@ Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
     }
     if (step == steps || record(step))
       trajectory.samples.push_back(TakeSample(backend, run, step, timeStep, detail));
-    if (tick && step % 1024 == 0) {
-      if (std::string stop = tick(step); !stop.empty()) {
+    // Every step, on the clock reading the step's timing already took: a
+    // job of slow steps (2 ms or more) checked only every 1024 steps passed
+    // its budget by more than kBudgetKillGraceSeconds before the check and
+    // was killed by the runner, losing its plot (issue 39).
+    if (tick) {
+      if (std::string stop = tick(step, end); !stop.empty()) {
         trajectory.failure = Concat({"step ", std::to_string(step), ": ", backend.Name(), ": ", stop});
+        stoppedAt = step;
         break;
       }
     }
   }
   if (trajectory.samples.size() > 1) trajectory.stride = trajectory.samples[1].step;
+  // A stopped job's plot ends where it stopped: with a long run's sparse
+  // samples, those taken so far may be step 0 alone.
+  if (stoppedAt > 0 && trajectory.samples.back().step != stoppedAt) {
+    trajectory.samples.push_back(TakeSample(backend, run, stoppedAt, timeStep, detail));
+  }
   return trajectory;
 }
 
 namespace {
 
-// The tick Record calls every 1024 steps of a job: a reason to stop once
+// The tick Record calls after every step of a job: a reason to stop once
 // options.budgetSeconds is spent, and a progress line every
-// options.progressSeconds for a long job. Its clock starts now.
-std::function<std::string(int)> JobTick(const Run& run, const std::string& backendName,
-                                        const RunnerOptions& options) {
+// options.progressSeconds for a long job. Its clock starts now; `now` is
+// Record's reading at the step's end, so the check costs no clock read.
+std::function<std::string(int, std::chrono::steady_clock::time_point)> JobTick(const Run& run,
+                                                                               const std::string& backendName,
+                                                                               const RunnerOptions& options) {
   const auto begun = std::chrono::steady_clock::now();
-  return [&run, &backendName, &options, begun, nextReport = options.progressSeconds](int step) mutable {
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - begun).count();
+  return [&run, &backendName, &options, begun, nextReport = options.progressSeconds](
+             int step, std::chrono::steady_clock::time_point now) mutable {
+    const double elapsed = std::chrono::duration<double>(now - begun).count();
     if (options.budgetSeconds > 0.0 && elapsed > options.budgetSeconds) {
       return Concat({"wall-clock budget of ", FormatNumber(options.budgetSeconds), " s spent"});
     }

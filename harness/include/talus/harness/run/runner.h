@@ -19,6 +19,7 @@
 // other libraries and with the jobs of independent worlds (Talus's).
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 
 #include <functional>
@@ -96,8 +97,8 @@ inline constexpr double kMaxBudgetSeconds = 1e6;
 inline constexpr std::size_t kMinMemoryLimitBytes = std::size_t{16} << 20;
 inline constexpr std::size_t kMaxMemoryLimitBytes = std::size_t{1} << 40;
 /// With JobIsolation::Process, the runner kills a job's process this long
-/// after its budget: the job's own check (every 1024 steps) normally stops
-/// it first and keeps its plot; the kill ends a job stuck inside one step.
+/// after its budget: the job's own check (after every step) stops it first
+/// and keeps its plot; the kill ends a job stuck inside one step.
 inline constexpr double kBudgetKillGraceSeconds = 2.0;
 
 struct RunnerOptions {
@@ -128,8 +129,8 @@ struct RunnerOptions {
   double progressSeconds = 10.0;
   /// Wall-clock budget of one job's recorded run, seconds, in [0,
   /// kMaxBudgetSeconds]; 0 = none. A job past it stops like a failed step:
-  /// "step 3072: talus: wall-clock budget of 60 s spent" (checked every
-  /// 1024 steps). With JobIsolation::Process, a job still running
+  /// "step 3072: talus: wall-clock budget of 60 s spent" (checked after
+  /// every step, its plot kept up to there). With JobIsolation::Process, a job still running
   /// kBudgetKillGraceSeconds later (stuck inside one step) is killed:
   /// "step 12: ode-quickstep: wall-clock budget spent: the runner killed
   /// the job's process after 62 s".
@@ -191,8 +192,11 @@ RunResult RunOne(const BackendRegistry& registry, const Run& run, const std::str
 /// which `record(step)` holds (step 0 and the last always) and, when
 /// `stepSeconds` is not null, the wall time of every step. With `detail`,
 /// each sample also keeps its contacts and the backend's step counters.
-/// `tick`, when set, is called with the step number every 1024 steps; a
-/// non-empty answer stops the recording with that reason. The first failed
+/// `tick`, when set, is called after every step with the step number and
+/// the clock reading taken as that step ended (no clock read of its own);
+/// a non-empty answer stops the recording with that reason, and the state
+/// at that step ends the trajectory (a sample of it is added if that step
+/// was not sampled). The first failed
 /// step or non-finite body state stops it too (Trajectory::failure).
 /// `wall`, when not null, gets the total and the longest of every step's
 /// wall time (every step, not only those kept in `stepSeconds`). With
@@ -206,7 +210,8 @@ struct StepWallTimes {
 };
 Trajectory Record(Backend& backend, const Run& run, int steps, double timeStep,
                   const std::function<bool(int)>& record, std::vector<double>* stepSeconds,
-                  bool detail = false, const std::function<std::string(int)>& tick = {},
+                  bool detail = false,
+                  const std::function<std::string(int, std::chrono::steady_clock::time_point)>& tick = {},
                   StepWallTimes* wall = nullptr, bool reportSteps = false);
 
 }  // namespace talus::harness
