@@ -4,8 +4,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
+#include <utility>
 
 #include "sweep_commands.h"
 #include "talus/harness/run/results_file.h"
@@ -38,6 +40,20 @@ int Merge(const MergeOptions& options) {
       return kExitBadInput;
     }
     shards.push_back(std::move(shard).Value());
+  }
+  // Each job once across the shards: a (run, backend) pair in two files
+  // (or twice in one) would be a duplicated run in the merged results.
+  std::map<std::pair<std::string, std::string>, std::string> firstFile;
+  for (std::size_t s = 0; s < shards.size(); ++s) {
+    for (const harness::RunResult& result : shards[s].results.results) {
+      const auto [at, inserted] =
+          firstFile.emplace(std::pair{result.runId, result.backend}, options.shards[s]);
+      if (inserted) continue;
+      std::cerr << "talus-testbed: run \"" << result.runId << "\" on backend \"" << result.backend
+                << "\" is in both " << at->second << " and " << options.shards[s]
+                << " (each job belongs to one shard, once)\n";
+      return kExitBadInput;
+    }
   }
   auto merged = harness::MergeShards(shards);
   if (!merged) {

@@ -150,6 +150,13 @@ int ReportCommand(const ReportOptions& options) {
     std::cerr << "talus-testbed: " << file.GetError().message << "\n";
     return kExitBadInput;
   }
+  if (const auto twice = harness::FindDuplicatedResult(file.Value().results)) {
+    const harness::RunResult& result = file.Value().results[twice->second];
+    std::cerr << "talus-testbed: " << options.results << ": run \"" << result.runId << "\" on backend \""
+              << result.backend << "\" appears twice (results " << twice->first << " and " << twice->second
+              << "); a results file holds each (run, backend) once\n";
+    return kExitBadInput;
+  }
   const fs::path folder =
       options.out.empty() ? fs::path(options.results).parent_path() : fs::path(options.out);
   const fs::path chartJs =

@@ -145,10 +145,11 @@ TEST_F(ShardPartition, EditedScenarioContentsAreRefused) {
 TEST_F(ShardPartition, OldAndForgedShardFilesAreRefusedBeforeAnyAllocation) {
   std::string text = ShardToJson(first);
   std::string old = text;
-  old.replace(old.find("\"version\": 2"), 12, "\"version\": 1");
+  old.replace(old.find("\"version\": 3"), 12, "\"version\": 1");
   auto refused = ShardFromJson(old);
   ASSERT_FALSE(refused);
-  EXPECT_NE(refused.GetError().message.find("version 1, expected 2"), std::string::npos)
+  EXPECT_NE(refused.GetError().message.find("version 1, expected 3 (written by an older talus-testbed"),
+            std::string::npos)
       << refused.GetError().message;
   std::string forged = text;
   forged.replace(forged.find("\"count\": 2"), 10, "\"count\": 2000000000");

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <vector>
@@ -473,6 +474,17 @@ Result<ResultsFile> ParseResults(std::string_view text, const TrajectorySource& 
 }
 
 }  // namespace
+
+std::optional<std::pair<std::size_t, std::size_t>> FindDuplicatedResult(
+    const std::vector<RunResult>& results) {
+  std::map<std::pair<std::string_view, std::string_view>, std::size_t> first;
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const auto [at, inserted] =
+        first.emplace(std::pair<std::string_view, std::string_view>(results[i].runId, results[i].backend), i);
+    if (!inserted) return std::pair{at->second, i};
+  }
+  return std::nullopt;
+}
 
 std::string ResultsToJson(const ResultsFile& file) { return ResultsJson(file, true).dump(2) + "\n"; }
 

@@ -9,6 +9,7 @@
 #include <optional>
 #include <type_traits>
 
+#include "support/fnv1a.h"
 #include "support/text_util.h"
 #include "talus/harness/scenario/scenario_limits.h"
 #include "talus/harness/sweep/shards.h"
@@ -18,8 +19,22 @@ namespace {
 
 constexpr std::string_view kShardFormat = "talus-testbed-shard";
 // Version 2 added the identity (build, settings, scenarios, digest);
-// version 1 files cannot be checked against each other and are refused.
-constexpr int kShardVersion = 2;
+// version 3 the payload digest. Older files cannot be checked (against
+// each other, or for edits) and are refused.
+constexpr int kShardVersion = 3;
+// The key of the payload digest and its value's prefix (the algorithm).
+constexpr const char* kDigestKey = "payloadDigest";
+constexpr std::string_view kDigestPrefix = "fnv1a64:";
+
+// The payload digest of a shard's JSON without its digest field: FNV-1a 64
+// (support/fnv1a.h) of the compact dump of every other field, in file
+// order. The dump is canonical (nlohmann's number and string forms), so
+// re-indenting the file keeps its digest; changing any value does not.
+std::string PayloadDigest(const nlohmann::ordered_json& payload) {
+  Fnv1a64 hash;
+  hash.AddBytes(payload.dump());
+  return Concat({kDigestPrefix, hash.Hex()});
+}
 
 // The values of `in[key]`, an array of T; false when it is not one.
 template <typename T>
@@ -92,7 +107,14 @@ std::string ShardToJson(const ShardFile& shard) {
   out["runIndices"] = shard.runIndices;
   if (!shard.resultCounts.empty()) out["resultCounts"] = shard.resultCounts;
   out["results"] = nlohmann::ordered_json::parse(ResultsToJson(shard.results));
-  return out.dump(2) + "\n";
+  // The digest goes after the version, where a reader looks first; it
+  // covers every other field.
+  nlohmann::ordered_json file;
+  for (auto it = out.begin(); it != out.end(); ++it) {
+    file[it.key()] = it.value();
+    if (it.key() == "version") file[kDigestKey] = PayloadDigest(out);
+  }
+  return file.dump(2) + "\n";
 }
 
 namespace {
@@ -104,9 +126,13 @@ std::optional<std::string> ShardHeaderProblem(const nlohmann::ordered_json& in) 
     return Concat({"shard file: \"format\" is not \"", kShardFormat, "\""});
   }
   if (in.value("version", 0) != kShardVersion) {
+    const bool older = in.contains("version") && in["version"].is_number_integer() &&
+                       in["version"].get<long long>() >= 1 && in["version"].get<long long>() < kShardVersion;
     return Concat({"shard file: version ", in.contains("version") ? in["version"].dump() : "(none)",
                    ", expected ", std::to_string(kShardVersion),
-                   " (re-run the shard with this build: older files carry no build or scenario identity)"});
+                   older ? " (written by an older talus-testbed: its shard files carry no digest of their "
+                           "contents, so an edit cannot be detected; re-run the shard with this build)"
+                         : " (re-run the shard with this build)"});
   }
   for (const char* key : {"shard", "count", "runCount"}) {
     if (!in.contains(key) || !in[key].is_number_integer()) {
@@ -117,6 +143,25 @@ std::optional<std::string> ShardHeaderProblem(const nlohmann::ordered_json& in) 
     return "shard file: missing \"runIndices\" or \"results\"";
   }
   return std::nullopt;
+}
+
+// Why `in`'s contents do not match its payload digest, or nullopt when
+// they do: a value edited by hand (a measured value, a verdict, a
+// backend) or a file damaged after it was written.
+std::optional<std::string> DigestProblem(const nlohmann::ordered_json& in) {
+  if (!in.contains(kDigestKey) || !in[kDigestKey].is_string()) {
+    return Concat({"shard file: missing string \"", kDigestKey,
+                   "\" (the digest of its contents, which every version ", std::to_string(kShardVersion),
+                   " shard file carries)"});
+  }
+  const std::string written = in[kDigestKey].get<std::string>();
+  nlohmann::ordered_json payload = in;
+  payload.erase(kDigestKey);
+  const std::string computed = PayloadDigest(payload);
+  if (written == computed) return std::nullopt;
+  return Concat({"shard file: the digest does not match its contents (", kDigestKey, " ", written,
+                 ", contents hash to ", computed,
+                 "): it was edited or damaged after talus-testbed wrote it; re-run the shard"});
 }
 
 // The identity the merge compares (build, digest, noise floor, settings,
@@ -195,6 +240,7 @@ Result<ShardFile> ShardFromJson(std::string_view text) {
   auto identity = ReadShardIdentity(in);
   if (!identity) return identity.GetError();
   if (auto problem = PartitionBoundsProblem(in)) return Error{*problem};
+  if (auto problem = DigestProblem(in)) return Error{*problem};
   ShardFile shard;
   shard.identity = std::move(identity).Value();
   if (auto problem = ReadRunsAndResults(in, shard)) return Error{*problem};

@@ -25,8 +25,10 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -81,6 +83,14 @@ std::string ResultsToJson(const ResultsFile& file);
 /// not what it should be.
 Result<ResultsFile> ResultsFromJson(std::string_view text, std::string_view trajectoryText = {},
                                     std::string_view replayText = {});
+
+/// The first result of `results` whose (run id, backend) pair an earlier
+/// one already has, as the indices of both (earlier first); nullopt when
+/// every pair appears once. A results file holds each job once: a
+/// duplicate (two merged copies, a backend edited by hand) would be
+/// counted twice by every table.
+std::optional<std::pair<std::size_t, std::size_t>> FindDuplicatedResult(
+    const std::vector<RunResult>& results);
 
 /// One RunResult as bytes (CBOR of its results.json entry, with every
 /// number exact: NaN and infinities kept), for an isolated job's answer to

@@ -62,6 +62,12 @@ struct ShardFile {
   /// means every run has one result per backend.
   std::vector<int> resultCounts;
 };
+/// The shard file's JSON (version 3), with the digest of its payload
+/// ("payloadDigest": FNV-1a 64 of every other field's canonical dump,
+/// docs/sharding.md) / read back: an Error when the digest does not match
+/// the contents (an edited measured value, verdict, backend, step count,
+/// time step or trajectory point), when it is missing, or for a file of an
+/// older version (which carries none).
 std::string ShardToJson(const ShardFile& shard);
 Result<ShardFile> ShardFromJson(std::string_view text);
 
