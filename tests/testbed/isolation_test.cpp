@@ -38,7 +38,7 @@ using Runs = std::vector<harness::Run>;  // gtest's Test::Run hides harness::Run
 
 bool Has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
-enum class Misdeed { None, Abort, Segfault, Hang, NaN, Allocate, Slow };
+enum class Misdeed { None, Abort, Segfault, Hang, NaN, Allocate, AllocateUnchecked, Slow };
 
 // One body falling at 1 m/s that misbehaves at step `at` as asked.
 class MisbehavingBackend final : public Backend {
@@ -78,6 +78,15 @@ class MisbehavingBackend final : public Backend {
         while (true) {
           m_hoard.emplace_back(std::size_t{64} << 20, 1);
         }
+      case Misdeed::AllocateUnchecked:
+        // Bullet's way: malloc until it fails, then use the null it gave
+        // (SIGSEGV), never throwing std::bad_alloc.
+        while (true) {
+          constexpr std::size_t kChunk = std::size_t{64} << 20;
+          auto* chunk = static_cast<volatile char*>(std::malloc(kChunk));
+          for (std::size_t i = 0; i < kChunk; i += 4096) chunk[i] = 1;
+          m_unchecked.push_back(const_cast<char*>(chunk));
+        }
     }
   }
   [[nodiscard]] int BodyCount() const override { return 1; }
@@ -92,6 +101,7 @@ class MisbehavingBackend final : public Backend {
   int m_step = 0;
   BodyReading m_state;
   std::vector<std::vector<char>> m_hoard;
+  std::vector<char*> m_unchecked;  // never freed: the process dies holding them
 };
 
 BackendRegistry MisbehavingRegistry() {
@@ -109,6 +119,7 @@ BackendRegistry MisbehavingRegistry() {
   add("hangs", Misdeed::Hang, 4);
   add("diverges", Misdeed::NaN, 5);
   add("allocates", Misdeed::Allocate, 6);
+  add("allocates-unchecked", Misdeed::AllocateUnchecked, 6);
   add("slow", Misdeed::Slow, 0);
   return registry;
 }
@@ -234,6 +245,32 @@ TEST(Isolation, AJobPastItsMemoryLimitStopsNamingTheLimit) {
   EXPECT_TRUE(Has(r[1].error, "ran out of memory (std::bad_alloc) within the job's limit of 256 MiB"))
       << r[1].error;
 #endif
+}
+
+// An engine that crashes on a failed allocation (Bullet) instead of
+// throwing: the signal is named, and beside it the limit it likely ran
+// out of, with the process's peak resident memory.
+TEST(Isolation, ACrashUnderAMemoryLimitNamesTheLimit) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer's allocator reports the failed malloc itself";
+#endif
+  RunnerOptions options = Options({"fine", "allocates-unchecked"}, 2);
+  options.memoryLimitBytes = std::size_t{256} << 20;
+  auto results = RunAll(MisbehavingRegistry(), {OneBodyRun("first", 20)}, options);
+  ASSERT_TRUE(results) << results.GetError().message;
+  const std::vector<RunResult>& r = results.Value();
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].error, "");
+  EXPECT_EQ(r[1].error.rfind("step 6: allocates-unchecked: stopped by signal 11 (SIGSEGV: ", 0), 0u)
+      << r[1].error;
+  EXPECT_TRUE(Has(r[1].error,
+                  "; the job ran under a memory limit of 256 MiB (--memory-limit) and likely ran out of "
+                  "memory (its process's peak resident memory: "))
+      << r[1].error;
+  // Without a limit a segfault says nothing of memory.
+  auto unlimited = RunAll(MisbehavingRegistry(), {OneBodyRun("first", 20)}, Options({"segfaults"}, 1));
+  ASSERT_TRUE(unlimited) << unlimited.GetError().message;
+  EXPECT_FALSE(Has(unlimited.Value()[0].error, "memory")) << unlimited.Value()[0].error;
 }
 
 TEST(Isolation, BadLimitsAreRefusedBeforeAnythingRuns) {

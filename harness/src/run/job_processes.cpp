@@ -294,16 +294,31 @@ bool Drain(int fd, std::vector<char>& buffer, const std::function<void(const cha
   }
 }
 
-// How a worker's death ended its job.
-std::string DeathReason(const Worker& worker, int status, double killAfter) {
+// How a worker's death ended its job; `usage` is the worker's, from wait4.
+// Under a memory limit a signal is most likely the limit: an engine whose
+// allocator does not handle a failed allocation (Bullet's) dereferences
+// the null it got and dies by SIGSEGV (or aborts) instead of throwing
+// std::bad_alloc. Only likely, as a crash can have other causes, so the
+// message says so and gives the worker's peak resident memory beside the
+// limit (which caps address space, so the peak may be well below it).
+std::string DeathReason(const Worker& worker, int status, const rusage& usage, const ProcessLimits& limits) {
   if (worker.killedForTime) {
     return Concat({"wall-clock budget spent: the runner killed the job's process after ",
-                   FormatNumber(killAfter), " s"});
+                   FormatNumber(limits.killAfterSeconds), " s"});
   }
   if (WIFSIGNALED(status)) {
     const int number = WTERMSIG(status);
-    return Concat({"stopped by signal ", std::to_string(number), " (", SignalName(number), ": ",
-                   ::strsignal(number), ")"});
+    std::string reason = Concat({"stopped by signal ", std::to_string(number), " (", SignalName(number), ": ",
+                                 ::strsignal(number), ")"});
+    if (limits.memoryBytes > 0) {
+      // ru_maxrss is in KiB on Linux.
+      const auto peak = static_cast<std::size_t>(std::max(usage.ru_maxrss, 0L)) << 10;
+      reason += Concat(
+          {"; the job ran under a memory limit of ", MiB(limits.memoryBytes),
+           " (--memory-limit) and likely ran out of memory (its process's peak resident memory: ", MiB(peak),
+           "; the limit caps address space)"});
+    }
+    return reason;
   }
   if (WIFEXITED(status)) {
     return Concat(
@@ -484,15 +499,16 @@ void WorkerPool::Bury(std::size_t slot) {
     worker.stderrLine.clear();
   }
   int status = 0;
+  rusage usage{};
   ForgetWorker(worker.pid);  // before the pid is freed for reuse
-  while (::waitpid(worker.pid, &status, 0) < 0 && errno == EINTR) {
+  while (::wait4(worker.pid, &status, 0, &usage) < 0 && errno == EINTR) {
   }
   CloseFd(worker.commandFd);
   CloseFd(worker.answerFd);
   const bool wasBusy = worker.busy;
   JobOutcome outcome;
   if (wasBusy) {
-    outcome.failure = DeathReason(worker, status, m_limits.killAfterSeconds);
+    outcome.failure = DeathReason(worker, status, usage, m_limits);
     outcome.killedForTime = worker.killedForTime;
     outcome.step = m_steps[slot].load(std::memory_order_relaxed);
     outcome.lastMessage = LastLines(worker.stderrTail);
