@@ -8,9 +8,10 @@
 // (two time steps, two shards, the talus backend: milliseconds).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <string>
 
@@ -39,6 +40,43 @@ void WriteText(const fs::path& path, const std::string& text) {
   out << text;
 }
 
+// Plain string edits (std::regex trips GCC 12's -Wmaybe-uninitialized in
+// the sanitizer build, and these edits need no more than this).
+
+// `text` with every `from` replaced by `to`.
+std::string ReplaceAll(std::string text, const std::string& from, const std::string& to) {
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+    text.replace(at, from.size(), to);
+  }
+  return text;
+}
+
+// `text` with its first `key` and the run of `valueChars` after it (none
+// when empty) replaced by `replacement`; unchanged when `key` is absent.
+std::string ReplaceFirstValue(std::string text, const std::string& key, const std::string& valueChars,
+                              const std::string& replacement) {
+  const std::size_t at = text.find(key);
+  if (at == std::string::npos) return text;
+  std::size_t end = at + key.size();
+  if (!valueChars.empty()) end = std::min(text.find_first_not_of(valueChars, end), text.size());
+  text.replace(at, end - at, replacement);
+  return text;
+}
+
+// `text` without its `"payloadDigest": "...",` line.
+std::string WithoutDigestLine(std::string text) {
+  const std::size_t at = text.find("\"payloadDigest\": \"");
+  if (at == std::string::npos) return text;
+  const std::size_t lineStart = text.rfind('\n', at);
+  const std::size_t close = text.find('"', at + std::string("\"payloadDigest\": \"").size());
+  if (lineStart == std::string::npos || close == std::string::npos || close + 1 >= text.size() ||
+      text[close + 1] != ',') {
+    return text;
+  }
+  text.erase(lineStart, close + 2 - lineStart);
+  return text;
+}
+
 class ShardDigest : public testing::Test {
  protected:
   void SetUp() override {
@@ -59,13 +97,13 @@ class ShardDigest : public testing::Test {
   }
   void TearDown() override { fs::remove_all(folder); }
 
-  // `merge` of both shards after `edit` replaced the first match of
-  // `pattern` in the first shard's text by `replacement`.
-  testing_support::CommandOutcome MergeEdited(const std::string& pattern, const std::string& replacement) {
+  // `merge` of both shards after the first `key` in the first shard's
+  // text, with the run of `valueChars` after it, became `replacement`.
+  testing_support::CommandOutcome MergeEdited(const std::string& key, const std::string& valueChars,
+                                              const std::string& replacement) {
     const std::string text = ReadText(first);
-    const std::string edited =
-        std::regex_replace(text, std::regex(pattern), replacement, std::regex_constants::format_first_only);
-    EXPECT_NE(edited, text) << "pattern " << pattern << " not in the shard";
+    const std::string edited = ReplaceFirstValue(text, key, valueChars, replacement);
+    EXPECT_NE(edited, text) << "key " << key << " not in the shard";
     WriteText(first, edited);
     return Merge();
   }
@@ -92,33 +130,33 @@ TEST_F(ShardDigest, UneditedShardsMerge) {
 // Re-indenting the file (the digest is of the canonical dump) is no edit.
 TEST_F(ShardDigest, ReindentedShardsStillMerge) {
   const std::string text = ReadText(first);
-  WriteText(first, std::regex_replace(text, std::regex("\n  "), "\n    "));
+  WriteText(first, ReplaceAll(text, "\n  ", "\n    "));
   const auto outcome = Merge();
   EXPECT_EQ(outcome.code, 0) << outcome.output;
 }
 
 TEST_F(ShardDigest, AnEditedMeasuredValueIsRefusedNamingTheFile) {
-  ExpectDigestRefusal(MergeEdited("\"measured\": [-0-9.e]+", "\"measured\": 0.125"));
+  ExpectDigestRefusal(MergeEdited("\"measured\": ", "-+0123456789.eE", "\"measured\": 0.125"));
 }
 
 TEST_F(ShardDigest, AFlippedVerdictIsRefusedNamingTheFile) {
   const bool passes = Contains(ReadText(first), "\"pass\": true");
-  ExpectDigestRefusal(passes ? MergeEdited("\"pass\": true", "\"pass\": false")
-                             : MergeEdited("\"pass\": false", "\"pass\": true"));
+  ExpectDigestRefusal(passes ? MergeEdited("\"pass\": true", "", "\"pass\": false")
+                             : MergeEdited("\"pass\": false", "", "\"pass\": true"));
 }
 
 TEST_F(ShardDigest, AChangedStepCountIsRefusedNamingTheFile) {
-  ExpectDigestRefusal(MergeEdited("\"steps\": [0-9]+", "\"steps\": 7"));
+  ExpectDigestRefusal(MergeEdited("\"steps\": ", "0123456789", "\"steps\": 7"));
 }
 
 TEST_F(ShardDigest, AChangedTimeStepIsRefusedNamingTheFile) {
-  ExpectDigestRefusal(MergeEdited("\"timeStep\": [-0-9.e]+", "\"timeStep\": 0.005"));
+  ExpectDigestRefusal(MergeEdited("\"timeStep\": ", "-+0123456789.eE", "\"timeStep\": 0.005"));
 }
 
 // A backend renamed in the file would otherwise be a run of another
 // engine (and, renamed to one it already has, a duplicated job).
 TEST_F(ShardDigest, AChangedBackendIsRefusedNamingTheFile) {
-  ExpectDigestRefusal(MergeEdited("\"backend\": \"talus\"", "\"backend\": \"bullet\""));
+  ExpectDigestRefusal(MergeEdited("\"backend\": \"talus\"", "", "\"backend\": \"bullet\""));
 }
 
 TEST_F(ShardDigest, AChangedTrajectoryPointIsRefusedNamingTheFile) {
@@ -137,8 +175,7 @@ TEST_F(ShardDigest, AChangedTrajectoryPointIsRefusedNamingTheFile) {
 
 TEST_F(ShardDigest, AShardWithoutADigestIsRefusedAsOlder) {
   const std::string text = ReadText(first);
-  std::string old = std::regex_replace(text, std::regex("\n *\"payloadDigest\": \"[^\"]*\","), "");
-  old = std::regex_replace(old, std::regex("\"version\": 3"), "\"version\": 2");
+  const std::string old = ReplaceAll(WithoutDigestLine(text), "\"version\": 3", "\"version\": 2");
   WriteText(first, old);
   auto outcome = Merge();
   EXPECT_EQ(outcome.code, 2) << outcome.output;  // bad input
@@ -147,7 +184,7 @@ TEST_F(ShardDigest, AShardWithoutADigestIsRefusedAsOlder) {
                                            "older talus-testbed: its shard files carry no digest"))
       << outcome.output;
   // This version without its digest: refused too, not merged unchecked.
-  WriteText(first, std::regex_replace(text, std::regex("\n *\"payloadDigest\": \"[^\"]*\","), ""));
+  WriteText(first, WithoutDigestLine(text));
   outcome = Merge();
   EXPECT_EQ(outcome.code, 2) << outcome.output;  // bad input
   EXPECT_TRUE(Contains(outcome.output, first.string() + ": shard file: missing string \"payloadDigest\""))
